@@ -1,0 +1,109 @@
+//! Validation helpers: every failed check names the key, the value and the allowed range.
+
+use std::fmt::Display;
+
+/// One failed check: which key, what it held and what it may hold.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InvalidValue {
+    /// Dotted key, e.g. `guidance.b0_ft`.
+    pub key: String,
+    /// The offending value as written.
+    pub value: String,
+    /// What the key allows, e.g. `(0, 1]` or `one of "perfect", "camera"`.
+    pub allowed: String,
+}
+
+impl Display for InvalidValue {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} = {} is invalid: allowed {}",
+            self.key, self.value, self.allowed
+        )
+    }
+}
+
+/// Result of a check.
+pub type Check = Result<(), InvalidValue>;
+
+fn invalid(key: &str, value: impl Display, allowed: impl Display) -> Check {
+    Err(InvalidValue {
+        key: key.to_string(),
+        value: value.to_string(),
+        allowed: allowed.to_string(),
+    })
+}
+
+/// `value` is finite and > 0.
+pub fn positive(key: &str, value: f64) -> Check {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        invalid(key, value, "a finite number > 0")
+    }
+}
+
+/// `value` is finite and ≥ 0.
+pub fn non_negative(key: &str, value: f64) -> Check {
+    if value.is_finite() && value >= 0.0 {
+        Ok(())
+    } else {
+        invalid(key, value, "a finite number >= 0")
+    }
+}
+
+/// `value` is finite and in the closed interval [lo, hi].
+pub fn in_closed(key: &str, value: f64, lo: f64, hi: f64) -> Check {
+    if value.is_finite() && value >= lo && value <= hi {
+        Ok(())
+    } else {
+        invalid(key, value, format!("[{lo}, {hi}]"))
+    }
+}
+
+/// `value` is finite and in the open interval (lo, hi); `bounds` names the limits for the
+/// message (e.g. `"(guidance.b_min_ft = 1, guidance.b_max_ft = 30)"`).
+pub fn in_open(key: &str, value: f64, lo: f64, hi: f64, bounds: &str) -> Check {
+    if value.is_finite() && value > lo && value < hi {
+        Ok(())
+    } else {
+        invalid(key, value, bounds)
+    }
+}
+
+/// An integer in [lo, hi].
+pub fn int_in(key: &str, value: i64, lo: i64, hi: i64) -> Check {
+    if (lo..=hi).contains(&value) {
+        Ok(())
+    } else {
+        invalid(key, value, format!("an integer in [{lo}, {hi}]"))
+    }
+}
+
+/// Every component finite.
+pub fn finite_vec(key: &str, value: &[f64; 3]) -> Check {
+    if value.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        invalid(key, format!("{value:?}"), "three finite numbers")
+    }
+}
+
+/// A vector of nonzero length.
+pub fn nonzero_vec(key: &str, value: &[f64; 3]) -> Check {
+    finite_vec(key, value)?;
+    if value.iter().any(|x| *x != 0.0) {
+        Ok(())
+    } else {
+        invalid(key, format!("{value:?}"), "a nonzero vector")
+    }
+}
+
+/// Fails with a free-form reason (for cross-key conditions).
+pub fn require(ok: bool, key: &str, value: impl Display, allowed: impl Display) -> Check {
+    if ok {
+        Ok(())
+    } else {
+        invalid(key, value, allowed)
+    }
+}

@@ -1,0 +1,182 @@
+//! Scenario files (TOML): schema with defaults, `--set section.key=value` overrides, and
+//! validation whose errors name the file, the key, the value and the allowed range.
+
+pub mod check;
+mod sections;
+
+pub use sections::*;
+
+use std::path::{Path, PathBuf};
+
+/// Why a scenario could not be used. Every variant names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// The file could not be read.
+    #[error("{path}: cannot read scenario file: {reason}")]
+    Unreadable {
+        /// The file.
+        path: PathBuf,
+        /// The OS's reason.
+        reason: String,
+    },
+    /// TOML syntax error or a key/value the schema does not accept.
+    #[error("{path}: {message}")]
+    Schema {
+        /// The file.
+        path: PathBuf,
+        /// The parser's message (key and line included).
+        message: String,
+    },
+    /// A `--set` override that is not `section.key=value`, or names an unknown key.
+    #[error("{path}: bad override `{text}`: {reason}")]
+    Override {
+        /// The file being overridden.
+        path: PathBuf,
+        /// The override as given.
+        text: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A value out of its allowed range.
+    #[error("{path}: {invalid}")]
+    Invalid {
+        /// The file.
+        path: PathBuf,
+        /// The key, value and allowed range.
+        invalid: check::InvalidValue,
+    },
+}
+
+impl Scenario {
+    /// Reads, overrides, parses and validates a scenario file.
+    pub fn load(path: &Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Unreadable {
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        })?;
+        Self::from_toml_str(&text, path, overrides)
+    }
+
+    /// Parses scenario text as if read from `path` (used in messages only).
+    pub fn from_toml_str(
+        text: &str,
+        path: &Path,
+        overrides: &[String],
+    ) -> Result<Scenario, ScenarioError> {
+        let schema_error = |message: String| ScenarioError::Schema {
+            path: path.to_path_buf(),
+            message: message.trim_end().replace('\n', " "),
+        };
+        let mut table: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| schema_error(e.to_string()))?;
+        for text in overrides {
+            apply_override(&mut table, text).map_err(|reason| ScenarioError::Override {
+                path: path.to_path_buf(),
+                text: text.clone(),
+                reason,
+            })?;
+        }
+        let scenario: Scenario = toml::Value::Table(table)
+            .try_into()
+            .map_err(|e: toml::de::Error| schema_error(e.to_string()))?;
+        scenario
+            .validate()
+            .map_err(|invalid| ScenarioError::Invalid {
+                path: path.to_path_buf(),
+                invalid,
+            })?;
+        Ok(scenario)
+    }
+
+    /// The resolved scenario as TOML, every default filled in.
+    pub fn to_toml_string(&self) -> String {
+        toml::to_string(self).unwrap_or_else(|e| format!("# cannot serialise scenario: {e}\n"))
+    }
+}
+
+/// Applies `section.key=value`; the value is read as a TOML value (number, boolean, array, quoted
+/// string) and, failing that, as a bare string.
+fn apply_override(table: &mut toml::Table, text: &str) -> Result<(), String> {
+    let (key, value_text) = text
+        .split_once('=')
+        .ok_or_else(|| "expected section.key=value".to_string())?;
+    let (section, field) = key
+        .trim()
+        .split_once('.')
+        .ok_or_else(|| "expected section.key=value".to_string())?;
+    if section.is_empty() || field.is_empty() || field.contains('.') {
+        return Err("expected section.key=value".to_string());
+    }
+    let value_text = value_text.trim();
+    let value = format!("v = {value_text}")
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| toml::Value::String(value_text.to_string()));
+    let entry = table
+        .entry(section.to_string())
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+    let section_table = entry
+        .as_table_mut()
+        .ok_or_else(|| format!("`{section}` is not a section"))?;
+    section_table.insert(field.to_string(), value);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str, overrides: &[&str]) -> Result<Scenario, ScenarioError> {
+        let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        Scenario::from_toml_str(text, Path::new("test.toml"), &overrides)
+    }
+
+    #[test]
+    fn empty_file_is_the_seed_defaults() {
+        let s = parse("", &[]).expect("defaults are valid");
+        assert_eq!(s, Scenario::default());
+        assert_eq!(s.guidance.k, 3.5);
+        assert_eq!(s.target.initial_position_ft, [200.0, 50.0, 30.0]);
+    }
+
+    #[test]
+    fn resolved_scenario_round_trips() {
+        let s = parse("[guidance]\nk = 2.0\n", &["run.dt_s=0.002"]).expect("valid");
+        let again = parse(&s.to_toml_string(), &[]).expect("resolved is valid");
+        assert_eq!(s, again);
+        assert_eq!(again.run.dt_s, 0.002);
+    }
+
+    #[test]
+    fn unknown_key_is_named() {
+        let err = parse("[guidance]\nkk = 2.0\n", &[])
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("test.toml") && err.contains("kk"), "{err}");
+    }
+
+    #[test]
+    fn out_of_range_names_key_value_and_range() {
+        let err = parse("[guidance]\nb0_ft = 40.0\n", &[])
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("guidance.b0_ft = 40"), "{err}");
+        assert!(err.contains("b_max_ft = 30"), "{err}");
+    }
+
+    #[test]
+    fn override_must_have_section_and_key() {
+        assert!(matches!(
+            parse("", &["dt_s=1"]),
+            Err(ScenarioError::Override { .. })
+        ));
+        assert!(matches!(
+            parse("", &["run.nope=1"]),
+            Err(ScenarioError::Schema { .. })
+        ));
+        let s = parse("", &["guidance.mission=intercept"]).expect("bare strings work");
+        assert_eq!(s.guidance.mission, Mission::Intercept);
+    }
+}

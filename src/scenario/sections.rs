@@ -1,0 +1,379 @@
+//! The scenario's sections: schema, defaults (the seed's values where it gives them) and
+//! validation. Every struct rejects unknown keys.
+
+use serde::{Deserialize, Serialize};
+
+use super::check::{self, Check};
+
+/// `[run]`: time base and bookkeeping.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RunSection {
+    /// Simulated duration, s.
+    pub duration_s: f64,
+    /// Fixed integration step, s.
+    pub dt_s: f64,
+    /// Seed of the run's one random-number generator.
+    pub seed: u64,
+    /// Ticks between telemetry rows (1 = every tick).
+    pub log_every: u32,
+}
+
+impl Default for RunSection {
+    fn default() -> Self {
+        Self {
+            duration_s: 140.0,
+            dt_s: 0.001,
+            seed: 1,
+            log_every: 10,
+        }
+    }
+}
+
+impl RunSection {
+    fn validate(&self) -> Check {
+        check::in_closed("run.duration_s", self.duration_s, 1e-3, 1e5)?;
+        check::in_closed("run.dt_s", self.dt_s, 1e-5, 0.1)?;
+        check::require(
+            self.dt_s <= self.duration_s,
+            "run.dt_s",
+            self.dt_s,
+            format!("<= run.duration_s = {}", self.duration_s),
+        )?;
+        check::int_in("run.log_every", i64::from(self.log_every), 1, 1_000_000)
+    }
+
+    /// Number of ticks of the whole run.
+    pub fn total_ticks(&self) -> u64 {
+        (self.duration_s / self.dt_s).round() as u64
+    }
+}
+
+/// How the target moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TargetMotion {
+    /// The seed's piecewise velocity profile (SPEC §2, Section 4.4).
+    SeedProfile,
+    /// Constant velocity `straight_velocity_fps`.
+    Straight,
+}
+
+/// `[target]`: the unknown aircraft being tracked.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TargetSection {
+    /// Motion model.
+    pub motion: TargetMotion,
+    /// R_T(0) in NED, ft.
+    pub initial_position_ft: [f64; 3],
+    /// Velocity for `motion = "straight"`, NED, ft/s.
+    pub straight_velocity_fps: [f64; 3],
+    /// The target's true maximal size b, ft (its wingspan): unknown to the guidance.
+    pub size_ft: f64,
+}
+
+impl Default for TargetSection {
+    fn default() -> Self {
+        Self {
+            motion: TargetMotion::SeedProfile,
+            initial_position_ft: [200.0, 50.0, 30.0],
+            straight_velocity_fps: [50.0, 0.0, 0.0],
+            size_ft: 8.0,
+        }
+    }
+}
+
+impl TargetSection {
+    fn validate(&self) -> Check {
+        check::finite_vec("target.initial_position_ft", &self.initial_position_ft)?;
+        check::finite_vec("target.straight_velocity_fps", &self.straight_velocity_fps)?;
+        check::in_closed("target.size_ft", self.size_ft, 0.01, 1000.0)
+    }
+}
+
+/// The follower's dynamics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FollowerModel {
+    /// The guidance command is realised exactly (seed Chapters 4-6).
+    Kinematic,
+}
+
+/// `[follower]`: the aircraft carrying the camera.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FollowerSection {
+    /// Dynamics model.
+    pub model: FollowerModel,
+    /// R_F(0) in NED, ft.
+    pub initial_position_ft: [f64; 3],
+}
+
+impl Default for FollowerSection {
+    fn default() -> Self {
+        Self {
+            model: FollowerModel::Kinematic,
+            initial_position_ft: [0.0; 3],
+        }
+    }
+}
+
+impl FollowerSection {
+    fn validate(&self) -> Check {
+        check::finite_vec("follower.initial_position_ft", &self.initial_position_ft)
+    }
+}
+
+/// What the guidance measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SensorMode {
+    /// r = R / b exactly, continuously (seed Chapters 4-5).
+    Perfect,
+}
+
+/// `[sensor]`: the measurement model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SensorSection {
+    /// Measurement model.
+    pub mode: SensorMode,
+}
+
+impl Default for SensorSection {
+    fn default() -> Self {
+        Self {
+            mode: SensorMode::Perfect,
+        }
+    }
+}
+
+/// Which guidance law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GuidanceLawKind {
+    /// Velocity command, (4.3)-(4.5).
+    Velocity,
+}
+
+/// Formation (hold R_c) or interception (R_c = 0, stop inside a radius).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Mission {
+    /// Keep the relative position at the command.
+    Formation,
+    /// Drive the relative position to zero, (4.40).
+    Intercept,
+}
+
+/// Frame the formation command is given in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CommandFrame {
+    /// R_c fixed in NED (the seed's simulations).
+    Inertial,
+}
+
+/// `[guidance]`: law, mission, gains and projection bounds.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GuidanceSection {
+    /// Guidance law.
+    pub law: GuidanceLawKind,
+    /// Formation or interception.
+    pub mission: Mission,
+    /// Frame of the formation command.
+    pub command_frame: CommandFrame,
+    /// R_c in NED, ft (formation, inertial frame).
+    pub command_ft: [f64; 3],
+    /// Tracking gain k, (4.3).
+    pub k: f64,
+    /// Adaptation gain σ of b̂, (4.5).
+    pub sigma: f64,
+    /// Adaptation gain G of d̂ (G = gamma_d I), (4.5).
+    pub gamma_d: f64,
+    /// b̂(0), ft.
+    pub b0_ft: f64,
+    /// Lower projection bound of b̂, ft (Ω_0 = [b_min, b_max]).
+    pub b_min_ft: f64,
+    /// Upper projection bound of b̂, ft.
+    pub b_max_ft: f64,
+    /// Projection tolerance ε_b of f_b (Appendix A), ft².
+    pub b_epsilon_ft2: f64,
+    /// d̂(0), 1/s.
+    pub d0_per_s: [f64; 3],
+    /// Projection bound of ‖d̂‖, 1/s.
+    pub d_max_per_s: f64,
+    /// Projection tolerance ε_d of f_d, 1/s².
+    pub d_epsilon: f64,
+    /// Pole of the command-shaping filter ṙ_cf = -p (r_cf - r̂_c), rad/s; 0 turns it off.
+    pub shaping_pole_rps: f64,
+    /// Interception is declared when ‖R‖ falls below this, ft.
+    pub intercept_radius_ft: f64,
+}
+
+impl Default for GuidanceSection {
+    fn default() -> Self {
+        Self {
+            law: GuidanceLawKind::Velocity,
+            mission: Mission::Formation,
+            command_frame: CommandFrame::Inertial,
+            command_ft: [32.0, 8.0, 0.0],
+            k: 3.5,
+            sigma: 39.0,
+            gamma_d: 40.0,
+            b0_ft: 4.0,
+            b_min_ft: 1.0,
+            b_max_ft: 30.0,
+            b_epsilon_ft2: 1.0,
+            d0_per_s: [12.5, 0.0, 0.0],
+            d_max_per_s: 20.0,
+            d_epsilon: 1.0,
+            shaping_pole_rps: 0.1,
+            intercept_radius_ft: 2.4,
+        }
+    }
+}
+
+impl GuidanceSection {
+    fn validate(&self) -> Check {
+        check::finite_vec("guidance.command_ft", &self.command_ft)?;
+        check::positive("guidance.k", self.k)?;
+        check::non_negative("guidance.sigma", self.sigma)?;
+        check::non_negative("guidance.gamma_d", self.gamma_d)?;
+        check::positive("guidance.b_min_ft", self.b_min_ft)?;
+        check::require(
+            self.b_max_ft.is_finite() && self.b_max_ft > self.b_min_ft,
+            "guidance.b_max_ft",
+            self.b_max_ft,
+            format!("a finite number > guidance.b_min_ft = {}", self.b_min_ft),
+        )?;
+        check::in_open(
+            "guidance.b0_ft",
+            self.b0_ft,
+            self.b_min_ft,
+            self.b_max_ft,
+            &format!(
+                "(guidance.b_min_ft = {}, guidance.b_max_ft = {}), exclusive",
+                self.b_min_ft, self.b_max_ft
+            ),
+        )?;
+        check::positive("guidance.b_epsilon_ft2", self.b_epsilon_ft2)?;
+        check::finite_vec("guidance.d0_per_s", &self.d0_per_s)?;
+        check::positive("guidance.d_max_per_s", self.d_max_per_s)?;
+        let d0_norm = self.d0_per_s.iter().map(|x| x * x).sum::<f64>().sqrt();
+        check::require(
+            d0_norm <= self.d_max_per_s,
+            "guidance.d0_per_s",
+            format!("{:?} (norm {d0_norm})", self.d0_per_s),
+            format!("norm <= guidance.d_max_per_s = {}", self.d_max_per_s),
+        )?;
+        check::positive("guidance.d_epsilon", self.d_epsilon)?;
+        check::in_closed(
+            "guidance.shaping_pole_rps",
+            self.shaping_pole_rps,
+            0.0,
+            100.0,
+        )?;
+        check::positive("guidance.intercept_radius_ft", self.intercept_radius_ft)
+    }
+}
+
+/// How the excitation amplitude a(t) is computed (SPEC §4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExcitationMode {
+    /// No excitation.
+    Off,
+    /// a(t) from the integral of eᵀe over the sliding window [t - T, t] (as the seed simulates).
+    Continuous,
+    /// a(t) from the integral over the last whole period, held through the next ((2.28), (5.27)).
+    PerPeriod,
+}
+
+/// `[excitation]`: intelligent excitation R*_c = R_c + a(t) sin(ωt) E, (4.31).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ExcitationSection {
+    /// Amplitude law.
+    pub mode: ExcitationMode,
+    /// Period T = 2π/ω, s.
+    pub period_s: f64,
+    /// k1: amplitude during the first period and cap, ft.
+    pub k1_ft: f64,
+    /// k2: gain on the windowed squared error, ft per (unit² s).
+    pub k2: f64,
+    /// k3: floor of the amplitude, ft.
+    pub k3_ft: f64,
+    /// Direction E in NED (normalised on use).
+    pub direction: [f64; 3],
+}
+
+impl Default for ExcitationSection {
+    fn default() -> Self {
+        Self {
+            mode: ExcitationMode::Continuous,
+            period_s: 3.0,
+            k1_ft: 0.5,
+            k2: 10.0,
+            k3_ft: 0.0002,
+            direction: [1.0, 0.0, 0.0],
+        }
+    }
+}
+
+impl ExcitationSection {
+    fn validate(&self) -> Check {
+        check::positive("excitation.period_s", self.period_s)?;
+        check::non_negative("excitation.k1_ft", self.k1_ft)?;
+        check::non_negative("excitation.k2", self.k2)?;
+        check::in_closed("excitation.k3_ft", self.k3_ft, 0.0, self.k1_ft.max(0.0))?;
+        check::nonzero_vec("excitation.direction", &self.direction)
+    }
+}
+
+/// `[output]`: what a run writes besides telemetry and summary.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OutputSection {
+    /// Draw the seed's figure panels into `plots/`.
+    pub plots: bool,
+}
+
+impl Default for OutputSection {
+    fn default() -> Self {
+        Self { plots: true }
+    }
+}
+
+/// A whole scenario: one section per stage of the loop (DESIGN §4).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scenario {
+    /// Time base.
+    pub run: RunSection,
+    /// Target.
+    pub target: TargetSection,
+    /// Follower.
+    pub follower: FollowerSection,
+    /// Sensor.
+    pub sensor: SensorSection,
+    /// Guidance.
+    pub guidance: GuidanceSection,
+    /// Excitation.
+    pub excitation: ExcitationSection,
+    /// Outputs.
+    pub output: OutputSection,
+}
+
+impl Scenario {
+    /// Checks every value and every cross-key condition.
+    pub fn validate(&self) -> Check {
+        self.run.validate()?;
+        self.target.validate()?;
+        self.follower.validate()?;
+        self.guidance.validate()?;
+        self.excitation.validate()
+    }
+}

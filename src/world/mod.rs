@@ -1,0 +1,3 @@
+//! The truth: the target's motion and the follower's plant.
+
+pub mod target;
