@@ -5,7 +5,7 @@
 //! and pixel (i, j) covers [i, i+1) x [j, j+1), so its centre is (i + 0.5, j + 0.5):
 //! `u = cx + yI`, `v = cy - zI` (SPEC §1).
 
-use crate::frames::Vec3;
+use crate::frames::{Mat3, Vec3};
 
 /// Resolution and focal length of a pinhole camera whose optical axis is body x.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,6 +59,23 @@ impl CameraIntrinsics {
     /// Image coordinates (yI, zI) of pixel position (u, v).
     pub fn image_from_pixel(&self, u_px: f64, v_px: f64) -> (f64, f64) {
         (u_px - self.cx(), self.cy() - v_px)
+    }
+}
+
+/// Where the target is and how it is turned, as the camera sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TargetPoseInCamera {
+    /// Target reference point (mesh origin) in the camera/body frame, ft.
+    pub position_body_ft: Vec3,
+    /// Rotation taking target-body coordinates to camera/body coordinates:
+    /// L_BE(follower) L_BE(target)ᵀ.
+    pub body_from_target: Mat3,
+}
+
+impl TargetPoseInCamera {
+    /// A mesh vertex given in target-body coordinates, in camera/body coordinates.
+    pub fn body_from_target_point(&self, p_target_ft: &Vec3) -> Vec3 {
+        self.position_body_ft + self.body_from_target * p_target_ft
     }
 }
 
