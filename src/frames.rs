@@ -83,7 +83,7 @@ impl EulerAngles {
 /// Remark 9. Returns `None` when the speed is zero (the heading is undefined).
 pub fn attitude_along_velocity(velocity_ned_fps: &Vec3, bank_rad: f64) -> Option<EulerAngles> {
     let speed_fps = velocity_ned_fps.norm();
-    if !(speed_fps > 0.0) {
+    if speed_fps <= 0.0 || !speed_fps.is_finite() {
         return None;
     }
     let gamma_rad = (-velocity_ned_fps.z / speed_fps).clamp(-1.0, 1.0).asin();

@@ -38,8 +38,8 @@ impl Rk4 {
         axpy(&mut self.stage, x, dt_s, &self.k3);
         derivative(t_s + dt_s, &self.stage, &mut self.k4);
         let sixth = dt_s / 6.0;
-        for i in 0..x.len() {
-            x[i] += sixth * (self.k1[i] + 2.0 * self.k2[i] + 2.0 * self.k3[i] + self.k4[i]);
+        for (i, xi) in x.iter_mut().enumerate() {
+            *xi += sixth * (self.k1[i] + 2.0 * self.k2[i] + 2.0 * self.k3[i] + self.k4[i]);
         }
     }
 }

@@ -14,11 +14,12 @@
 #![warn(missing_docs)]
 
 pub mod frames;
-
+pub mod guidance;
 pub mod integrate;
+pub mod linalg;
+pub mod output;
 pub mod render;
-
 pub mod scenario;
 pub mod sensing;
-
+pub mod sim;
 pub mod world;

@@ -292,20 +292,33 @@ pub enum ExcitationMode {
     PerPeriod,
 }
 
+/// Units of the excitation amplitude a (and of k1, k3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExcitationUnits {
+    /// Feet: R*_c = R_c + a sin(ωt) E as (4.31) writes it; enters r̂_c divided by b̂.
+    Ft,
+    /// Multiples of the target's size: r*_c = r_c + a sin(ωt) E on the scaled command the
+    /// seed's Chapter 4 simulations feed back (a = 0.5 is 4 ft for the 8 ft target).
+    Scaled,
+}
+
 /// `[excitation]`: intelligent excitation R*_c = R_c + a(t) sin(ωt) E, (4.31).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ExcitationSection {
     /// Amplitude law.
     pub mode: ExcitationMode,
+    /// Units of a, k1 and k3.
+    pub units: ExcitationUnits,
     /// Period T = 2π/ω, s.
     pub period_s: f64,
-    /// k1: amplitude during the first period and cap, ft.
-    pub k1_ft: f64,
-    /// k2: gain on the windowed squared error, ft per (unit² s).
+    /// k1: amplitude during the first period and its cap.
+    pub k1: f64,
+    /// k2: gain on the windowed squared scaled error ∫ eᵀe, per s.
     pub k2: f64,
-    /// k3: floor of the amplitude, ft.
-    pub k3_ft: f64,
+    /// k3: floor of the amplitude.
+    pub k3: f64,
     /// Direction E in NED (normalised on use).
     pub direction: [f64; 3],
 }
@@ -314,10 +327,11 @@ impl Default for ExcitationSection {
     fn default() -> Self {
         Self {
             mode: ExcitationMode::Continuous,
+            units: ExcitationUnits::Scaled,
             period_s: 3.0,
-            k1_ft: 0.5,
-            k2: 10.0,
-            k3_ft: 0.0002,
+            k1: 0.5,
+            k2: 100.0,
+            k3: 0.0002,
             direction: [1.0, 0.0, 0.0],
         }
     }
@@ -326,9 +340,9 @@ impl Default for ExcitationSection {
 impl ExcitationSection {
     fn validate(&self) -> Check {
         check::positive("excitation.period_s", self.period_s)?;
-        check::non_negative("excitation.k1_ft", self.k1_ft)?;
+        check::non_negative("excitation.k1", self.k1)?;
         check::non_negative("excitation.k2", self.k2)?;
-        check::in_closed("excitation.k3_ft", self.k3_ft, 0.0, self.k1_ft.max(0.0))?;
+        check::in_closed("excitation.k3", self.k3, 0.0, self.k1.max(0.0))?;
         check::nonzero_vec("excitation.direction", &self.direction)
     }
 }

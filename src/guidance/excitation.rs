@@ -1,0 +1,213 @@
+//! Intelligent excitation (4.31, 2.28): R*_c = R_c + a(t) sin(ωt) E, with an amplitude that
+//! grows with the recent tracking error and fades to k3 once the error is small.
+
+use crate::frames::Vec3;
+use crate::scenario::{ExcitationMode, ExcitationSection, ExcitationUnits};
+use std::collections::VecDeque;
+
+/// Amplitude state of the intelligent excitation. Fed once per tick with eᵀe; evaluated at
+/// any time within the next step.
+#[derive(Debug, Clone)]
+pub struct Excitation {
+    mode: ExcitationMode,
+    units: ExcitationUnits,
+    period_s: f64,
+    omega_rps: f64,
+    k1: f64,
+    k2: f64,
+    k3: f64,
+    direction: Vec3,
+    dt_s: f64,
+    /// Continuous mode: eᵀe samples of the last period, oldest first.
+    window: VecDeque<f64>,
+    /// Σ window · dt.
+    window_integral: f64,
+    /// Per-period mode: ∫ eᵀe since the current period began.
+    period_integral: f64,
+    /// Index of the period the per-period integral belongs to.
+    period_index: u64,
+    amplitude: f64,
+    amplitude_rate: f64,
+}
+
+impl Excitation {
+    /// Excitation from its scenario section for a simulation with step `dt_s`.
+    pub fn new(section: &ExcitationSection, dt_s: f64) -> Self {
+        let direction = Vec3::from(section.direction);
+        Self {
+            mode: section.mode,
+            units: section.units,
+            period_s: section.period_s,
+            omega_rps: 2.0 * std::f64::consts::PI / section.period_s,
+            k1: section.k1,
+            k2: section.k2,
+            k3: section.k3,
+            direction: direction / direction.norm(),
+            dt_s,
+            window: VecDeque::new(),
+            window_integral: 0.0,
+            period_integral: 0.0,
+            period_index: 0,
+            amplitude: if section.mode == ExcitationMode::Off {
+                0.0
+            } else {
+                section.k1
+            },
+            amplitude_rate: 0.0,
+        }
+    }
+
+    /// Records eᵀe over the step that ends at `t_end_s` and updates a(t) and ȧ(t).
+    pub fn record(&mut self, t_end_s: f64, error_sq: f64) {
+        match self.mode {
+            ExcitationMode::Off => {}
+            ExcitationMode::Continuous => self.record_continuous(t_end_s, error_sq),
+            ExcitationMode::PerPeriod => self.record_per_period(t_end_s, error_sq),
+        }
+    }
+
+    /// Sliding window: a = min(k2 ∫_{t-T}^{t} eᵀe, k1 - k3) + k3 for t ≥ T, k1 before.
+    fn record_continuous(&mut self, t_end_s: f64, error_sq: f64) {
+        let window_len = (self.period_s / self.dt_s).round().max(1.0) as usize;
+        self.window.push_back(error_sq);
+        self.window_integral += error_sq * self.dt_s;
+        let mut dropped = 0.0;
+        if self.window.len() > window_len {
+            dropped = self.window.pop_front().unwrap_or(0.0);
+            self.window_integral -= dropped * self.dt_s;
+        }
+        // Re-sum once per window to keep round-off from accumulating.
+        if self.window.len() == window_len
+            && ((t_end_s / self.dt_s).round() as u64).is_multiple_of(window_len as u64)
+        {
+            self.window_integral = self.window.iter().sum::<f64>() * self.dt_s;
+        }
+        if t_end_s + 0.5 * self.dt_s < self.period_s {
+            self.amplitude = self.k1;
+            self.amplitude_rate = 0.0;
+            return;
+        }
+        let growing = self.k2 * self.window_integral;
+        if growing < self.k1 - self.k3 {
+            self.amplitude = growing + self.k3;
+            self.amplitude_rate = self.k2 * (error_sq - dropped);
+        } else {
+            self.amplitude = self.k1;
+            self.amplitude_rate = 0.0;
+        }
+    }
+
+    /// Per period (2.28): the integral over the last whole period sets a for the next one.
+    fn record_per_period(&mut self, t_end_s: f64, error_sq: f64) {
+        self.period_integral += error_sq * self.dt_s;
+        let index = ((t_end_s + 0.5 * self.dt_s) / self.period_s).floor() as u64;
+        if index > self.period_index {
+            self.amplitude = (self.k2 * self.period_integral).min(self.k1 - self.k3) + self.k3;
+            self.period_integral = 0.0;
+            self.period_index = index;
+        }
+        self.amplitude_rate = 0.0;
+    }
+
+    /// a(t), in the excitation's units.
+    pub fn amplitude(&self) -> f64 {
+        self.amplitude
+    }
+
+    /// Units of the amplitude and offset.
+    pub fn units(&self) -> ExcitationUnits {
+        self.units
+    }
+
+    /// The offset a sin(ωt) E, in the excitation's units, and its time derivative (a and ȧ
+    /// held over the step).
+    pub fn offset(&self, t_s: f64) -> (Vec3, Vec3) {
+        if self.mode == ExcitationMode::Off {
+            return (Vec3::zeros(), Vec3::zeros());
+        }
+        let (s, c) = (self.omega_rps * t_s).sin_cos();
+        let offset = self.direction * (self.amplitude * s);
+        let rate = self.direction * (self.amplitude_rate * s + self.amplitude * self.omega_rps * c);
+        (offset, rate)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn section(mode: ExcitationMode) -> ExcitationSection {
+        ExcitationSection {
+            mode,
+            k2: 10.0,
+            ..ExcitationSection::default()
+        }
+    }
+
+    /// During the first period the amplitude is k1.
+    #[test]
+    fn first_period_is_k1() {
+        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), 0.01);
+        for i in 1..290 {
+            ex.record(i as f64 * 0.01, 0.0);
+            assert_eq!(ex.amplitude(), 0.5);
+        }
+    }
+
+    /// With a constant eᵀe = c, the window integral is c T, so a = min(k2 c T, k1 - k3) + k3.
+    #[test]
+    fn continuous_amplitude_follows_window_integral() {
+        let dt = 0.001;
+        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), dt);
+        let c = 0.01;
+        for i in 1..=5000 {
+            ex.record(i as f64 * dt, c);
+        }
+        let expected = 10.0 * c * 3.0 + 0.0002;
+        assert!(
+            (ex.amplitude() - expected).abs() < 1e-9,
+            "{}",
+            ex.amplitude()
+        );
+        // A large error saturates at k1.
+        for i in 5001..=9000 {
+            ex.record(i as f64 * dt, 1.0);
+        }
+        assert!((ex.amplitude() - 0.5).abs() < 1e-12);
+        // Zero error for a whole period: the floor k3.
+        for i in 9001..=12100 {
+            ex.record(i as f64 * dt, 0.0);
+        }
+        assert!((ex.amplitude() - 0.0002).abs() < 1e-12);
+    }
+
+    /// Per period: the amplitude changes only at period boundaries.
+    #[test]
+    fn per_period_amplitude_is_held() {
+        let dt = 0.01;
+        let mut ex = Excitation::new(&section(ExcitationMode::PerPeriod), dt);
+        let mut values = Vec::new();
+        for i in 1..=900 {
+            ex.record(i as f64 * dt, 0.001);
+            values.push(ex.amplitude());
+        }
+        // Periods end at ticks 300, 600, 900: a changes there and nowhere else.
+        for (i, w) in values.windows(2).enumerate() {
+            let tick = i + 2;
+            if tick % 300 != 0 {
+                assert_eq!(w[0], w[1], "changed at tick {tick}");
+            }
+        }
+        assert!((values[899] - (10.0 * 0.001 * 3.0 + 0.0002)).abs() < 1e-9);
+    }
+
+    /// The offset's derivative is the time derivative of the offset (a held).
+    #[test]
+    fn offset_rate_is_derivative() {
+        let ex = Excitation::new(&section(ExcitationMode::Continuous), 0.001);
+        let t = 1.3;
+        let h = 1e-6;
+        let fd = (ex.offset(t + h).0 - ex.offset(t - h).0) / (2.0 * h);
+        assert!((fd - ex.offset(t).1).norm() < 1e-6);
+    }
+}

@@ -1,0 +1,304 @@
+//! Velocity guidance (Chapter 4, SPEC §4): V_F = b̂ g with adaptive estimates of the target's
+//! size b̂ and scaled velocity d̂, a command-shaping filter, and optionally the state estimator
+//! of Chapter 6 ((6.10)-(6.17)) for noisy measurements.
+//!
+//! State slice layout: `[b̂, d̂ (3), r_cf (3), r̂ (3, with the estimator)]`.
+
+use super::projection::{BallBound, IntervalBound};
+use crate::frames::{Mat3, Vec3};
+use crate::linalg::{LinalgError, solve_continuous_lyapunov};
+use crate::scenario::GuidanceSection;
+use nalgebra::{DMatrix, SMatrix};
+
+/// Offsets into the guidance state slice.
+const B_HAT: usize = 0;
+const D_HAT: usize = 1;
+const R_CF: usize = 4;
+const R_HAT: usize = 7;
+
+/// The Chapter 6 state estimator: gain L_v and the 3x6 matrix B_vᵀ P_v of (6.16)-(6.17).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VelocityEstimator {
+    /// Estimator gain L_v.
+    pub gain: Mat3,
+    /// B_vᵀ P_v with A_vᵀ P_v + P_v A_v = -I.
+    pub bt_p: SMatrix<f64, 3, 6>,
+}
+
+impl VelocityEstimator {
+    /// Builds B_vᵀ P_v for A_v = [[-k I, k I], [0, -L_v]] (6.16) with Q_v = I.
+    pub fn new(k: f64, gain: Mat3) -> Result<Self, LinalgError> {
+        let mut a = DMatrix::<f64>::zeros(6, 6);
+        for i in 0..3 {
+            a[(i, i)] = -k;
+            a[(i, i + 3)] = k;
+            for j in 0..3 {
+                a[(i + 3, j + 3)] = -gain[(i, j)];
+            }
+        }
+        let p = solve_continuous_lyapunov(&a, &DMatrix::identity(6, 6))?;
+        let mut bt_p = SMatrix::<f64, 3, 6>::zeros();
+        for i in 0..3 {
+            for j in 0..6 {
+                bt_p[(i, j)] = p[(i, j)] + p[(i + 3, j)];
+            }
+        }
+        Ok(Self { gain, bt_p })
+    }
+}
+
+/// What the velocity law needs at one instant besides its own state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VelocityGuidanceInput {
+    /// Measured scaled relative position r (or r*), NED.
+    pub r_measured: Vec3,
+    /// R_c, the user's relative-position command, NED, ft (zero for interception).
+    pub command_ned_ft: Vec3,
+    /// Ṙ_c, ft/s.
+    pub command_rate_ned_fps: Vec3,
+    /// Excitation offset a sin(ωt) E in ft, added to R_c after the shaping filter (4.31):
+    /// it enters the scaled command divided by b̂.
+    pub excitation_ned_ft: Vec3,
+    /// Its time derivative, ft/s.
+    pub excitation_rate_ned_fps: Vec3,
+    /// Excitation offset in scaled units (multiples of the target's size), added to the
+    /// scaled command after the shaping filter as it is.
+    pub excitation_scaled: Vec3,
+    /// Its time derivative, 1/s.
+    pub excitation_scaled_rate: Vec3,
+}
+
+/// The law's output at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VelocityGuidanceOutput {
+    /// Commanded follower velocity V_F = b̂ g, NED, ft/s.
+    pub velocity_cmd_ned_fps: Vec3,
+    /// The scaled command the law tracks (shaped, excitation included).
+    pub r_command: Vec3,
+    /// Tracking error e = r - r_command of the measurement.
+    pub error: Vec3,
+}
+
+/// Velocity guidance (4.3)-(4.5), (4.14)-(4.15), (4.40), with optional estimator (6.10)-(6.17).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VelocityGuidance {
+    k: f64,
+    sigma: f64,
+    gamma_d: f64,
+    b_bound: IntervalBound,
+    d_bound: BallBound,
+    shaping_pole_rps: f64,
+    b0_ft: f64,
+    d0: Vec3,
+    estimator: Option<VelocityEstimator>,
+}
+
+impl VelocityGuidance {
+    /// The law a `[guidance]` section describes, with the estimator when given.
+    pub fn new(section: &GuidanceSection, estimator: Option<VelocityEstimator>) -> Self {
+        Self {
+            k: section.k,
+            sigma: section.sigma,
+            gamma_d: section.gamma_d,
+            b_bound: IntervalBound {
+                min: section.b_min_ft,
+                max: section.b_max_ft,
+                epsilon: section.b_epsilon_ft2,
+            },
+            d_bound: BallBound {
+                max_norm: section.d_max_per_s,
+                epsilon: section.d_epsilon,
+            },
+            shaping_pole_rps: section.shaping_pole_rps,
+            b0_ft: section.b0_ft,
+            d0: Vec3::from(section.d0_per_s),
+            estimator,
+        }
+    }
+
+    /// Length of this law's state slice.
+    pub fn state_len(&self) -> usize {
+        if self.estimator.is_some() { 10 } else { 7 }
+    }
+
+    /// Initial state: b̂(0), d̂(0); the shaping filter and the estimator start at the first
+    /// measurement r(0).
+    pub fn initial_state(&self, r0: &Vec3) -> Vec<f64> {
+        let mut x = vec![0.0; self.state_len()];
+        x[B_HAT] = self.b0_ft;
+        x[D_HAT..D_HAT + 3].copy_from_slice(self.d0.as_slice());
+        x[R_CF..R_CF + 3].copy_from_slice(r0.as_slice());
+        if self.estimator.is_some() {
+            x[R_HAT..R_HAT + 3].copy_from_slice(r0.as_slice());
+        }
+        x
+    }
+
+    /// b̂ of a state slice, ft.
+    pub fn b_hat_ft(x: &[f64]) -> f64 {
+        x[B_HAT]
+    }
+
+    /// d̂ of a state slice, 1/s.
+    pub fn d_hat(x: &[f64]) -> Vec3 {
+        vec3_at(x, D_HAT)
+    }
+
+    /// Writes ẋ into `dx` and returns the command. Mission formation or interception is set
+    /// by the input: interception is R_c = 0 (4.40).
+    pub fn derivative(
+        &self,
+        x: &[f64],
+        input: &VelocityGuidanceInput,
+        dx: &mut [f64],
+    ) -> VelocityGuidanceOutput {
+        let b_hat = x[B_HAT];
+        let d_hat = vec3_at(x, D_HAT);
+        let r_cf = vec3_at(x, R_CF);
+        let r_star = input.r_measured;
+        let r_used = match self.estimator {
+            Some(_) => vec3_at(x, R_HAT),
+            None => r_star,
+        };
+        // The command in scaled units: a shaped part (filter state) plus what is added after
+        // the filter; the parts given in ft are divided by b̂ (4.14): r_cmd = base + extra / b̂.
+        let shaping = self.shaping_pole_rps > 0.0;
+        let filter_rate = if shaping {
+            (input.command_ned_ft / b_hat - r_cf) * self.shaping_pole_rps
+        } else {
+            Vec3::zeros()
+        };
+        let (base, base_rate, extra, extra_rate) = if shaping {
+            (
+                r_cf + input.excitation_scaled,
+                filter_rate + input.excitation_scaled_rate,
+                input.excitation_ned_ft,
+                input.excitation_rate_ned_fps,
+            )
+        } else {
+            (
+                input.excitation_scaled,
+                input.excitation_scaled_rate,
+                input.command_ned_ft + input.excitation_ned_ft,
+                input.command_rate_ned_fps + input.excitation_rate_ned_fps,
+            )
+        };
+        let r_cmd = base + extra / b_hat;
+        let e_used = r_used - r_cmd;
+        let adaptation_signal = match &self.estimator {
+            Some(est) => {
+                let mut xi = SMatrix::<f64, 6, 1>::zeros();
+                xi.fixed_rows_mut::<3>(0).copy_from(&(r_star - r_cmd));
+                xi.fixed_rows_mut::<3>(3).copy_from(&(r_star - r_used));
+                est.bt_p * xi
+            }
+            None => e_used,
+        };
+        // ṙ_cmd contains -b̂' extra / b̂² (4.15) and b̂' depends on g: the algebraic loop is
+        // closed by one fixed-point pass starting from b̂' = 0.
+        let guidance = |b_hat_rate: f64| -> Vec3 {
+            let r_cmd_rate =
+                base_rate + extra_rate / b_hat - extra * (b_hat_rate / (b_hat * b_hat));
+            e_used * self.k + d_hat - r_cmd_rate
+        };
+        let b_rate_of =
+            |g: &Vec3| self.sigma * self.b_bound.project(b_hat, g.dot(&adaptation_signal));
+        let b_hat_rate = b_rate_of(&guidance(0.0));
+        let g = guidance(b_hat_rate);
+        let b_hat_rate = b_rate_of(&g);
+
+        dx[B_HAT] = b_hat_rate;
+        let d_rate = self.d_bound.project(&d_hat, &adaptation_signal) * self.gamma_d;
+        dx[D_HAT..D_HAT + 3].copy_from_slice(d_rate.as_slice());
+        dx[R_CF..R_CF + 3].copy_from_slice(filter_rate.as_slice());
+        if let Some(est) = &self.estimator {
+            // (6.10): r̂' = d̂ - g + L_v (r* - r̂).
+            let r_hat_rate = d_hat - g + est.gain * (r_star - r_used);
+            dx[R_HAT..R_HAT + 3].copy_from_slice(r_hat_rate.as_slice());
+        }
+        VelocityGuidanceOutput {
+            velocity_cmd_ned_fps: g * b_hat,
+            r_command: r_cmd,
+            error: r_star - r_cmd,
+        }
+    }
+
+    /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`super::projection`]).
+    pub fn enforce_bounds(&self, x: &mut [f64]) {
+        x[B_HAT] = self.b_bound.clamp(x[B_HAT]);
+        let d = self.d_bound.clamp(&vec3_at(x, D_HAT));
+        x[D_HAT..D_HAT + 3].copy_from_slice(d.as_slice());
+    }
+}
+
+/// The 3-vector stored at `x[at..at + 3]`.
+pub(crate) fn vec3_at(x: &[f64], at: usize) -> Vec3 {
+    Vec3::new(x[at], x[at + 1], x[at + 2])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn input(r: Vec3) -> VelocityGuidanceInput {
+        VelocityGuidanceInput {
+            r_measured: r,
+            command_ned_ft: Vec3::new(32.0, 8.0, 0.0),
+            command_rate_ned_fps: Vec3::zeros(),
+            excitation_ned_ft: Vec3::zeros(),
+            excitation_rate_ned_fps: Vec3::zeros(),
+            excitation_scaled: Vec3::zeros(),
+            excitation_scaled_rate: Vec3::zeros(),
+        }
+    }
+
+    /// With the error at zero and d̂ = d, the follower flies the target's velocity b d and no
+    /// estimate moves.
+    #[test]
+    fn at_equilibrium_nothing_moves() {
+        let section = GuidanceSection {
+            shaping_pole_rps: 0.0,
+            b0_ft: 8.0,
+            d0_per_s: [6.25, 0.0, 0.0],
+            ..GuidanceSection::default()
+        };
+        let law = VelocityGuidance::new(&section, None);
+        let r_c = Vec3::new(32.0, 8.0, 0.0) / 8.0;
+        let x = law.initial_state(&r_c);
+        let mut dx = vec![0.0; law.state_len()];
+        let out = law.derivative(&x, &input(r_c), &mut dx);
+        assert!((out.velocity_cmd_ned_fps - Vec3::new(50.0, 0.0, 0.0)).norm() < 1e-12);
+        assert!(dx.iter().all(|v| v.abs() < 1e-12), "{dx:?}");
+    }
+
+    /// Sign check of (4.6): with a positive error along x the follower speeds up along x.
+    #[test]
+    fn error_ahead_speeds_up() {
+        let section = GuidanceSection {
+            d0_per_s: [0.0; 3],
+            ..GuidanceSection::default()
+        };
+        let law = VelocityGuidance::new(&section, None);
+        let r = Vec3::new(10.0, 2.0, 0.0);
+        let mut x = law.initial_state(&r);
+        x[R_CF..R_CF + 3].copy_from_slice(Vec3::new(8.0, 2.0, 0.0).as_slice());
+        let mut dx = vec![0.0; law.state_len()];
+        let out = law.derivative(&x, &input(r), &mut dx);
+        assert!(out.velocity_cmd_ned_fps.x > 0.0);
+        assert!(dx[D_HAT] > 0.0);
+    }
+
+    /// The estimator's B_vᵀ P_v comes from a Lyapunov solution with a small residual.
+    #[test]
+    fn estimator_matrix_is_consistent() {
+        let est = VelocityEstimator::new(3.5, Mat3::identity() * 1.7).expect("solvable");
+        // Per axis: p11 + p21 and p12 + p22 (see linalg's closed form).
+        let (k, l) = (3.5, 1.7);
+        let p11 = 1.0 / (2.0 * k);
+        let p12 = k * p11 / (k + l);
+        let p22 = (1.0 + 2.0 * k * p12) / (2.0 * l);
+        assert!((est.bt_p[(0, 0)] - (p11 + p12)).abs() < 1e-12);
+        assert!((est.bt_p[(0, 3)] - (p12 + p22)).abs() < 1e-12);
+        assert!(est.bt_p[(0, 1)].abs() < 1e-12);
+    }
+}

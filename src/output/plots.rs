@@ -1,0 +1,163 @@
+//! `plots/*.png`: the seed's figure panels, drawn with plotters on a bitmap.
+
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+use std::path::Path;
+use std::sync::OnceLock;
+
+/// Why a figure could not be drawn.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlotError {
+    /// No TrueType font to label axes with.
+    #[error("plots need a TrueType font; install one: apt-get install -y fonts-dejavu-core")]
+    NoFont,
+    /// Drawing or writing the PNG failed.
+    #[error("cannot draw {path}: {reason}")]
+    Draw {
+        /// The file.
+        path: String,
+        /// The backend's reason.
+        reason: String,
+    },
+}
+
+/// One curve of a panel.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend text.
+    pub label: String,
+    /// Values, one per time sample.
+    pub values: Vec<f64>,
+    /// Colour.
+    pub color: RGBColor,
+}
+
+impl Series {
+    /// A curve with a label and colour.
+    pub fn new(label: impl Into<String>, values: Vec<f64>, color: RGBColor) -> Self {
+        Self {
+            label: label.into(),
+            values,
+            color,
+        }
+    }
+}
+
+/// One panel (stacked vertically in a figure).
+#[derive(Debug, Clone)]
+pub struct Panel {
+    /// Y-axis caption, with unit.
+    pub y_label: String,
+    /// Curves.
+    pub series: Vec<Series>,
+}
+
+/// Colours for measured/true (blue) and command/reference (red) curves, and a third.
+pub const TRUTH: RGBColor = RGBColor(20, 60, 200);
+/// Command or reference curves.
+pub const REFERENCE: RGBColor = RGBColor(210, 40, 40);
+/// A third curve (e.g. a command with excitation).
+pub const EXTRA: RGBColor = RGBColor(120, 120, 120);
+
+const FONT_PATHS: [&str; 4] = [
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/TTF/DejaVuSans.ttf",
+    "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+];
+
+/// Registers a system font with plotters once; false when none was found.
+fn font_available() -> bool {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    *REGISTERED.get_or_init(|| {
+        FONT_PATHS.iter().any(|path| {
+            std::fs::read(path).ok().is_some_and(|bytes| {
+                let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+                plotters::style::register_font("sans-serif", FontStyle::Normal, bytes).is_ok()
+            })
+        })
+    })
+}
+
+/// Draws panels sharing the time axis `t_s` into a PNG.
+pub fn draw_figure(
+    path: &Path,
+    title: &str,
+    t_s: &[f64],
+    panels: &[Panel],
+) -> Result<(), PlotError> {
+    if !font_available() {
+        return Err(PlotError::NoFont);
+    }
+    let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    };
+    let height = 60 + 260 * panels.len() as u32;
+    let root = BitMapBackend::new(path, (1000, height)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| draw_error(&e))?;
+    let root = root
+        .titled(title, ("sans-serif", 24))
+        .map_err(|e| draw_error(&e))?;
+    let areas = root.split_evenly((panels.len(), 1));
+    let t_end = t_s.last().copied().unwrap_or(1.0).max(1e-6);
+    for (panel, area) in panels.iter().zip(areas.iter()) {
+        let (lo, hi) = value_range(panel);
+        let mut chart = ChartBuilder::on(area)
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(70)
+            .build_cartesian_2d(0.0..t_end, lo..hi)
+            .map_err(|e| draw_error(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("t, s")
+            .y_desc(panel.y_label.as_str())
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(|e| draw_error(&e))?;
+        for series in &panel.series {
+            let color = series.color;
+            let points = t_s
+                .iter()
+                .zip(&series.values)
+                .filter(|(_, v)| v.is_finite())
+                .map(|(t, v)| (*t, *v));
+            chart
+                .draw_series(LineSeries::new(points, color.stroke_width(2)))
+                .map_err(|e| draw_error(&e))?
+                .label(series.label.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| draw_error(&e))?;
+    }
+    root.present().map_err(|e| draw_error(&e))
+}
+
+/// The panel's finite value range with a 5% margin (and a minimum span).
+fn value_range(panel: &Panel) -> (f64, f64) {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for v in panel
+        .series
+        .iter()
+        .flat_map(|s| s.values.iter())
+        .filter(|v| v.is_finite())
+    {
+        lo = lo.min(*v);
+        hi = hi.max(*v);
+    }
+    if !lo.is_finite() {
+        return (-1.0, 1.0);
+    }
+    let span = (hi - lo).max(1e-3 * hi.abs().max(1.0));
+    (lo - 0.05 * span, hi + 0.05 * span)
+}

@@ -1,0 +1,117 @@
+//! `summary.json`: the numbers a run is judged by (DESIGN §4).
+
+use crate::sim::{SimError, Simulation, Snapshot};
+use serde::Serialize;
+
+/// How the run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunStatus {
+    /// Ran its whole duration.
+    Completed,
+    /// Stopped at interception.
+    Intercepted,
+    /// Stopped because a state diverged.
+    Diverged,
+}
+
+/// The summary of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// Scenario name (file stem).
+    pub scenario: String,
+    /// How the run ended.
+    pub status: RunStatus,
+    /// Why it stopped early, if it did.
+    pub message: Option<String>,
+    /// Simulated time, s.
+    pub duration_s: f64,
+    /// Integration steps taken.
+    pub steps: u64,
+    /// Camera frames rendered.
+    pub frames: u64,
+    /// Wall-clock time of the simulation loop, s.
+    pub wall_s: f64,
+    /// Simulated seconds per wall-clock second.
+    pub realtime_factor: f64,
+    /// The target's true size b, ft.
+    pub b_true_ft: f64,
+    /// b̂ at the end, ft.
+    pub b_hat_final_ft: f64,
+    /// Time of interception, s (null if none).
+    pub intercept_time_s: Option<f64>,
+    /// Smallest ‖R‖ over the run (every tick), ft.
+    pub min_range_ft: f64,
+    /// RMS of R - R_c per axis (n, e, d) over the last 20 s of the run (R_c without
+    /// excitation), ft.
+    pub rms_error_last20s_ft: [f64; 3],
+    /// Frames in which the target was not measured.
+    pub lost_frames: u64,
+    /// RMS of measured minus true centroid, px (camera runs).
+    pub centroid_rms_px: Option<f64>,
+    /// RMS of measured minus true maximal length, px (camera runs).
+    pub length_rms_px: Option<f64>,
+}
+
+impl Summary {
+    /// Builds the summary from the logged snapshots and the final simulation.
+    pub fn build(
+        name: &str,
+        logged: &[Snapshot],
+        sim: &Simulation,
+        wall_s: f64,
+        failure: Option<&SimError>,
+    ) -> Self {
+        let status = match (failure, sim.intercept_time_s()) {
+            (Some(_), _) => RunStatus::Diverged,
+            (None, Some(_)) => RunStatus::Intercepted,
+            (None, None) => RunStatus::Completed,
+        };
+        let duration_s = sim.time_s();
+        let last = logged.last();
+        Self {
+            scenario: name.to_string(),
+            status,
+            message: failure.map(|e| e.to_string()),
+            duration_s,
+            steps: sim.tick(),
+            frames: 0,
+            wall_s,
+            realtime_factor: if wall_s > 0.0 {
+                duration_s / wall_s
+            } else {
+                f64::INFINITY
+            },
+            b_true_ft: sim.scenario().target.size_ft,
+            b_hat_final_ft: last.map_or(f64::NAN, |s| s.b_hat_ft),
+            intercept_time_s: sim.intercept_time_s(),
+            min_range_ft: sim.min_range_ft(),
+            rms_error_last20s_ft: rms_error_since(logged, duration_s - 20.0),
+            lost_frames: 0,
+            centroid_rms_px: None,
+            length_rms_px: None,
+        }
+    }
+
+    /// Pretty JSON text.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+    }
+}
+
+/// Per-axis RMS of R - R_c over the snapshots with t ≥ `from_s`.
+pub fn rms_error_since(logged: &[Snapshot], from_s: f64) -> [f64; 3] {
+    let mut sum = [0.0; 3];
+    let mut n = 0usize;
+    for s in logged.iter().filter(|s| s.t_s >= from_s - 1e-9) {
+        let e = s.relative_ned_ft - s.command_ned_ft;
+        for (acc, v) in sum.iter_mut().zip(e.iter()) {
+            *acc += v * v;
+        }
+        n += 1;
+    }
+    if n == 0 {
+        return [f64::NAN; 3];
+    }
+    sum.map(|s| (s / n as f64).sqrt())
+}

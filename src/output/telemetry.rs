@@ -1,0 +1,106 @@
+//! `telemetry.csv`: one row per logged tick, written as the run goes so that a run that stops
+//! early keeps what it logged.
+
+use crate::sim::Snapshot;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+/// The named values of one telemetry row, in column order.
+pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
+    let v = |x: &crate::frames::Vec3| [x.x, x.y, x.z];
+    let [rel_n, rel_e, rel_d] = v(&s.relative_ned_ft);
+    let [tvn, tve, tvd] = v(&s.target.velocity_ned_fps);
+    let [tan, tae, tad] = v(&s.target.accel_ned_fps2);
+    let [fvn, fve, fvd] = v(&s.follower_velocity_ned_fps);
+    let [fn_, fe, fd] = v(&s.follower_position_ned_ft);
+    let [cn, ce, cd] = v(&s.command_ned_ft);
+    let [xn, xe, xd] = v(&s.excited_command_ned_ft);
+    let [dx, dy, dz] = v(&s.d_hat);
+    let [rx, ry, rz] = v(&s.r_measured);
+    let [rcx, rcy, rcz] = v(&s.guidance.r_command);
+    vec![
+        ("t_s", s.t_s),
+        ("rel_n_ft", rel_n),
+        ("rel_e_ft", rel_e),
+        ("rel_d_ft", rel_d),
+        ("tgt_vn_fps", tvn),
+        ("tgt_ve_fps", tve),
+        ("tgt_vd_fps", tvd),
+        ("tgt_an_fps2", tan),
+        ("tgt_ae_fps2", tae),
+        ("tgt_ad_fps2", tad),
+        ("tgt_phi_rad", s.target.attitude.phi_rad),
+        ("tgt_theta_rad", s.target.attitude.theta_rad),
+        ("tgt_psi_rad", s.target.attitude.psi_rad),
+        ("fol_n_ft", fn_),
+        ("fol_e_ft", fe),
+        ("fol_d_ft", fd),
+        ("fol_vn_fps", fvn),
+        ("fol_ve_fps", fve),
+        ("fol_vd_fps", fvd),
+        ("phi_rad", s.follower_attitude.phi_rad),
+        ("theta_rad", s.follower_attitude.theta_rad),
+        ("psi_rad", s.follower_attitude.psi_rad),
+        ("cmd_n_ft", cn),
+        ("cmd_e_ft", ce),
+        ("cmd_d_ft", cd),
+        ("cmd_exc_n_ft", xn),
+        ("cmd_exc_e_ft", xe),
+        ("cmd_exc_d_ft", xd),
+        ("excitation_amp", s.excitation_amplitude),
+        ("b_hat_ft", s.b_hat_ft),
+        ("d_hat_x_per_s", dx),
+        ("d_hat_y_per_s", dy),
+        ("d_hat_z_per_s", dz),
+        ("r_meas_x", rx),
+        ("r_meas_y", ry),
+        ("r_meas_z", rz),
+        ("r_cmd_x", rcx),
+        ("r_cmd_y", rcy),
+        ("r_cmd_z", rcz),
+    ]
+}
+
+/// Streams rows to a CSV file; the header is the first row's names.
+#[derive(Debug)]
+pub struct TelemetryWriter {
+    out: BufWriter<File>,
+    columns: usize,
+}
+
+impl TelemetryWriter {
+    /// Creates (truncates) the file.
+    pub fn create(path: &Path) -> std::io::Result<Self> {
+        Ok(Self {
+            out: BufWriter::new(File::create(path)?),
+            columns: 0,
+        })
+    }
+
+    /// Appends one row (writing the header before the first). Non-finite values are written
+    /// as empty cells.
+    pub fn write(&mut self, row: &[(&'static str, f64)]) -> std::io::Result<()> {
+        if self.columns == 0 {
+            let header: Vec<&str> = row.iter().map(|(name, _)| *name).collect();
+            writeln!(self.out, "{}", header.join(","))?;
+            self.columns = row.len();
+        }
+        debug_assert_eq!(row.len(), self.columns, "telemetry columns changed mid-run");
+        let mut line = String::with_capacity(row.len() * 12);
+        for (i, (_, value)) in row.iter().enumerate() {
+            if i > 0 {
+                line.push(',');
+            }
+            if value.is_finite() {
+                line.push_str(&format!("{value}"));
+            }
+        }
+        writeln!(self.out, "{line}")
+    }
+
+    /// Flushes buffered rows to disk.
+    pub fn flush(&mut self) -> std::io::Result<()> {
+        self.out.flush()
+    }
+}

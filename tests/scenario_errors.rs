@@ -1,0 +1,102 @@
+//! Bad scenarios never crash: each gives a one-line error on stderr that names the file and
+//! the problem, exit code 2, and writes no outputs.
+
+use std::path::Path;
+use std::process::Command;
+
+fn wingman_run(scenario: &Path, extra: &[&str], out: &Path) -> (i32, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_wingman"))
+        .arg("run")
+        .arg(scenario)
+        .arg("--out")
+        .arg(out)
+        .arg("--quiet")
+        .args(extra)
+        .output()
+        .expect("binary runs");
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+/// Writes `text` as a scenario, runs it and checks exit code 2 and a one-line message that
+/// contains every `expected` fragment.
+fn assert_rejected(text: &str, extra: &[&str], expected: &[&str]) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("bad.toml");
+    std::fs::write(&path, text).expect("write scenario");
+    let out = dir.path().join("out");
+    let (code, stderr) = wingman_run(&path, extra, &out);
+    assert_eq!(code, 2, "stderr: {stderr}");
+    assert_eq!(
+        stderr.trim_end().lines().count(),
+        1,
+        "not one line: {stderr}"
+    );
+    assert!(stderr.contains("bad.toml"), "file not named: {stderr}");
+    for fragment in expected {
+        assert!(
+            stderr.contains(fragment),
+            "`{fragment}` missing from: {stderr}"
+        );
+    }
+    assert!(!out.exists(), "outputs written for a bad scenario");
+}
+
+#[test]
+fn syntax_error() {
+    assert_rejected("[run\nduration_s = 1\n", &[], &["line 1"]);
+}
+
+#[test]
+fn unknown_key() {
+    assert_rejected("[guidance]\nsigmaa = 3.0\n", &[], &["sigmaa"]);
+}
+
+#[test]
+fn unknown_section() {
+    assert_rejected("[guidence]\nk = 3.0\n", &[], &["guidence"]);
+}
+
+#[test]
+fn negative_dt() {
+    assert_rejected(
+        "[run]\ndt_s = -0.001\n",
+        &[],
+        &["run.dt_s = -0.001", "[0.00001, 0.1]"],
+    );
+}
+
+#[test]
+fn b0_outside_bounds() {
+    assert_rejected(
+        "[guidance]\nb0_ft = 0.5\nb_min_ft = 1.0\nb_max_ft = 30.0\n",
+        &[],
+        &["guidance.b0_ft = 0.5", "b_min_ft = 1", "b_max_ft = 30"],
+    );
+}
+
+#[test]
+fn wrong_type() {
+    assert_rejected("[run]\ndt_s = \"fast\"\n", &[], &["dt_s"]);
+}
+
+#[test]
+fn bad_override() {
+    assert_rejected("", &["--set", "run.dt_s=0"], &["run.dt_s = 0"]);
+    assert_rejected("", &["--set", "nodot=1"], &["nodot=1"]);
+}
+
+#[test]
+fn missing_file() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("nowhere.toml");
+    let (code, stderr) = wingman_run(&path, &[], &dir.path().join("out"));
+    assert_eq!(code, 2);
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("nowhere.toml") && stderr.contains("cannot read"),
+        "{stderr}"
+    );
+}
