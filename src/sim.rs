@@ -1,20 +1,30 @@
 //! The simulation: owns every stage and wires one tick in a fixed order (DESIGN §1).
 //!
-//! Continuous state, integrated as one vector by RK4: `[R_F (3) | guidance state]`. The target's
-//! motion is closed-form. With the `perfect` sensor r = R/b is evaluated at every RK4 stage
-//! (the seed's continuous-time loop).
+//! Continuous state, integrated as one vector by RK4: `[follower (R_F, φ, θ, ψ) | guidance]`.
+//! The target's motion is closed-form. With the `perfect` sensor r = R/b is evaluated at every
+//! RK4 stage (the seed's continuous-time loop); a sampled sensor's measurement is held over
+//! the step.
+//!
+//! One tick: (1) the sensor may deliver a measurement (taken from the truth at the start of
+//! the tick); (2) RK4 advances follower and guidance together; (3) projection bounds and angle
+//! wrapping are enforced; (4) the excitation records the tracking error; (5) divergence and
+//! interception are checked.
 
-use crate::frames::{EulerAngles, Vec3, attitude_along_velocity};
+use crate::frames::{EulerAngles, Mat3, Vec3};
 use crate::guidance::excitation::Excitation;
-use crate::guidance::velocity::{VelocityGuidance, VelocityGuidanceInput, VelocityGuidanceOutput};
+use crate::guidance::velocity::{
+    VelocityEstimator, VelocityGuidance, VelocityGuidanceInput, VelocityGuidanceOutput,
+};
 use crate::integrate::Rk4;
-use crate::scenario::{ExcitationUnits, Mission, Scenario};
+use crate::scenario::{CommandFrame, ExcitationUnits, Mission, Scenario};
+use crate::sensing::line_of_sight_body;
+use crate::world::kinematic::{self, KinematicFollower};
 use crate::world::target::{TargetMotionModel, TargetState};
 
-/// Offset of the guidance slice in the state vector (after R_F).
-const GUIDANCE: usize = 3;
+/// Offset of the guidance slice in the state vector.
+const GUIDANCE: usize = kinematic::STATE_LEN;
 
-/// Why a run stopped before its end.
+/// Why a simulation could not start or go on.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SimError {
     /// A state became non-finite or absurdly large.
@@ -25,6 +35,9 @@ pub enum SimError {
         /// What went wrong.
         what: String,
     },
+    /// A stage could not be built from the scenario.
+    #[error("cannot set up the simulation: {0}")]
+    Setup(String),
 }
 
 /// What a step ended in.
@@ -52,7 +65,7 @@ pub struct Snapshot {
     pub follower_position_ned_ft: Vec3,
     /// V_F, NED, ft/s.
     pub follower_velocity_ned_fps: Vec3,
-    /// Follower attitude (kinematic: nose along V_F).
+    /// Follower attitude.
     pub follower_attitude: EulerAngles,
     /// R = R_T - R_F, NED, ft.
     pub relative_ned_ft: Vec3,
@@ -62,8 +75,8 @@ pub struct Snapshot {
     pub excited_command_ned_ft: Vec3,
     /// Excitation amplitude a(t), in the excitation's units.
     pub excitation_amplitude: f64,
-    /// The measured r.
-    pub r_measured: Vec3,
+    /// The r the guidance was given (None while the sensor has nothing).
+    pub r_measured: Option<Vec3>,
     /// b̂, ft.
     pub b_hat_ft: f64,
     /// d̂, 1/s.
@@ -72,13 +85,27 @@ pub struct Snapshot {
     pub guidance: VelocityGuidanceOutput,
 }
 
+/// Where the guidance's r comes from during a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Measurement {
+    /// r = R/b from the stage's state (seed Chapters 4-5).
+    Continuous,
+    /// A sampled measurement held over the step; None while the target is lost.
+    Held(Option<Vec3>),
+}
+
 /// A running simulation.
 #[derive(Debug, Clone)]
 pub struct Simulation {
     scenario: Scenario,
     target: TargetMotionModel,
+    follower: KinematicFollower,
     guidance: VelocityGuidance,
     excitation: Excitation,
+    measurement: Measurement,
+    /// V_F at the start of the step: the direction the attitude turns to during the step
+    /// (a one-tick delay that breaks the loop attitude → body-frame command → V_F).
+    heading_velocity_ned_fps: Vec3,
     rk4: Rk4,
     state: Vec<f64>,
     /// Scratch for derivative evaluations outside the integrator.
@@ -91,27 +118,46 @@ pub struct Simulation {
 
 impl Simulation {
     /// Builds every stage from a validated scenario.
-    pub fn new(scenario: &Scenario) -> Self {
+    pub fn new(scenario: &Scenario) -> Result<Self, SimError> {
         let target = TargetMotionModel::from_section(&scenario.target);
-        let guidance = VelocityGuidance::new(&scenario.guidance, None);
+        let g = &scenario.guidance;
+        let estimator = if g.estimator {
+            Some(
+                VelocityEstimator::new(g.k, Mat3::identity() * g.estimator_gain)
+                    .map_err(|e| SimError::Setup(format!("velocity estimator: {e}")))?,
+            )
+        } else {
+            None
+        };
+        let guidance = VelocityGuidance::new(g, estimator);
         let excitation = Excitation::new(&scenario.excitation, scenario.run.dt_s);
+        let follower = KinematicFollower {
+            attitude_lag_s: scenario.follower.attitude_lag_s,
+        };
         let follower0 = Vec3::from(scenario.follower.initial_position_ft);
+        let [phi, theta, psi] = scenario.follower.initial_attitude_deg.map(f64::to_radians);
+        let attitude0 = EulerAngles::new(phi, theta, psi);
         let r0 = (target.position_ned_ft(0.0) - follower0) / scenario.target.size_ft;
-        let mut state = follower0.as_slice().to_vec();
+        let mut state = KinematicFollower::initial_state(&follower0, &attitude0).to_vec();
         state.extend(guidance.initial_state(&r0));
-        Self {
+        let mut sim = Self {
             rk4: Rk4::new(state.len()),
             scratch: vec![0.0; state.len()],
             scenario: scenario.clone(),
             target,
+            follower,
             guidance,
             excitation,
+            measurement: Measurement::Continuous,
+            heading_velocity_ned_fps: Vec3::zeros(),
             state,
             tick: 0,
             total_ticks: scenario.run.total_ticks(),
             min_range_ft: r0.norm() * scenario.target.size_ft,
             intercept_time_s: None,
-        }
+        };
+        sim.heading_velocity_ned_fps = sim.evaluate().velocity_cmd_ned_fps;
+        Ok(sim)
     }
 
     /// The scenario this simulation runs.
@@ -144,18 +190,45 @@ impl Simulation {
         self.total_ticks
     }
 
-    /// The user's command R_c (zero for interception).
-    fn command_ned_ft(&self) -> Vec3 {
-        match self.scenario.guidance.mission {
-            Mission::Formation => Vec3::from(self.scenario.guidance.command_ft),
-            Mission::Intercept => Vec3::zeros(),
+    /// The user's command R_c and Ṙ_c (NED, ft and ft/s) for a follower state: zero for
+    /// interception, fixed in NED, or (3.13)-(3.14) in the body frame, whose derivative
+    /// R_range L_BEᵀ (ω × T_IBc) uses the follower's body rates ω.
+    fn command(&self, follower_x: &[f64]) -> (Vec3, Vec3) {
+        let g = &self.scenario.guidance;
+        match (g.mission, g.command_frame) {
+            (Mission::Intercept, _) => (Vec3::zeros(), Vec3::zeros()),
+            (Mission::Formation, CommandFrame::Inertial) => {
+                (Vec3::from(g.command_ft), Vec3::zeros())
+            }
+            (Mission::Formation, CommandFrame::Body) => {
+                let attitude = KinematicFollower::attitude(follower_x);
+                let ned_from_body = attitude.body_from_ned().transpose();
+                let los = line_of_sight_body(
+                    g.command_bearing_deg.to_radians(),
+                    g.command_elevation_deg.to_radians(),
+                ) * g.command_range_ft;
+                let euler_rates = self
+                    .follower
+                    .attitude_rates(follower_x, &self.heading_velocity_ned_fps);
+                let omega = KinematicFollower::body_rates(&attitude, &euler_rates);
+                (ned_from_body * los, ned_from_body * omega.cross(&los))
+            }
         }
     }
 
     /// ẋ of the whole state and the guidance output at (t, x).
     fn derivative(&self, t_s: f64, x: &[f64], dx: &mut [f64]) -> VelocityGuidanceOutput {
-        let follower = Vec3::new(x[0], x[1], x[2]);
-        let relative = self.target.position_ned_ft(t_s) - follower;
+        let (follower_x, guidance_x) = x.split_at(GUIDANCE);
+        let (follower_dx, guidance_dx) = dx.split_at_mut(GUIDANCE);
+        let r_measured = match self.measurement {
+            Measurement::Continuous => {
+                let relative = self.target.position_ned_ft(t_s)
+                    - KinematicFollower::position_ned_ft(follower_x);
+                Some(relative / self.scenario.target.size_ft)
+            }
+            Measurement::Held(r) => r,
+        };
+        let (command_ned_ft, command_rate_ned_fps) = self.command(follower_x);
         let (offset, offset_rate) = self.excitation.offset(t_s);
         let zero = Vec3::zeros();
         let (
@@ -166,18 +239,29 @@ impl Simulation {
             ExcitationUnits::Scaled => ((zero, zero), (offset, offset_rate)),
         };
         let input = VelocityGuidanceInput {
-            r_measured: relative / self.scenario.target.size_ft,
-            command_ned_ft: self.command_ned_ft(),
-            command_rate_ned_fps: Vec3::zeros(),
+            r_measured,
+            command_ned_ft,
+            command_rate_ned_fps,
             excitation_ned_ft,
             excitation_rate_ned_fps,
             excitation_scaled,
             excitation_scaled_rate,
         };
-        let out = self
-            .guidance
-            .derivative(&x[GUIDANCE..], &input, &mut dx[GUIDANCE..]);
-        dx[0..3].copy_from_slice(out.velocity_cmd_ned_fps.as_slice());
+        let out = self.guidance.derivative(guidance_x, &input, guidance_dx);
+        self.follower.derivative(
+            follower_x,
+            &out.velocity_cmd_ned_fps,
+            &self.heading_velocity_ned_fps,
+            follower_dx,
+        );
+        out
+    }
+
+    /// The guidance output at the current state.
+    fn evaluate(&mut self) -> VelocityGuidanceOutput {
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let out = self.derivative(self.time_s(), &self.state, &mut scratch);
+        self.scratch = scratch;
         out
     }
 
@@ -186,25 +270,33 @@ impl Simulation {
         let t_s = self.time_s();
         let mut dx = vec![0.0; self.state.len()];
         let out = self.derivative(t_s, &self.state, &mut dx);
-        let follower = Vec3::new(self.state[0], self.state[1], self.state[2]);
+        let (follower_x, guidance_x) = self.state.split_at(GUIDANCE);
+        let follower = KinematicFollower::position_ned_ft(follower_x);
         let target = self.target.state(t_s);
-        let guidance_state = &self.state[GUIDANCE..];
-        let command = self.command_ned_ft();
-        let velocity = out.velocity_cmd_ned_fps;
-        let b_hat_ft = VelocityGuidance::b_hat_ft(guidance_state);
+        let (command, _) = self.command(follower_x);
+        let b_hat_ft = VelocityGuidance::b_hat_ft(guidance_x);
+        let (offset, _) = self.excitation.offset(t_s);
+        let excitation_ned_ft = match self.excitation.units() {
+            ExcitationUnits::Ft => offset,
+            ExcitationUnits::Scaled => offset * b_hat_ft,
+        };
+        let relative = target.position_ned_ft - follower;
         Snapshot {
             t_s,
             target,
             follower_position_ned_ft: follower,
-            follower_velocity_ned_fps: velocity,
-            follower_attitude: attitude_along_velocity(&velocity, 0.0).unwrap_or_default(),
-            relative_ned_ft: target.position_ned_ft - follower,
+            follower_velocity_ned_fps: out.velocity_cmd_ned_fps,
+            follower_attitude: KinematicFollower::attitude(follower_x),
+            relative_ned_ft: relative,
             command_ned_ft: command,
-            excited_command_ned_ft: command + self.excitation_offset_ned_ft(t_s, b_hat_ft),
+            excited_command_ned_ft: command + excitation_ned_ft,
             excitation_amplitude: self.excitation.amplitude(),
-            r_measured: (target.position_ned_ft - follower) / self.scenario.target.size_ft,
+            r_measured: match self.measurement {
+                Measurement::Continuous => Some(relative / self.scenario.target.size_ft),
+                Measurement::Held(r) => r,
+            },
             b_hat_ft,
-            d_hat: VelocityGuidance::d_hat(guidance_state),
+            d_hat: VelocityGuidance::d_hat(guidance_x),
             guidance: out,
         }
     }
@@ -222,7 +314,9 @@ impl Simulation {
             self.derivative(t, x, dx);
         });
         self.rk4 = rk4;
-        self.guidance.enforce_bounds(&mut state[GUIDANCE..]);
+        let (follower_x, guidance_x) = state.split_at_mut(GUIDANCE);
+        KinematicFollower::normalize(follower_x);
+        self.guidance.enforce_bounds(guidance_x);
         self.state = state;
         self.tick += 1;
         let t_end_s = self.time_s();
@@ -233,9 +327,8 @@ impl Simulation {
                 what: format!("state element {i} is {}", self.state[i]),
             });
         }
-        let follower = Vec3::new(self.state[0], self.state[1], self.state[2]);
-        let relative = self.target.position_ned_ft(t_end_s) - follower;
-        let range_ft = relative.norm();
+        let follower = KinematicFollower::position_ned_ft(&self.state[..GUIDANCE]);
+        let range_ft = (self.target.position_ned_ft(t_end_s) - follower).norm();
         self.min_range_ft = self.min_range_ft.min(range_ft);
         if range_ft > 1e6 {
             return Err(SimError::Diverged {
@@ -243,9 +336,8 @@ impl Simulation {
                 what: format!("range {range_ft:.3e} ft exceeds 1e6 ft"),
             });
         }
-        let mut scratch = std::mem::take(&mut self.scratch);
-        let out = self.derivative(t_end_s, &self.state, &mut scratch);
-        self.scratch = scratch;
+        let out = self.evaluate();
+        self.heading_velocity_ned_fps = out.velocity_cmd_ned_fps;
         self.excitation.record(t_end_s, out.error.norm_squared());
 
         if self.scenario.guidance.mission == Mission::Intercept
@@ -259,14 +351,5 @@ impl Simulation {
         } else {
             StepOutcome::Running
         })
-    }
-
-    /// The excitation offset in ft as the guidance sees it (scaled offsets times b̂).
-    fn excitation_offset_ned_ft(&self, t_s: f64, b_hat_ft: f64) -> Vec3 {
-        let (offset, _) = self.excitation.offset(t_s);
-        match self.excitation.units() {
-            ExcitationUnits::Ft => offset,
-            ExcitationUnits::Scaled => offset * b_hat_ft,
-        }
     }
 }

@@ -3,6 +3,13 @@
 //! of Chapter 6 ((6.10)-(6.17)) for noisy measurements.
 //!
 //! State slice layout: `[b̂, d̂ (3), r_cf (3), r̂ (3, with the estimator)]`.
+//!
+//! Command shaping: ṙ_cf = -p (r_cf - R_c/b̂) + Ṙ_c/b̂ from r_cf(0) = r(0). For the seed's
+//! constant inertial R_c this is the seed's filter; a body-frame command (3.13) rotates with
+//! the follower, and the feed-forward Ṙ_c/b̂ lets r_cf turn with it instead of lagging every
+//! turn by 1/p = 10 s. (Shaping R_c/b̂ by an offset that decays instead would put the term
+//! -b̂' R_c/b̂² of (4.15) into g, and with σ = 39 the loop b̂' → g → b̂' is singular once
+//! eᵀR_c reaches b̂²/σ, an error of about 0.01.)
 
 use super::projection::{BallBound, IntervalBound};
 use crate::frames::{Mat3, Vec3};
@@ -50,8 +57,10 @@ impl VelocityEstimator {
 /// What the velocity law needs at one instant besides its own state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VelocityGuidanceInput {
-    /// Measured scaled relative position r (or r*), NED.
-    pub r_measured: Vec3,
+    /// Measured scaled relative position r (or r*), NED; `None` while the target is lost:
+    /// the law then coasts (with the estimator: on r̂ predicted by (6.10) without its
+    /// correction term; without it: on the command itself) and adaptation stops.
+    pub r_measured: Option<Vec3>,
     /// R_c, the user's relative-position command, NED, ft (zero for interception).
     pub command_ned_ft: Vec3,
     /// Ṙ_c, ft/s.
@@ -155,16 +164,12 @@ impl VelocityGuidance {
         let b_hat = x[B_HAT];
         let d_hat = vec3_at(x, D_HAT);
         let r_cf = vec3_at(x, R_CF);
-        let r_star = input.r_measured;
-        let r_used = match self.estimator {
-            Some(_) => vec3_at(x, R_HAT),
-            None => r_star,
-        };
         // The command in scaled units: a shaped part (filter state) plus what is added after
         // the filter; the parts given in ft are divided by b̂ (4.14): r_cmd = base + extra / b̂.
         let shaping = self.shaping_pole_rps > 0.0;
         let filter_rate = if shaping {
             (input.command_ned_ft / b_hat - r_cf) * self.shaping_pole_rps
+                + input.command_rate_ned_fps / b_hat
         } else {
             Vec3::zeros()
         };
@@ -184,15 +189,21 @@ impl VelocityGuidance {
             )
         };
         let r_cmd = base + extra / b_hat;
+        let r_used = match (&self.estimator, input.r_measured) {
+            (Some(_), _) => vec3_at(x, R_HAT),
+            (None, Some(r_star)) => r_star,
+            (None, None) => r_cmd,
+        };
         let e_used = r_used - r_cmd;
-        let adaptation_signal = match &self.estimator {
-            Some(est) => {
+        let adaptation_signal = match (&self.estimator, input.r_measured) {
+            (_, None) => Vec3::zeros(),
+            (Some(est), Some(r_star)) => {
                 let mut xi = SMatrix::<f64, 6, 1>::zeros();
                 xi.fixed_rows_mut::<3>(0).copy_from(&(r_star - r_cmd));
                 xi.fixed_rows_mut::<3>(3).copy_from(&(r_star - r_used));
                 est.bt_p * xi
             }
-            None => e_used,
+            (None, Some(_)) => e_used,
         };
         // ṙ_cmd contains -b̂' extra / b̂² (4.15) and b̂' depends on g: the algebraic loop is
         // closed by one fixed-point pass starting from b̂' = 0.
@@ -213,13 +224,16 @@ impl VelocityGuidance {
         dx[R_CF..R_CF + 3].copy_from_slice(filter_rate.as_slice());
         if let Some(est) = &self.estimator {
             // (6.10): r̂' = d̂ - g + L_v (r* - r̂).
-            let r_hat_rate = d_hat - g + est.gain * (r_star - r_used);
+            let innovation = input
+                .r_measured
+                .map_or(Vec3::zeros(), |r_star| r_star - r_used);
+            let r_hat_rate = d_hat - g + est.gain * innovation;
             dx[R_HAT..R_HAT + 3].copy_from_slice(r_hat_rate.as_slice());
         }
         VelocityGuidanceOutput {
             velocity_cmd_ned_fps: g * b_hat,
             r_command: r_cmd,
-            error: r_star - r_cmd,
+            error: input.r_measured.unwrap_or(r_used) - r_cmd,
         }
     }
 
@@ -242,7 +256,7 @@ mod tests {
 
     fn input(r: Vec3) -> VelocityGuidanceInput {
         VelocityGuidanceInput {
-            r_measured: r,
+            r_measured: Some(r),
             command_ned_ft: Vec3::new(32.0, 8.0, 0.0),
             command_rate_ned_fps: Vec3::zeros(),
             excitation_ned_ft: Vec3::zeros(),

@@ -63,7 +63,8 @@ pub fn run_to_directory(
         TelemetryWriter::create(&telemetry_path).map_err(io_error(&telemetry_path))?;
 
     let started = Instant::now();
-    let mut sim = Simulation::new(scenario);
+    let mut sim =
+        Simulation::new(scenario).map_err(|e| RunError::Sim(e, telemetry_path.clone()))?;
     let mut logged: Vec<Snapshot> = Vec::new();
     let log_every = u64::from(scenario.run.log_every);
     let progress_every = (sim.total_ticks() / 100).max(1);

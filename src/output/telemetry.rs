@@ -17,7 +17,7 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
     let [cn, ce, cd] = v(&s.command_ned_ft);
     let [xn, xe, xd] = v(&s.excited_command_ned_ft);
     let [dx, dy, dz] = v(&s.d_hat);
-    let [rx, ry, rz] = v(&s.r_measured);
+    let [rx, ry, rz] = s.r_measured.map_or([f64::NAN; 3], |r| v(&r));
     let [rcx, rcy, rcz] = v(&s.guidance.r_command);
     vec![
         ("t_s", s.t_s),

@@ -108,6 +108,11 @@ pub struct FollowerSection {
     pub model: FollowerModel,
     /// R_F(0) in NED, ft.
     pub initial_position_ft: [f64; 3],
+    /// Initial roll, pitch, yaw, deg.
+    pub initial_attitude_deg: [f64; 3],
+    /// Kinematic follower: time constant with which the attitude turns to the velocity
+    /// direction (θ → γ, ψ → χ, φ → coordinated-turn bank), s.
+    pub attitude_lag_s: f64,
 }
 
 impl Default for FollowerSection {
@@ -115,13 +120,23 @@ impl Default for FollowerSection {
         Self {
             model: FollowerModel::Kinematic,
             initial_position_ft: [0.0; 3],
+            initial_attitude_deg: [0.0; 3],
+            attitude_lag_s: 0.2,
         }
     }
 }
 
 impl FollowerSection {
     fn validate(&self) -> Check {
-        check::finite_vec("follower.initial_position_ft", &self.initial_position_ft)
+        check::finite_vec("follower.initial_position_ft", &self.initial_position_ft)?;
+        check::finite_vec("follower.initial_attitude_deg", &self.initial_attitude_deg)?;
+        check::in_closed(
+            "follower.initial_attitude_deg[1]",
+            self.initial_attitude_deg[1],
+            -89.0,
+            89.0,
+        )?;
+        check::in_closed("follower.attitude_lag_s", self.attitude_lag_s, 1e-3, 10.0)
     }
 }
 
@@ -173,6 +188,8 @@ pub enum Mission {
 pub enum CommandFrame {
     /// R_c fixed in NED (the seed's simulations).
     Inertial,
+    /// Range, bearing and elevation in the follower's body frame, (3.13)-(3.14).
+    Body,
 }
 
 /// `[guidance]`: law, mission, gains and projection bounds.
@@ -187,6 +204,16 @@ pub struct GuidanceSection {
     pub command_frame: CommandFrame,
     /// R_c in NED, ft (formation, inertial frame).
     pub command_ft: [f64; 3],
+    /// Commanded range, ft (formation, body frame).
+    pub command_range_ft: f64,
+    /// Commanded bearing λ_c, deg, positive right (body frame).
+    pub command_bearing_deg: f64,
+    /// Commanded elevation ϑ_c, deg, positive up (body frame).
+    pub command_elevation_deg: f64,
+    /// Drive the law with the Chapter 6 state estimator (6.10)-(6.17).
+    pub estimator: bool,
+    /// Estimator gain L_v = estimator_gain I, 1/s.
+    pub estimator_gain: f64,
     /// Tracking gain k, (4.3).
     pub k: f64,
     /// Adaptation gain σ of b̂, (4.5).
@@ -220,6 +247,11 @@ impl Default for GuidanceSection {
             mission: Mission::Formation,
             command_frame: CommandFrame::Inertial,
             command_ft: [32.0, 8.0, 0.0],
+            command_range_ft: 33.0,
+            command_bearing_deg: 14.0,
+            command_elevation_deg: 0.0,
+            estimator: false,
+            estimator_gain: 1.7,
             k: 3.5,
             sigma: 39.0,
             gamma_d: 40.0,
@@ -239,6 +271,20 @@ impl Default for GuidanceSection {
 impl GuidanceSection {
     fn validate(&self) -> Check {
         check::finite_vec("guidance.command_ft", &self.command_ft)?;
+        check::in_closed("guidance.command_range_ft", self.command_range_ft, 0.0, 1e5)?;
+        check::in_closed(
+            "guidance.command_bearing_deg",
+            self.command_bearing_deg,
+            -180.0,
+            180.0,
+        )?;
+        check::in_closed(
+            "guidance.command_elevation_deg",
+            self.command_elevation_deg,
+            -89.0,
+            89.0,
+        )?;
+        check::positive("guidance.estimator_gain", self.estimator_gain)?;
         check::positive("guidance.k", self.k)?;
         check::non_negative("guidance.sigma", self.sigma)?;
         check::non_negative("guidance.gamma_d", self.gamma_d)?;

@@ -1,0 +1,151 @@
+//! The kinematic follower of the seed's Chapters 4-6: it realises the commanded velocity
+//! exactly. It has no attitude dynamics of its own; its camera needs an attitude, so the body
+//! x axis turns to the velocity direction (θ → γ, ψ → χ) and the wings to the coordinated-turn
+//! bank φ = atan(ψ̇ V / g) (SPEC §2, Remark 9) through a first-order lag of time constant τ.
+//! The lag keeps the attitude continuous and gives its rates exactly (the body-frame command
+//! (3.13)-(3.14) needs them) without differentiating a command.
+//!
+//! State slice: `[R_F (3), φ, θ, ψ]`.
+
+use crate::frames::{EulerAngles, GRAVITY_FPS2, Mat3, Vec3};
+use std::f64::consts::PI;
+
+/// Length of the kinematic follower's state slice.
+pub const STATE_LEN: usize = 6;
+
+/// A follower that flies the commanded velocity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KinematicFollower {
+    /// Attitude lag τ, s.
+    pub attitude_lag_s: f64,
+}
+
+/// Angle wrapped into (-π, π].
+pub fn wrap_angle_rad(angle: f64) -> f64 {
+    let wrapped = (angle + PI).rem_euclid(2.0 * PI) - PI;
+    if wrapped <= -PI {
+        wrapped + 2.0 * PI
+    } else {
+        wrapped
+    }
+}
+
+impl KinematicFollower {
+    /// Initial state from a position and an attitude.
+    pub fn initial_state(position_ned_ft: &Vec3, attitude: &EulerAngles) -> [f64; STATE_LEN] {
+        [
+            position_ned_ft.x,
+            position_ned_ft.y,
+            position_ned_ft.z,
+            attitude.phi_rad,
+            attitude.theta_rad,
+            attitude.psi_rad,
+        ]
+    }
+
+    /// R_F of a state slice, NED, ft.
+    pub fn position_ned_ft(x: &[f64]) -> Vec3 {
+        Vec3::new(x[0], x[1], x[2])
+    }
+
+    /// Attitude of a state slice.
+    pub fn attitude(x: &[f64]) -> EulerAngles {
+        EulerAngles::new(x[3], x[4], x[5])
+    }
+
+    /// Euler-angle rates [φ̇, θ̇, ψ̇] turning the attitude toward `heading_velocity_ned_fps`
+    /// (the velocity the attitude follows; zero speed holds the attitude).
+    pub fn attitude_rates(&self, x: &[f64], heading_velocity_ned_fps: &Vec3) -> Vec3 {
+        let att = Self::attitude(x);
+        let speed = heading_velocity_ned_fps.norm();
+        if speed <= 1e-9 {
+            return Vec3::new(-att.phi_rad / self.attitude_lag_s, 0.0, 0.0);
+        }
+        let v = heading_velocity_ned_fps;
+        let gamma = (-v.z / speed).clamp(-1.0, 1.0).asin();
+        let chi = v.y.atan2(v.x);
+        let psi_rate = wrap_angle_rad(chi - att.psi_rad) / self.attitude_lag_s;
+        let theta_rate = (gamma - att.theta_rad) / self.attitude_lag_s;
+        let bank = (psi_rate * speed / GRAVITY_FPS2).atan();
+        let phi_rate = (bank - att.phi_rad) / self.attitude_lag_s;
+        Vec3::new(phi_rate, theta_rate, psi_rate)
+    }
+
+    /// Body rates [p, q, r] from Euler-angle rates: H = P⁻¹ (SPEC §7).
+    pub fn body_rates(attitude: &EulerAngles, euler_rates: &Vec3) -> Vec3 {
+        let (sf, cf) = attitude.phi_rad.sin_cos();
+        let (st, ct) = attitude.theta_rad.sin_cos();
+        let h = Mat3::new(1.0, 0.0, -st, 0.0, cf, sf * ct, 0.0, -sf, cf * ct);
+        h * euler_rates
+    }
+
+    /// Writes ẋ: Ṙ_F = V_F and the attitude rates toward `heading_velocity_ned_fps`.
+    pub fn derivative(
+        &self,
+        x: &[f64],
+        velocity_ned_fps: &Vec3,
+        heading_velocity_ned_fps: &Vec3,
+        dx: &mut [f64],
+    ) {
+        dx[0..3].copy_from_slice(velocity_ned_fps.as_slice());
+        let rates = self.attitude_rates(x, heading_velocity_ned_fps);
+        dx[3..6].copy_from_slice(rates.as_slice());
+    }
+
+    /// Wraps roll and yaw into (-π, π] after a step.
+    pub fn normalize(x: &mut [f64]) {
+        x[3] = wrap_angle_rad(x[3]);
+        x[5] = wrap_angle_rad(x[5]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_is_in_range() {
+        for a in [-10.0, -PI, -1.0, 0.0, 1.0, PI, 7.0] {
+            let w = wrap_angle_rad(a);
+            assert!(w > -PI - 1e-15 && w <= PI + 1e-15, "{a} -> {w}");
+            let turns = (a - w) / (2.0 * PI);
+            assert!((turns - turns.round()).abs() < 1e-12, "{a} -> {w}");
+        }
+    }
+
+    /// H inverts P: P H = I.
+    #[test]
+    fn body_rates_invert_euler_rate_matrix() {
+        let att = EulerAngles::new(0.4, -0.3, 1.2);
+        let rates = Vec3::new(0.1, -0.2, 0.3);
+        let pqr = KinematicFollower::body_rates(&att, &rates);
+        let back = att.rates_from_body_rates_matrix() * pqr;
+        assert!((back - rates).norm() < 1e-12);
+    }
+
+    /// Turning right at constant speed: the attitude converges to the velocity direction and
+    /// banks right.
+    #[test]
+    fn attitude_follows_velocity() {
+        let follower = KinematicFollower {
+            attitude_lag_s: 0.05,
+        };
+        let mut x = KinematicFollower::initial_state(&Vec3::zeros(), &EulerAngles::default());
+        let v = Vec3::new(30.0, 40.0, -5.0);
+        let dt = 0.001;
+        let mut dx = [0.0; STATE_LEN];
+        for _ in 0..1000 {
+            follower.derivative(&x, &v, &v, &mut dx);
+            for (xi, di) in x.iter_mut().zip(dx.iter()) {
+                *xi += dt * di;
+            }
+        }
+        let att = KinematicFollower::attitude(&x);
+        assert!((att.psi_rad - 40f64.atan2(30.0)).abs() < 1e-6);
+        assert!((att.theta_rad - (5.0 / v.norm()).asin()).abs() < 1e-6);
+        assert!(
+            att.phi_rad.abs() < 1e-6,
+            "bank decays once the turn is over"
+        );
+    }
+}
