@@ -1,3 +1,4 @@
 //! The truth: the target's motion and the follower's plant.
 
+pub mod atmosphere;
 pub mod target;
