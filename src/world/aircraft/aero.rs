@@ -29,7 +29,7 @@ impl AirAngles {
     /// From the air-relative velocity (u_r, v_r, w_r) in body axes, ft/s.
     pub fn from_air_velocity_body(v_air_body_fps: &Vec3) -> Self {
         let airspeed_fps = v_air_body_fps.norm();
-        if !(airspeed_fps > MIN_AIRSPEED_FPS) {
+        if airspeed_fps.is_nan() || airspeed_fps <= MIN_AIRSPEED_FPS {
             return Self {
                 airspeed_fps: airspeed_fps.max(0.0),
                 alpha_rad: 0.0,

@@ -178,7 +178,7 @@ pub fn trim_level_flight(aircraft: &Aircraft, request: &TrimRequest) -> Result<T
     let lateral = [dx[vel + 1], dx[rates], dx[rates + 2]]
         .into_iter()
         .fold(0.0f64, |m, c| m.max(c.abs()));
-    if !(lateral <= 1e3 * TRIM_TOLERANCE) {
+    if !dx.iter().all(|c| c.is_finite()) || lateral > 1e3 * TRIM_TOLERANCE {
         return Err(TrimError::LateralResidual { residual: lateral });
     }
     let residual = dx[vel..vel + 3]
