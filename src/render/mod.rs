@@ -1,3 +1,10 @@
 //! Off-screen rendering of the target as the follower's camera sees it.
+//!
+//! [`mesh::TargetMesh`] holds the target's triangles (the seed aircraft is built by
+//! [`aircraft_mesh`] and committed as `assets/target_aircraft.obj`).
 
+pub mod aircraft_mesh;
 pub mod camera;
+pub mod mesh;
+
+pub use mesh::{MeshError, TargetMesh};
