@@ -2,12 +2,21 @@
 //!
 //! [`gpu::GpuContext`] opens a headless wgpu device once; [`mesh::TargetMesh`] holds the
 //! target's triangles (the seed aircraft is built by [`aircraft_mesh`] and committed as
-//! `assets/target_aircraft.obj`).
+//! `assets/target_aircraft.obj`); [`renderer::Renderer`] draws it with the exact pinhole
+//! projection of [`camera::CameraIntrinsics`] ([`projection`]) and reads back a [`frame::Frame`].
 
 pub mod aircraft_mesh;
 pub mod camera;
+pub mod frame;
 pub mod gpu;
 pub mod mesh;
+pub mod projection;
+pub mod renderer;
 
+pub use frame::Frame;
 pub use gpu::{GpuContext, GpuError};
 pub use mesh::{MeshError, TargetMesh};
+pub use renderer::{
+    Background, PixelNoise, RenderError, RenderSettings, RenderTimings, Renderer, Sky,
+    TargetShading,
+};
