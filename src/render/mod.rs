@@ -10,6 +10,7 @@ pub mod camera;
 pub mod frame;
 pub mod gpu;
 pub mod mesh;
+pub mod noise;
 pub mod projection;
 pub mod renderer;
 

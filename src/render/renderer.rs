@@ -1,11 +1,12 @@
 //! Off-screen renderer: draws the target mesh, as the follower's camera sees it, into an RGBA8
 //! texture (optionally 4x multisampled and resolved) and reads it back into a [`Frame`].
 //!
-//! Per frame only a 208-byte uniform block changes; the mesh is uploaded once. Readback copies
+//! Per frame only a 192-byte uniform block changes; the mesh is uploaded once. Readback copies
 //! the texture into a persistent staging buffer whose rows are padded to
 //! [`wgpu::COPY_BYTES_PER_ROW_ALIGNMENT`], maps it, waits for the exact submission (DESIGN §6:
 //! another thread's poll may run the map callback, so the callback reports on a channel) and
-//! unpads the rows into a reusable [`Frame`].
+//! unpads the rows into a reusable [`Frame`]. Pixel noise is then added on the CPU
+//! ([`crate::render::noise`]).
 
 use std::sync::mpsc;
 use std::time::Instant;
@@ -19,6 +20,7 @@ use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use crate::render::frame::Frame;
 use crate::render::gpu::GpuContext;
 use crate::render::mesh::TargetMesh;
+use crate::render::noise::NoiseGenerator;
 use crate::render::projection::{body_from_target, clip_from_body};
 
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -53,7 +55,8 @@ impl Default for Sky {
 }
 
 /// Per-pixel Gaussian sensor noise, the same value added to R, G and B of every pixel (sky and
-/// target) before 8-bit quantisation. Deterministic: a function of (seed, frame index, pixel).
+/// target) after readback, then rounded and clamped to 0-255. Deterministic: a function of
+/// (seed, frame index, pixel); see [`crate::render::noise`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PixelNoise {
     /// Standard deviation, grey levels (0-255 scale).
@@ -149,10 +152,12 @@ pub struct RenderTimings {
     /// Waiting for the GPU to draw and copy (on lavapipe the drawing happens here), mapping
     /// the staging buffer and unpadding rows into the frame.
     pub readback_s: f64,
+    /// Adding pixel noise on the CPU (0 without noise).
+    pub noise_s: f64,
 }
 
 /// The per-frame uniform block; layout matches `FrameUniforms` in `shaders/target.wgsl`
-/// (mat3x3 columns padded to vec4, total 208 bytes).
+/// (mat3x3 columns padded to vec4, total 192 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 struct FrameUniforms {
@@ -162,11 +167,10 @@ struct FrameUniforms {
     target_grey: [f32; 4],
     sky_top: [f32; 4],
     sky_bottom: [f32; 4],
-    noise: [f32; 4],
-    noise_key: [u32; 4],
+    image: [f32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 208);
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 192);
 
 /// One vertex of the un-indexed, flat-shaded target: position and its face's normal.
 #[repr(C)]
@@ -210,6 +214,7 @@ pub struct Renderer {
     staging: wgpu::Buffer,
     padded_bytes_per_row: u32,
     clear_color: wgpu::Color,
+    noise: Option<NoiseGenerator>,
     frame: Frame,
     timings: RenderTimings,
 }
@@ -310,8 +315,7 @@ impl Renderer {
             multiview_mask: None,
             cache: None,
         });
-        let needs_background_pass = matches!(settings.background.sky, Sky::VerticalGradient { .. })
-            || settings.background.noise.is_some();
+        let needs_background_pass = matches!(settings.background.sky, Sky::VerticalGradient { .. });
         let background_pipeline = needs_background_pass.then(|| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("background"),
@@ -423,6 +427,10 @@ impl Renderer {
             staging,
             padded_bytes_per_row,
             clear_color,
+            noise: settings
+                .background
+                .noise
+                .map(|n| NoiseGenerator::new(n.std_grey_levels, n.seed)),
             frame: Frame::filled(cam.width_px, cam.height_px, [0, 0, 0, 255]),
             timings: RenderTimings::default(),
         }
@@ -442,12 +450,17 @@ impl Renderer {
         frame_index: u64,
     ) -> Result<&Frame, RenderError> {
         let start = Instant::now();
-        let submission = self.submit(pose, frame_index)?;
+        let submission = self.submit(pose)?;
         let submitted = Instant::now();
         self.read_back(submission)?;
+        let read = Instant::now();
+        if let Some(noise) = &self.noise {
+            noise.apply(&mut self.frame, frame_index);
+        }
         self.timings = RenderTimings {
             submit_s: (submitted - start).as_secs_f64(),
-            readback_s: submitted.elapsed().as_secs_f64(),
+            readback_s: (read - submitted).as_secs_f64(),
+            noise_s: read.elapsed().as_secs_f64(),
         };
         Ok(&self.frame)
     }
@@ -465,7 +478,6 @@ impl Renderer {
     fn submit(
         &mut self,
         pose: &TargetPoseInCamera,
-        frame_index: u64,
     ) -> Result<
         (
             wgpu::SubmissionIndex,
@@ -483,8 +495,6 @@ impl Renderer {
         let r = &pose.body_from_target;
         self.uniforms.body_from_target =
             std::array::from_fn(|c| [r[(0, c)] as f32, r[(1, c)] as f32, r[(2, c)] as f32, 0.0]);
-        self.uniforms.noise_key[2] = frame_index as u32;
-        self.uniforms.noise_key[3] = (frame_index >> 32) as u32;
         self.queue
             .write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&self.uniforms));
 
@@ -667,10 +677,6 @@ fn initial_uniforms(settings: &RenderSettings) -> FrameUniforms {
         } => (top_rgb, bottom_rgb),
     };
     let light = settings.shading.light_dir_body.normalize();
-    let (noise_std, noise_on, seed) = match settings.background.noise {
-        Some(n) => ((n.std_grey_levels / 255.0) as f32, 1.0, n.seed),
-        None => (0.0, 0.0, 0),
-    };
     FrameUniforms {
         clip_from_target: [[0.0; 4]; 4],
         body_from_target: [[0.0; 4]; 3],
@@ -683,13 +689,7 @@ fn initial_uniforms(settings: &RenderSettings) -> FrameUniforms {
         ],
         sky_top: unit_rgb(top),
         sky_bottom: unit_rgb(bottom),
-        noise: [
-            noise_std,
-            settings.intrinsics.height_px as f32,
-            noise_on,
-            0.0,
-        ],
-        noise_key: [seed as u32, (seed >> 32) as u32, 0, 0],
+        image: [settings.intrinsics.height_px as f32, 0.0, 0.0, 0.0],
     }
 }
 
