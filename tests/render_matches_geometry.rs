@@ -15,7 +15,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use render_support::*;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use wingman::render::renderer::DEFAULT_SKY_RGB;
+use wingman::render::settings::DEFAULT_SKY_RGB;
 use wingman::render::{Frame, RenderSettings, Renderer};
 
 /// Rasteriser snapping margin, px (see the module docs).

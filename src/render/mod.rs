@@ -13,11 +13,10 @@ pub mod mesh;
 pub mod noise;
 pub mod projection;
 pub mod renderer;
+pub mod settings;
 
 pub use frame::Frame;
 pub use gpu::{GpuContext, GpuError};
 pub use mesh::{MeshError, TargetMesh};
-pub use renderer::{
-    Background, PixelNoise, RenderError, RenderSettings, RenderTimings, Renderer, Sky,
-    TargetShading,
-};
+pub use renderer::{RenderError, RenderTimings, Renderer};
+pub use settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};

@@ -15,114 +15,16 @@ use bytemuck::{Pod, Zeroable};
 use nalgebra::Matrix4;
 use wgpu::util::DeviceExt;
 
-use crate::frames::Vec3;
-use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use crate::render::camera::TargetPoseInCamera;
 use crate::render::frame::Frame;
 use crate::render::gpu::GpuContext;
 use crate::render::mesh::TargetMesh;
 use crate::render::noise::NoiseGenerator;
 use crate::render::projection::{body_from_target, clip_from_body};
+use crate::render::settings::{RenderSettings, Sky};
 
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-
-/// Default sky colour (RGB, 0-255): light blue-grey, Rec. 601 luma 196.
-pub const DEFAULT_SKY_RGB: [u8; 3] = [175, 200, 230];
-
-/// The sky behind the target.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Sky {
-    /// One colour everywhere (RGB, 0-255).
-    Uniform {
-        /// Sky colour.
-        rgb: [u8; 3],
-    },
-    /// Linear blend from the top row's colour to the bottom row's (RGB, 0-255), by image row.
-    VerticalGradient {
-        /// Colour at the top of the image.
-        top_rgb: [u8; 3],
-        /// Colour at the bottom of the image.
-        bottom_rgb: [u8; 3],
-    },
-}
-
-impl Default for Sky {
-    fn default() -> Self {
-        Sky::Uniform {
-            rgb: DEFAULT_SKY_RGB,
-        }
-    }
-}
-
-/// Per-pixel Gaussian sensor noise, the same value added to R, G and B of every pixel (sky and
-/// target) after readback, then rounded and clamped to 0-255. Deterministic: a function of
-/// (seed, frame index, pixel); see [`crate::render::noise`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PixelNoise {
-    /// Standard deviation, grey levels (0-255 scale).
-    pub std_grey_levels: f64,
-    /// Seed; frames with the same seed and frame index get the same noise.
-    pub seed: u64,
-}
-
-/// What is drawn where the target is not, and the sensor noise on top.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Background {
-    /// Sky colour or gradient.
-    pub sky: Sky,
-    /// Optional per-pixel noise (applies to the whole image).
-    pub noise: Option<PixelNoise>,
-}
-
-/// How the target is shaded: flat faces, two-sided Lambert with one light fixed in camera axes,
-/// grey between `unlit_grey` and `lit_grey` (keep both well below the sky so that the whole
-/// silhouette stays darker than the background).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TargetShading {
-    /// Grey level (0-255) of a face edge-on to the light.
-    pub unlit_grey: u8,
-    /// Grey level (0-255) of a face square to the light.
-    pub lit_grey: u8,
-    /// Direction towards the light, camera/body axes (need not be unit length).
-    pub light_dir_body: Vec3,
-}
-
-impl Default for TargetShading {
-    fn default() -> Self {
-        Self {
-            unlit_grey: 40,
-            lit_grey: 100,
-            // From above, slightly behind and right of the camera.
-            light_dir_body: Vec3::new(-0.4, 0.3, -0.87),
-        }
-    }
-}
-
-/// Everything fixed for the life of a renderer.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RenderSettings {
-    /// Camera resolution and focal length; the projection matches it exactly.
-    pub intrinsics: CameraIntrinsics,
-    /// Samples per pixel: 1 (aliased edges; pixel drawn when its centre is covered) or 4 (edge
-    /// pixels blend target and sky by coverage; about 5x slower on lavapipe).
-    pub msaa_samples: u32,
-    /// Sky and noise.
-    pub background: Background,
-    /// Target grey levels and light.
-    pub shading: TargetShading,
-}
-
-impl RenderSettings {
-    /// Settings with the default sky, no noise, default shading and 1 sample per pixel.
-    pub fn new(intrinsics: CameraIntrinsics) -> Self {
-        Self {
-            intrinsics,
-            msaa_samples: 1,
-            background: Background::default(),
-            shading: TargetShading::default(),
-        }
-    }
-}
 
 /// Why a renderer could not be built or a frame not rendered.
 #[derive(Debug, thiserror::Error)]
@@ -226,7 +128,9 @@ impl Renderer {
         settings: RenderSettings,
         mesh: &TargetMesh,
     ) -> Result<Self, RenderError> {
-        validate_settings(&settings, gpu.limits())?;
+        settings
+            .validate(gpu.limits().max_texture_dimension_2d)
+            .map_err(RenderError::InvalidSettings)?;
         let vertices = flat_shaded_vertices(mesh)?;
         let device = gpu.device().clone();
         let oom_scope = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
@@ -632,42 +536,6 @@ fn padded_bytes_per_row(width_px: u32) -> u32 {
     (4 * width_px).div_ceil(align) * align
 }
 
-fn validate_settings(settings: &RenderSettings, limits: &wgpu::Limits) -> Result<(), RenderError> {
-    let cam = &settings.intrinsics;
-    let max = limits.max_texture_dimension_2d;
-    let bad = |msg: String| Err(RenderError::InvalidSettings(msg));
-    if cam.width_px == 0 || cam.height_px == 0 || cam.width_px > max || cam.height_px > max {
-        return bad(format!(
-            "image size {}x{} px must be between 1 and {max} px on each side",
-            cam.width_px, cam.height_px
-        ));
-    }
-    if !(cam.focal_px.is_finite() && cam.focal_px > 0.0) {
-        return bad(format!("focal_px {} must be finite and > 0", cam.focal_px));
-    }
-    if !matches!(settings.msaa_samples, 1 | 4) {
-        return bad(format!(
-            "msaa_samples {} must be 1 or 4",
-            settings.msaa_samples
-        ));
-    }
-    if let Some(noise) = settings.background.noise
-        && !(noise.std_grey_levels.is_finite() && noise.std_grey_levels >= 0.0)
-    {
-        return bad(format!(
-            "noise std_grey_levels {} must be finite and >= 0",
-            noise.std_grey_levels
-        ));
-    }
-    let light = settings.shading.light_dir_body;
-    if !(light.iter().all(|x| x.is_finite()) && light.norm() > 0.0) {
-        return bad(format!(
-            "shading light_dir_body {light:?} must be a finite non-zero vector"
-        ));
-    }
-    Ok(())
-}
-
 fn initial_uniforms(settings: &RenderSettings) -> FrameUniforms {
     let (top, bottom) = match settings.background.sky {
         Sky::Uniform { rgb } => (rgb, rgb),
@@ -725,6 +593,7 @@ fn flat_shaded_vertices(mesh: &TargetMesh) -> Result<Vec<TargetVertex>, RenderEr
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::frames::Vec3;
 
     #[test]
     fn rows_are_padded_to_256_bytes() {
