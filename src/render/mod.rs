@@ -1,3 +1,22 @@
 //! Off-screen rendering of the target as the follower's camera sees it.
+//!
+//! [`gpu::GpuContext`] opens a headless wgpu device once; [`mesh::TargetMesh`] holds the
+//! target's triangles (the seed aircraft is built by [`aircraft_mesh`] and committed as
+//! `assets/target_aircraft.obj`); [`renderer::Renderer`] draws it with the exact pinhole
+//! projection of [`camera::CameraIntrinsics`] ([`projection`]) and reads back a [`frame::Frame`].
 
+pub mod aircraft_mesh;
 pub mod camera;
+pub mod frame;
+pub mod gpu;
+pub mod mesh;
+pub mod noise;
+pub mod projection;
+pub mod renderer;
+pub mod settings;
+
+pub use frame::Frame;
+pub use gpu::{GpuContext, GpuError};
+pub use mesh::{MeshError, TargetMesh};
+pub use renderer::{RenderError, RenderTimings, Renderer};
+pub use settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};

@@ -1,0 +1,77 @@
+//! Frames per second of render + readback on this machine's adapter (lavapipe in CI).
+//!
+//! `cargo run --release --example render_fps [FRAMES] [OUT_DIR]` renders the target 33 ft ahead,
+//! turning a little each frame, at 640x480 and 1920x1080 with 1 and 4 samples (and with a
+//! noisy gradient sky, which needs a full-screen background pass), and prints
+//! frames/s with the split between submission and readback. With OUT_DIR it also saves the
+//! first frame of each run as a PNG there.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use wingman::frames::{EulerAngles, Vec3};
+use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use wingman::render::{
+    Background, GpuContext, PixelNoise, RenderSettings, Renderer, Sky, TargetMesh,
+};
+
+fn main() -> anyhow::Result<()> {
+    let frames: u32 = match std::env::args().nth(1) {
+        Some(n) => n.parse()?,
+        None => 200,
+    };
+    let out_dir = std::env::args().nth(2).map(PathBuf::from);
+    let gpu = GpuContext::new()?;
+    println!("adapter: {}", gpu.description());
+    let mesh = TargetMesh::target_aircraft(1.0)?;
+    for (width, height) in [(640, 480), (1920, 1080)] {
+        for (msaa, noisy) in [(1, false), (4, false), (1, true)] {
+            let mut settings =
+                RenderSettings::new(CameraIntrinsics::from_hfov(width, height, 60.0));
+            settings.msaa_samples = msaa;
+            if noisy {
+                settings.background = Background {
+                    sky: Sky::VerticalGradient {
+                        top_rgb: [120, 160, 215],
+                        bottom_rgb: [215, 220, 225],
+                    },
+                    noise: Some(PixelNoise {
+                        std_grey_levels: 4.0,
+                        seed: 1,
+                    }),
+                };
+            }
+            let mut renderer = Renderer::new(&gpu, settings, &mesh)?;
+            let pose = |k: u32| TargetPoseInCamera {
+                position_body_ft: Vec3::new(33.0, 8.0, 0.5),
+                body_from_target: EulerAngles::new(0.3, 0.1, 0.02 * f64::from(k))
+                    .body_from_ned()
+                    .transpose(),
+            };
+            let first = renderer.render(&pose(0), 0)?;
+            if let Some(dir) = &out_dir {
+                let name = format!("target_{width}x{height}_msaa{msaa}_noise{noisy}.png");
+                first.save_png(&dir.join(name))?;
+            }
+            let (mut submit_s, mut readback_s, mut noise_s) = (0.0, 0.0, 0.0);
+            let start = Instant::now();
+            for k in 1..=frames {
+                renderer.render(&pose(k), u64::from(k))?;
+                let t = renderer.last_timings();
+                submit_s += t.submit_s;
+                readback_s += t.readback_s;
+                noise_s += t.noise_s;
+            }
+            let wall_s = start.elapsed().as_secs_f64();
+            let n = f64::from(frames);
+            println!(
+                "{width}x{height} msaa {msaa} gradient+noise {noisy}: {:.0} frames/s (submit {:.2} ms, readback {:.2} ms, noise {:.2} ms per frame)",
+                n / wall_s,
+                1e3 * submit_s / n,
+                1e3 * readback_s / n,
+                1e3 * noise_s / n
+            );
+        }
+    }
+    Ok(())
+}

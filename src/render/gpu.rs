@@ -1,0 +1,131 @@
+//! The headless wgpu device, created once per simulator and shared by its renderers.
+//!
+//! No surface is created. On machines without a GPU the Vulkan backend finds Mesa's lavapipe
+//! ("llvmpipe", [`wgpu::DeviceType::Cpu`]). Mesa may print a harmless
+//! "XDG_RUNTIME_DIR is invalid" line on stderr; `NODEVICE_SELECT=1` in the environment silences
+//! it (it is not set here: changing the environment of a running multi-threaded program is
+//! unsound).
+
+/// What to install when no adapter exists (DESIGN §6).
+pub const INSTALL_HINT: &str = "apt-get install -y mesa-vulkan-drivers libvulkan1";
+
+/// Why no GPU context could be created.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter (GPU or software rasteriser) is available.
+    #[error("no GPU adapter found ({reason}); install a software Vulkan driver: {hint}")]
+    NoAdapter {
+        /// wgpu's reason, on one line.
+        reason: String,
+        /// The install command, [`INSTALL_HINT`].
+        hint: &'static str,
+    },
+    /// The adapter refused to create a device.
+    #[error("GPU adapter {adapter} refused to create a device: {reason}")]
+    NoDevice {
+        /// The adapter's name.
+        adapter: String,
+        /// wgpu's reason, on one line.
+        reason: String,
+    },
+}
+
+/// One line, whatever the source message held.
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// A wgpu device and queue without a surface, with the adapter's description.
+#[derive(Debug)]
+pub struct GpuContext {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    info: wgpu::AdapterInfo,
+    limits: wgpu::Limits,
+}
+
+impl GpuContext {
+    /// Opens the best adapter the enabled backends offer (`WGPU_BACKEND` and other wgpu
+    /// environment variables are honoured) with default limits. Blocks until done.
+    pub fn new() -> Result<Self, GpuError> {
+        pollster::block_on(Self::new_async())
+    }
+
+    async fn new_async() -> Result<Self, GpuError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: None,
+                apply_limit_buckets: false,
+            })
+            .await
+            .map_err(|e| GpuError::NoAdapter {
+                reason: one_line(&e.to_string()),
+                hint: INSTALL_HINT,
+            })?;
+        let info = adapter.get_info();
+        let limits = wgpu::Limits::default();
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("wingman"),
+                required_limits: limits.clone(),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| GpuError::NoDevice {
+                adapter: info.name.clone(),
+                reason: one_line(&e.to_string()),
+            })?;
+        Ok(Self {
+            device,
+            queue,
+            info,
+            limits,
+        })
+    }
+
+    /// The device (a cheap handle: clone it to keep it).
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
+    /// The device's queue (a cheap handle: clone it to keep it).
+    pub fn queue(&self) -> &wgpu::Queue {
+        &self.queue
+    }
+
+    /// The limits the device was created with.
+    pub fn limits(&self) -> &wgpu::Limits {
+        &self.limits
+    }
+
+    /// Adapter name, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+    pub fn adapter_name(&self) -> &str {
+        &self.info.name
+    }
+
+    /// Adapter kind; lavapipe is [`wgpu::DeviceType::Cpu`].
+    pub fn device_type(&self) -> wgpu::DeviceType {
+        self.info.device_type
+    }
+
+    /// Backend in use (Vulkan in this build).
+    pub fn backend(&self) -> wgpu::Backend {
+        self.info.backend
+    }
+
+    /// One line for logs and reports: name, device type, backend, driver.
+    pub fn description(&self) -> String {
+        format!(
+            "{} ({:?}, {}, driver {} {})",
+            self.info.name,
+            self.info.device_type,
+            self.info.backend,
+            self.info.driver,
+            self.info.driver_info
+        )
+    }
+}

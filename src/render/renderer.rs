@@ -1,0 +1,615 @@
+//! Off-screen renderer: draws the target mesh, as the follower's camera sees it, into an RGBA8
+//! texture (optionally 4x multisampled and resolved) and reads it back into a [`Frame`].
+//!
+//! Per frame only a 192-byte uniform block changes; the mesh is uploaded once. Readback copies
+//! the texture into a persistent staging buffer whose rows are padded to
+//! [`wgpu::COPY_BYTES_PER_ROW_ALIGNMENT`], maps it, waits for the exact submission (DESIGN §6:
+//! another thread's poll may run the map callback, so the callback reports on a channel) and
+//! unpads the rows into a reusable [`Frame`]. Pixel noise is then added on the CPU
+//! ([`crate::render::noise`]).
+
+use std::sync::mpsc;
+use std::time::Instant;
+
+use bytemuck::{Pod, Zeroable};
+use nalgebra::Matrix4;
+use wgpu::util::DeviceExt;
+
+use crate::render::camera::TargetPoseInCamera;
+use crate::render::frame::Frame;
+use crate::render::gpu::GpuContext;
+use crate::render::mesh::TargetMesh;
+use crate::render::noise::NoiseGenerator;
+use crate::render::projection::{body_from_target, clip_from_body};
+use crate::render::settings::{RenderSettings, Sky};
+
+const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Why a renderer could not be built or a frame not rendered.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// A setting is out of range.
+    #[error("render settings: {0}")]
+    InvalidSettings(String),
+    /// The mesh has no triangles or refers to missing vertices.
+    #[error("target mesh: {0}")]
+    InvalidMesh(String),
+    /// The pose holds NaN or infinite numbers.
+    #[error("target pose in camera is not finite: {0:?}")]
+    NonFinitePose(TargetPoseInCamera),
+    /// wgpu rejected the creation of a GPU resource (validation or out of memory).
+    #[error("GPU rejected the renderer's resources: {0}")]
+    Gpu(String),
+    /// The frame could not be read back from the GPU.
+    #[error("frame readback failed: {0}")]
+    Readback(String),
+}
+
+/// Wall-clock times of the last [`Renderer::render`] call, s.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RenderTimings {
+    /// Uniform upload, command encoding and submission.
+    pub submit_s: f64,
+    /// Waiting for the GPU to draw and copy (on lavapipe the drawing happens here), mapping
+    /// the staging buffer and unpadding rows into the frame.
+    pub readback_s: f64,
+    /// Adding pixel noise on the CPU (0 without noise).
+    pub noise_s: f64,
+}
+
+/// The per-frame uniform block; layout matches `FrameUniforms` in `shaders/target.wgsl`
+/// (mat3x3 columns padded to vec4, total 192 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct FrameUniforms {
+    clip_from_target: [[f32; 4]; 4],
+    body_from_target: [[f32; 4]; 3],
+    light_dir_body: [f32; 4],
+    target_grey: [f32; 4],
+    sky_top: [f32; 4],
+    sky_bottom: [f32; 4],
+    image: [f32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 192);
+
+/// One vertex of the un-indexed, flat-shaded target: position and its face's normal.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct TargetVertex {
+    position_target_ft: [f32; 3],
+    normal_target: [f32; 3],
+}
+
+fn unit_rgb(rgb: [u8; 3]) -> [f32; 4] {
+    [
+        f32::from(rgb[0]) / 255.0,
+        f32::from(rgb[1]) / 255.0,
+        f32::from(rgb[2]) / 255.0,
+        1.0,
+    ]
+}
+
+fn columns_f32(m: &Matrix4<f64>) -> [[f32; 4]; 4] {
+    std::array::from_fn(|c| std::array::from_fn(|r| m[(r, c)] as f32))
+}
+
+/// Renders the target into frames of a fixed size.
+#[derive(Debug)]
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    settings: RenderSettings,
+    target_pipeline: wgpu::RenderPipeline,
+    background_pipeline: Option<wgpu::RenderPipeline>,
+    vertex_buffer: wgpu::Buffer,
+    vertex_count: u32,
+    uniform_buffer: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    uniforms: FrameUniforms,
+    clip_from_body: Matrix4<f64>,
+    msaa_view: Option<wgpu::TextureView>,
+    resolve_texture: wgpu::Texture,
+    resolve_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+    staging: wgpu::Buffer,
+    padded_bytes_per_row: u32,
+    clear_color: wgpu::Color,
+    noise: Option<NoiseGenerator>,
+    frame: Frame,
+    timings: RenderTimings,
+}
+
+impl Renderer {
+    /// Builds the pipelines and buffers for `settings` and uploads `mesh` (target-body axes, ft).
+    pub fn new(
+        gpu: &GpuContext,
+        settings: RenderSettings,
+        mesh: &TargetMesh,
+    ) -> Result<Self, RenderError> {
+        settings
+            .validate(gpu.limits().max_texture_dimension_2d)
+            .map_err(RenderError::InvalidSettings)?;
+        let vertices = flat_shaded_vertices(mesh)?;
+        let device = gpu.device().clone();
+        let oom_scope = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation_scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let built = Self::build(gpu, settings, &vertices);
+        let validation = pollster::block_on(validation_scope.pop());
+        let oom = pollster::block_on(oom_scope.pop());
+        if let Some(e) = validation.or(oom) {
+            return Err(RenderError::Gpu(e.to_string()));
+        }
+        Ok(built)
+    }
+
+    fn build(gpu: &GpuContext, settings: RenderSettings, vertices: &[TargetVertex]) -> Self {
+        let device = gpu.device().clone();
+        let queue = gpu.queue().clone();
+        let cam = settings.intrinsics;
+        let samples = settings.msaa_samples;
+        let shader = device.create_shader_module(wgpu::include_wgsl!("../../shaders/target.wgsl"));
+
+        let uniforms = initial_uniforms(&settings);
+        let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("frame uniforms"),
+            contents: bytemuck::bytes_of(&uniforms),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("frame uniforms"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(
+                        std::mem::size_of::<FrameUniforms>() as u64
+                    ),
+                },
+                count: None,
+            }],
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame uniforms"),
+            layout: &bind_group_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform_buffer.as_entire_binding(),
+            }],
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("target"),
+            bind_group_layouts: &[Some(&bind_group_layout)],
+            immediate_size: 0,
+        });
+
+        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+        let target_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("target"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_target"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<TargetVertex>() as u64,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &attributes,
+                })],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(depth_state(true, wgpu::CompareFunction::Greater)),
+            multisample: wgpu::MultisampleState {
+                count: samples,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_target"),
+                compilation_options: Default::default(),
+                targets: &[Some(COLOR_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let needs_background_pass = matches!(settings.background.sky, Sky::VerticalGradient { .. });
+        let background_pipeline = needs_background_pass.then(|| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("background"),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some("vs_background"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: Some(depth_state(false, wgpu::CompareFunction::Always)),
+                multisample: wgpu::MultisampleState {
+                    count: samples,
+                    ..Default::default()
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some("fs_background"),
+                    compilation_options: Default::default(),
+                    targets: &[Some(COLOR_FORMAT.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        });
+
+        let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("target vertices"),
+            contents: bytemuck::cast_slice(vertices),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+
+        let size = wgpu::Extent3d {
+            width: cam.width_px,
+            height: cam.height_px,
+            depth_or_array_layers: 1,
+        };
+        let texture = |label, sample_count, format, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size,
+                mip_level_count: 1,
+                sample_count,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let resolve_texture = texture(
+            "colour",
+            1,
+            COLOR_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        );
+        let resolve_view = resolve_texture.create_view(&Default::default());
+        let msaa_view = (samples > 1).then(|| {
+            texture(
+                "colour msaa",
+                samples,
+                COLOR_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            )
+            .create_view(&Default::default())
+        });
+        let depth_view = texture(
+            "depth",
+            samples,
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        )
+        .create_view(&Default::default());
+
+        let padded_bytes_per_row = padded_bytes_per_row(cam.width_px);
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: u64::from(padded_bytes_per_row) * u64::from(cam.height_px),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let clear_rgb = match settings.background.sky {
+            Sky::Uniform { rgb } => rgb,
+            Sky::VerticalGradient { top_rgb, .. } => top_rgb,
+        };
+        let clear_color = wgpu::Color {
+            r: f64::from(clear_rgb[0]) / 255.0,
+            g: f64::from(clear_rgb[1]) / 255.0,
+            b: f64::from(clear_rgb[2]) / 255.0,
+            a: 1.0,
+        };
+
+        Self {
+            device,
+            queue,
+            settings,
+            target_pipeline,
+            background_pipeline,
+            vertex_buffer,
+            vertex_count: vertices.len() as u32,
+            uniform_buffer,
+            bind_group,
+            uniforms,
+            clip_from_body: clip_from_body(&cam),
+            msaa_view,
+            resolve_texture,
+            resolve_view,
+            depth_view,
+            staging,
+            padded_bytes_per_row,
+            clear_color,
+            noise: settings
+                .background
+                .noise
+                .map(|n| NoiseGenerator::new(n.std_grey_levels, n.seed)),
+            frame: Frame::filled(cam.width_px, cam.height_px, [0, 0, 0, 255]),
+            timings: RenderTimings::default(),
+        }
+    }
+
+    /// The settings this renderer was built with.
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    /// Renders the target at `pose` and reads the image back. `frame_index` keys the pixel
+    /// noise (same index, same noise). A target wholly behind the camera (or nearer than
+    /// [`crate::render::projection::NEAR_PLANE_FT`]) is clipped: the frame shows only sky.
+    pub fn render(
+        &mut self,
+        pose: &TargetPoseInCamera,
+        frame_index: u64,
+    ) -> Result<&Frame, RenderError> {
+        let start = Instant::now();
+        let submission = self.submit(pose)?;
+        let submitted = Instant::now();
+        self.read_back(submission)?;
+        let read = Instant::now();
+        if let Some(noise) = &self.noise {
+            noise.apply(&mut self.frame, frame_index);
+        }
+        self.timings = RenderTimings {
+            submit_s: (submitted - start).as_secs_f64(),
+            readback_s: (read - submitted).as_secs_f64(),
+            noise_s: read.elapsed().as_secs_f64(),
+        };
+        Ok(&self.frame)
+    }
+
+    /// The last frame rendered (sky-less black before the first call).
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    /// Timings of the last [`Self::render`] call.
+    pub fn last_timings(&self) -> RenderTimings {
+        self.timings
+    }
+
+    fn submit(
+        &mut self,
+        pose: &TargetPoseInCamera,
+    ) -> Result<
+        (
+            wgpu::SubmissionIndex,
+            mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
+        ),
+        RenderError,
+    > {
+        if !(pose.position_body_ft.iter().all(|x| x.is_finite())
+            && pose.body_from_target.iter().all(|x| x.is_finite()))
+        {
+            return Err(RenderError::NonFinitePose(*pose));
+        }
+        let clip_from_target = self.clip_from_body * body_from_target(pose);
+        self.uniforms.clip_from_target = columns_f32(&clip_from_target);
+        let r = &pose.body_from_target;
+        self.uniforms.body_from_target =
+            std::array::from_fn(|c| [r[(0, c)] as f32, r[(1, c)] as f32, r[(2, c)] as f32, 0.0]);
+        self.queue
+            .write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&self.uniforms));
+
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("target frame"),
+            });
+        {
+            let (view, resolve_target) = match &self.msaa_view {
+                Some(msaa) => (msaa, Some(&self.resolve_view)),
+                None => (&self.resolve_view, None),
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("target frame"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(self.clear_color),
+                        store: if resolve_target.is_some() {
+                            wgpu::StoreOp::Discard
+                        } else {
+                            wgpu::StoreOp::Store
+                        },
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.depth_view,
+                    // Reversed depth: 0 is the far plane.
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(0.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            if let Some(background) = &self.background_pipeline {
+                pass.set_pipeline(background);
+                pass.draw(0..3, 0..1);
+            }
+            pass.set_pipeline(&self.target_pipeline);
+            pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
+            pass.draw(0..self.vertex_count, 0..1);
+        }
+        let cam = self.settings.intrinsics;
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture: &self.resolve_texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.staging,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(self.padded_bytes_per_row),
+                    rows_per_image: Some(cam.height_px),
+                },
+            },
+            wgpu::Extent3d {
+                width: cam.width_px,
+                height: cam.height_px,
+                depth_or_array_layers: 1,
+            },
+        );
+        let submission = self.queue.submit([encoder.finish()]);
+        let (sender, receiver) = mpsc::channel();
+        self.staging
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, move |result| {
+                // The receiver lives until the frame is read back; a send error cannot matter.
+                let _ = sender.send(result);
+            });
+        Ok((submission, receiver))
+    }
+
+    fn read_back(
+        &mut self,
+        (submission, receiver): (
+            wgpu::SubmissionIndex,
+            mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
+        ),
+    ) -> Result<(), RenderError> {
+        self.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(submission),
+                timeout: None,
+            })
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        receiver
+            .recv()
+            .map_err(|_| RenderError::Readback("map callback was dropped".into()))?
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        let row_bytes = 4 * self.frame.width_px as usize;
+        {
+            let mapped = self
+                .staging
+                .slice(..)
+                .get_mapped_range()
+                .map_err(|e| RenderError::Readback(e.to_string()))?;
+            for (dst, src) in self
+                .frame
+                .rgba
+                .chunks_exact_mut(row_bytes)
+                .zip(mapped.chunks_exact(self.padded_bytes_per_row as usize))
+            {
+                dst.copy_from_slice(&src[..row_bytes]);
+            }
+        }
+        self.staging.unmap();
+        Ok(())
+    }
+}
+
+fn depth_state(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(write),
+        depth_compare: Some(compare),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
+/// Bytes per staging-buffer row: 4 bytes a pixel, rounded up to 256 (a wgpu copy rule).
+fn padded_bytes_per_row(width_px: u32) -> u32 {
+    let align = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    (4 * width_px).div_ceil(align) * align
+}
+
+fn initial_uniforms(settings: &RenderSettings) -> FrameUniforms {
+    let (top, bottom) = match settings.background.sky {
+        Sky::Uniform { rgb } => (rgb, rgb),
+        Sky::VerticalGradient {
+            top_rgb,
+            bottom_rgb,
+        } => (top_rgb, bottom_rgb),
+    };
+    let light = settings.shading.light_dir_body.normalize();
+    FrameUniforms {
+        clip_from_target: [[0.0; 4]; 4],
+        body_from_target: [[0.0; 4]; 3],
+        light_dir_body: [light.x as f32, light.y as f32, light.z as f32, 0.0],
+        target_grey: [
+            f32::from(settings.shading.unlit_grey) / 255.0,
+            f32::from(settings.shading.lit_grey) / 255.0,
+            0.0,
+            0.0,
+        ],
+        sky_top: unit_rgb(top),
+        sky_bottom: unit_rgb(bottom),
+        image: [settings.intrinsics.height_px as f32, 0.0, 0.0, 0.0],
+    }
+}
+
+/// Three vertices per triangle, each carrying its face's unit normal (zero if degenerate).
+fn flat_shaded_vertices(mesh: &TargetMesh) -> Result<Vec<TargetVertex>, RenderError> {
+    if mesh.triangles.is_empty() {
+        return Err(RenderError::InvalidMesh("no triangles".into()));
+    }
+    let mut out = Vec::with_capacity(3 * mesh.triangles.len());
+    for (k, t) in mesh.triangles.iter().enumerate() {
+        let corner = |i: u32| {
+            mesh.vertices_ft.get(i as usize).copied().ok_or_else(|| {
+                RenderError::InvalidMesh(format!(
+                    "triangle {k} refers to vertex {i} of {}",
+                    mesh.vertices_ft.len()
+                ))
+            })
+        };
+        let (a, b, c) = (corner(t[0])?, corner(t[1])?, corner(t[2])?);
+        let n = (b - a).cross(&(c - a));
+        let n = if n.norm() > 0.0 { n.normalize() } else { n };
+        let normal_target = [n.x as f32, n.y as f32, n.z as f32];
+        for p in [a, b, c] {
+            out.push(TargetVertex {
+                position_target_ft: [p.x as f32, p.y as f32, p.z as f32],
+                normal_target,
+            });
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frames::Vec3;
+
+    #[test]
+    fn rows_are_padded_to_256_bytes() {
+        assert_eq!(padded_bytes_per_row(64), 256);
+        assert_eq!(padded_bytes_per_row(65), 512);
+        assert_eq!(padded_bytes_per_row(160), 768);
+        assert_eq!(padded_bytes_per_row(1920), 7680);
+    }
+
+    #[test]
+    fn degenerate_mesh_is_rejected() {
+        let mesh = TargetMesh {
+            vertices_ft: vec![Vec3::zeros()],
+            triangles: vec![[0, 0, 5]],
+        };
+        assert!(flat_shaded_vertices(&mesh).is_err());
+        assert!(flat_shaded_vertices(&TargetMesh::default()).is_err());
+    }
+}

@@ -1,0 +1,109 @@
+//! Fixed poses render like the committed golden images in `tests/golden/` (4 samples a pixel).
+//!
+//! Tolerance (grey levels, Rec. 601 luma): mean absolute difference < 1 and fewer than 0.5 % of
+//! pixels differing by more than 32. On the machine that made the goldens the difference is 0;
+//! the slack absorbs another rasteriser's sub-pixel snapping (a few edge pixels flip) and
+//! float rounding in shading and noise (±1 level).
+//!
+//! Regenerate after an intended change (then look at the PNGs before committing them):
+//! `WINGMAN_UPDATE_GOLDEN=1 cargo test --release --test render_golden`
+
+mod render_support;
+
+use std::path::{Path, PathBuf};
+
+use render_support::*;
+use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use wingman::render::{Background, Frame, PixelNoise, RenderSettings, Renderer, Sky};
+
+fn golden_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/golden")
+        .join(name)
+}
+
+fn render(settings: RenderSettings, p: &TargetPoseInCamera) -> Frame {
+    let mut renderer = match Renderer::new(gpu(), settings, &aircraft()) {
+        Ok(r) => r,
+        Err(e) => panic!("{e}"),
+    };
+    match renderer.render(p, 5) {
+        Ok(f) => f.clone(),
+        Err(e) => panic!("{e}"),
+    }
+}
+
+fn assert_matches_golden(frame: &Frame, name: &str) {
+    let path = golden_path(name);
+    if std::env::var_os("WINGMAN_UPDATE_GOLDEN").is_some() {
+        frame.save_png(&path).expect("golden written");
+        eprintln!("wrote {}", path.display());
+        return;
+    }
+    let golden = match image::open(&path) {
+        Ok(img) => img.to_rgba8(),
+        Err(e) => panic!(
+            "cannot read golden {}: {e}; create it with \
+             WINGMAN_UPDATE_GOLDEN=1 cargo test --release --test render_golden",
+            path.display()
+        ),
+    };
+    let actual_path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let keep = || {
+        let _ = frame.save_png(&actual_path);
+        actual_path.display().to_string()
+    };
+    assert_eq!(
+        (golden.width(), golden.height()),
+        (frame.width_px, frame.height_px),
+        "golden {} has another size (rendered frame: {})",
+        path.display(),
+        keep()
+    );
+    let expected = Frame {
+        width_px: golden.width(),
+        height_px: golden.height(),
+        rgba: golden.into_raw(),
+    };
+    let diffs: Vec<u32> = frame
+        .grey_levels()
+        .iter()
+        .zip(expected.grey_levels())
+        .map(|(a, b)| u32::from(a.abs_diff(b)))
+        .collect();
+    let n = diffs.len() as f64;
+    let mean = diffs.iter().map(|&d| f64::from(d)).sum::<f64>() / n;
+    let big = diffs.iter().filter(|&&d| d > 32).count() as f64 / n;
+    assert!(
+        mean < 1.0 && big < 0.005,
+        "{name}: mean abs diff {mean:.3} grey levels, {:.2} % pixels off by > 32 (rendered frame: {})",
+        100.0 * big,
+        keep()
+    );
+}
+
+#[test]
+fn three_quarter_view_on_uniform_sky() {
+    let mut settings = RenderSettings::new(CameraIntrinsics::from_hfov(160, 120, 40.0));
+    settings.msaa_samples = 4;
+    let frame = render(settings, &pose([20.0, 1.0, 0.5], [0.3, -0.6, 0.9]));
+    assert_matches_golden(&frame, "three_quarter_160x120.png");
+}
+
+#[test]
+fn banked_view_on_noisy_gradient_sky() {
+    let mut settings = RenderSettings::new(CameraIntrinsics::from_hfov(160, 120, 40.0));
+    settings.msaa_samples = 4;
+    settings.background = Background {
+        sky: Sky::VerticalGradient {
+            top_rgb: [120, 160, 215],
+            bottom_rgb: [215, 220, 225],
+        },
+        noise: Some(PixelNoise {
+            std_grey_levels: 4.0,
+            seed: 2024,
+        }),
+    };
+    let frame = render(settings, &pose([22.0, -1.0, -1.0], [-0.7, 0.15, 2.6]));
+    assert_matches_golden(&frame, "banked_noisy_gradient_160x120.png");
+}

@@ -1,0 +1,143 @@
+//! Helpers shared by the `render_*` tests: one GPU context per test binary (its tests run on
+//! several threads against one device, as DESIGN §6 expects), poses and pixel masks.
+#![allow(dead_code)]
+
+use std::sync::OnceLock;
+
+use wingman::frames::{EulerAngles, Vec3};
+use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use wingman::render::{Frame, GpuContext, TargetMesh};
+
+/// The shared GPU context. Panics (fails the test) with the install hint when there is no
+/// adapter: a skipped GPU test would hide a broken set-up (DESIGN §3).
+pub fn gpu() -> &'static GpuContext {
+    static GPU: OnceLock<Result<GpuContext, String>> = OnceLock::new();
+    match GPU.get_or_init(|| GpuContext::new().map_err(|e| e.to_string())) {
+        Ok(gpu) => gpu,
+        Err(message) => panic!("{message}"),
+    }
+}
+
+/// The committed seed aircraft, 8 ft span.
+pub fn aircraft() -> TargetMesh {
+    match TargetMesh::target_aircraft(1.0) {
+        Ok(mesh) => mesh,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// A pose: target reference point at `position_body_ft`, target attitude relative to the camera
+/// given as 3-2-1 angles (roll, pitch, yaw, rad) of the target in camera axes.
+pub fn pose(position_body_ft: [f64; 3], attitude_rad: [f64; 3]) -> TargetPoseInCamera {
+    let [phi, theta, psi] = attitude_rad;
+    TargetPoseInCamera {
+        position_body_ft: Vec3::from(position_body_ft),
+        body_from_target: EulerAngles::new(phi, theta, psi)
+            .body_from_ned()
+            .transpose(),
+    }
+}
+
+/// Grey levels of `frame` below `threshold`: the target's silhouette.
+pub fn dark_mask(frame: &Frame, threshold: u8) -> Vec<bool> {
+    frame.grey_levels().iter().map(|&g| g < threshold).collect()
+}
+
+/// (u_min, v_min, u_max, v_max) of the set pixels as a continuous box: pixel i spans [i, i+1).
+pub fn mask_bbox(mask: &[bool], width_px: u32) -> Option<(f64, f64, f64, f64)> {
+    let w = width_px as usize;
+    let mut b: Option<(f64, f64, f64, f64)> = None;
+    for (k, _) in mask.iter().enumerate().filter(|(_, m)| **m) {
+        let (u, v) = ((k % w) as f64, (k / w) as f64);
+        b = Some(match b {
+            None => (u, v, u + 1.0, v + 1.0),
+            Some((a, c, d, e)) => (a.min(u), c.min(v), d.max(u + 1.0), e.max(v + 1.0)),
+        });
+    }
+    b
+}
+
+/// Centroid (u, v) of the set pixels' centres, px.
+pub fn mask_centroid(mask: &[bool], width_px: u32) -> Option<(f64, f64)> {
+    let w = width_px as usize;
+    let (mut n, mut su, mut sv) = (0.0, 0.0, 0.0);
+    for (k, _) in mask.iter().enumerate().filter(|(_, m)| **m) {
+        n += 1.0;
+        su += (k % w) as f64 + 0.5;
+        sv += (k / w) as f64 + 0.5;
+    }
+    (n > 0.0).then(|| (su / n, sv / n))
+}
+
+/// Pixel positions (u, v) of the mesh's vertices at `pose`, from
+/// [`CameraIntrinsics::image_from_body`] (`None` for a vertex behind the camera).
+pub fn projected_vertices(
+    cam: &CameraIntrinsics,
+    mesh: &TargetMesh,
+    pose: &TargetPoseInCamera,
+) -> Vec<Option<(f64, f64)>> {
+    mesh.vertices_ft
+        .iter()
+        .map(|p| {
+            let (y, z) = cam.image_from_body(&pose.body_from_target_point(p))?;
+            Some(cam.pixel_from_image(y, z))
+        })
+        .collect()
+}
+
+/// How a pixel centre relates to the projected silhouette, with a margin `eps_px` for the
+/// rasteriser's sub-pixel snapping.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Coverage {
+    /// Inside some triangle by more than the margin.
+    Inside,
+    /// Outside every triangle by more than the margin.
+    Outside,
+    /// Within the margin of an edge.
+    Edge,
+}
+
+/// CPU rasterisation of the projected mesh at pixel centres (all vertices must be in front).
+pub fn cpu_coverage(
+    cam: &CameraIntrinsics,
+    mesh: &TargetMesh,
+    pose: &TargetPoseInCamera,
+    eps_px: f64,
+) -> Vec<Coverage> {
+    let (w, h) = (cam.width_px as usize, cam.height_px as usize);
+    let uv: Vec<(f64, f64)> = projected_vertices(cam, mesh, pose)
+        .into_iter()
+        .map(|p| p.expect("every vertex in front of the camera"))
+        .collect();
+    let mut out = vec![Coverage::Outside; w * h];
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| uv[i as usize]);
+        let area2 = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+        if area2.abs() < 1e-12 {
+            continue;
+        }
+        let s = area2.signum();
+        // Signed distance of p to edge p0->p1, positive inside.
+        let dist = |p0: (f64, f64), p1: (f64, f64), p: (f64, f64)| {
+            let (ex, ey) = (p1.0 - p0.0, p1.1 - p0.1);
+            s * (ex * (p.1 - p0.1) - ey * (p.0 - p0.0)) / (ex * ex + ey * ey).sqrt()
+        };
+        let u0 = (a.0.min(b.0).min(c.0) - 1.0).floor().max(0.0) as usize;
+        let u1 = (a.0.max(b.0).max(c.0) + 1.0).ceil().min(w as f64) as usize;
+        let v0 = (a.1.min(b.1).min(c.1) - 1.0).floor().max(0.0) as usize;
+        let v1 = (a.1.max(b.1).max(c.1) + 1.0).ceil().min(h as f64) as usize;
+        for v in v0..v1 {
+            for u in u0..u1 {
+                let p = (u as f64 + 0.5, v as f64 + 0.5);
+                let d = dist(a, b, p).min(dist(b, c, p)).min(dist(c, a, p));
+                let k = v * w + u;
+                if d > eps_px {
+                    out[k] = Coverage::Inside;
+                } else if d >= -eps_px && out[k] == Coverage::Outside {
+                    out[k] = Coverage::Edge;
+                }
+            }
+        }
+    }
+    out
+}
