@@ -21,4 +21,5 @@ pub mod render;
 pub mod scenario;
 pub mod sensing;
 
+pub mod vision;
 pub mod world;
