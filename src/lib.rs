@@ -22,4 +22,6 @@ pub mod render;
 pub mod scenario;
 pub mod sensing;
 pub mod sim;
+
+pub mod vision;
 pub mod world;

@@ -1,0 +1,220 @@
+//! Connected components (8-connectivity) of the mask by one raster pass with union-find over
+//! the listed mask pixels, then a relabelling pass that gathers per-blob statistics. Work is
+//! proportional to the number of mask pixels; the label image is reset sparsely.
+
+/// Inclusive pixel bounding box.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PixelBox {
+    /// Leftmost column.
+    pub min_u: u32,
+    /// Topmost row.
+    pub min_v: u32,
+    /// Rightmost column.
+    pub max_u: u32,
+    /// Bottom row.
+    pub max_v: u32,
+}
+
+/// Statistics of one connected blob of mask pixels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlobSummary {
+    /// Number of mask pixels.
+    pub pixel_count: usize,
+    /// Mean of the pixel centres, column, px.
+    pub mean_u_px: f64,
+    /// Mean of the pixel centres, row, px.
+    pub mean_v_px: f64,
+    /// Bounding box of the mask pixels.
+    pub bbox: PixelBox,
+}
+
+/// Labels connected mask pixels; owns its label image and union-find forest between frames.
+#[derive(Debug, Default, Clone)]
+pub(crate) struct ComponentLabeller {
+    /// Per pixel: 0 outside the mask, else blob index + 1 (after [`ComponentLabeller::label`]).
+    pub labels: Vec<u32>,
+    /// Mask pixels labelled last time, to reset `labels` sparsely.
+    labelled: Vec<u32>,
+    parents: Vec<u32>,
+    root_to_blob: Vec<u32>,
+    sums: Vec<(f64, f64)>,
+    /// Blobs of the last frame, in order of their first pixel in raster order.
+    pub blobs: Vec<BlobSummary>,
+}
+
+fn find(parents: &mut [u32], mut x: u32) -> u32 {
+    while parents[x as usize] != x {
+        let grand = parents[parents[x as usize] as usize];
+        parents[x as usize] = grand;
+        x = grand;
+    }
+    x
+}
+
+fn union(parents: &mut [u32], a: u32, b: u32) -> u32 {
+    let ra = find(parents, a);
+    let rb = find(parents, b);
+    // Smaller index as root keeps roots in raster order of first appearance.
+    let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
+    parents[hi as usize] = lo;
+    lo
+}
+
+impl ComponentLabeller {
+    /// Labels the mask pixels `mask` (indices in raster order) of a `width` x `height` image;
+    /// afterwards `labels[i]` is the blob index + 1 of pixel `i` (0 outside the mask) and
+    /// `blobs` holds one summary per blob.
+    pub fn label(&mut self, mask: &[u32], width: usize, height: usize) {
+        let n = width * height;
+        if self.labels.len() != n {
+            self.labels.clear();
+            self.labels.resize(n, 0);
+        } else {
+            for &i in &self.labelled {
+                self.labels[i as usize] = 0;
+            }
+        }
+        self.labelled.clear();
+        self.labelled.extend_from_slice(mask);
+        self.parents.clear();
+        self.blobs.clear();
+        let w = width;
+        // Pass 1: provisional labels (1-based), unions with the already visited neighbours
+        // W, NW, N, NE.
+        for &i in mask {
+            let i = i as usize;
+            let (u, v) = (i % w, i / w);
+            let mut label = 0u32;
+            let mut neighbour = |j: usize, labels: &[u32], parents: &mut Vec<u32>| {
+                let l = labels[j];
+                if l != 0 {
+                    label = if label == 0 {
+                        find(parents, l - 1) + 1
+                    } else {
+                        union(parents, label - 1, l - 1) + 1
+                    };
+                }
+            };
+            if u > 0 {
+                neighbour(i - 1, &self.labels, &mut self.parents);
+            }
+            if v > 0 {
+                if u > 0 {
+                    neighbour(i - w - 1, &self.labels, &mut self.parents);
+                }
+                neighbour(i - w, &self.labels, &mut self.parents);
+                if u + 1 < w {
+                    neighbour(i - w + 1, &self.labels, &mut self.parents);
+                }
+            }
+            if label == 0 {
+                self.parents.push(self.parents.len() as u32);
+                label = self.parents.len() as u32;
+            }
+            self.labels[i] = label;
+        }
+        // Pass 2: final blob indices and statistics.
+        self.root_to_blob.clear();
+        self.root_to_blob.resize(self.parents.len(), u32::MAX);
+        self.sums.clear();
+        for &i in mask {
+            let i = i as usize;
+            let (u, v) = ((i % w) as u32, (i / w) as u32);
+            let root = find(&mut self.parents, self.labels[i] - 1) as usize;
+            if self.root_to_blob[root] == u32::MAX {
+                self.root_to_blob[root] = self.blobs.len() as u32;
+                self.blobs.push(BlobSummary {
+                    pixel_count: 0,
+                    mean_u_px: 0.0,
+                    mean_v_px: 0.0,
+                    bbox: PixelBox {
+                        min_u: u,
+                        min_v: v,
+                        max_u: u,
+                        max_v: v,
+                    },
+                });
+                self.sums.push((0.0, 0.0));
+            }
+            let b = self.root_to_blob[root] as usize;
+            self.labels[i] = b as u32 + 1;
+            let blob = &mut self.blobs[b];
+            blob.pixel_count += 1;
+            blob.bbox.min_u = blob.bbox.min_u.min(u);
+            blob.bbox.max_u = blob.bbox.max_u.max(u);
+            blob.bbox.max_v = v;
+            self.sums[b].0 += f64::from(u) + 0.5;
+            self.sums[b].1 += f64::from(v) + 0.5;
+        }
+        for (blob, (su, sv)) in self.blobs.iter_mut().zip(self.sums.iter()) {
+            let n = blob.pixel_count as f64;
+            blob.mean_u_px = su / n;
+            blob.mean_v_px = sv / n;
+        }
+        debug_assert!(height == 0 || self.labels.len() == n);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn label_ascii(rows: &[&str]) -> (ComponentLabeller, usize) {
+        let w = rows[0].len();
+        let mask: Vec<u32> = rows
+            .iter()
+            .enumerate()
+            .flat_map(|(v, r)| {
+                r.bytes()
+                    .enumerate()
+                    .filter(|(_, b)| *b == b'#')
+                    .map(move |(u, _)| (v * w + u) as u32)
+            })
+            .collect();
+        let mut l = ComponentLabeller::default();
+        l.label(&mask, w, rows.len());
+        (l, w)
+    }
+
+    /// 8-connectivity joins diagonal neighbours; a U shape whose arms meet only at the bottom
+    /// (the case needing a union after both arms got labels) is one blob; counts and boxes are
+    /// exact.
+    #[test]
+    fn eight_connectivity_and_merging() {
+        let (l, w) = label_ascii(&[
+            "#.#....#", //
+            "#.#...#.", //
+            "###.....", //
+            "........", //
+            "....##..", //
+        ]);
+        assert_eq!(l.blobs.len(), 3);
+        assert_eq!(l.blobs[0].pixel_count, 7);
+        assert_eq!(
+            l.blobs[0].bbox,
+            PixelBox {
+                min_u: 0,
+                min_v: 0,
+                max_u: 2,
+                max_v: 2
+            }
+        );
+        assert_eq!(l.blobs[1].pixel_count, 2); // the diagonal pair
+        assert_eq!(l.blobs[2].pixel_count, 2);
+        assert_eq!(l.labels[0], l.labels[2]);
+        assert_eq!(l.labels[7], l.labels[w + 6]);
+        assert!((l.blobs[2].mean_u_px - 5.0).abs() < 1e-12);
+        assert!((l.blobs[2].mean_v_px - 4.5).abs() < 1e-12);
+    }
+
+    /// Relabelling a second, different mask leaves no stale labels from the first.
+    #[test]
+    fn labels_reset_between_frames() {
+        let mut l = ComponentLabeller::default();
+        l.label(&[0, 1, 5], 4, 2);
+        l.label(&[7], 4, 2);
+        assert_eq!(l.labels, vec![0, 0, 0, 0, 0, 0, 0, 1]);
+        l.label(&[], 0, 0);
+        assert!(l.blobs.is_empty());
+    }
+}

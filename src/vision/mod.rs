@@ -1,0 +1,44 @@
+//! The CPU image pipeline: from an RGBA8 frame to the target's centroid and maximal length in
+//! pixels (SPEC §1), with a status saying whether to trust them; plus the geometric ground
+//! truth to compare with, and an overlay to look at.
+//!
+//! One frame, in order:
+//! 1. `background`: a per-channel quadratic colour surface fitted robustly to the image border,
+//!    and the background noise σ (uniform skies, gradients at any tilt, Gaussian noise).
+//! 2. `segment`: candidates (colour distance to the background ≥ threshold), per-pixel coverage
+//!    α ∈ [0, 1] for anti-aliased edges, binary mask (α ≥ 0.5 or interior).
+//! 3. `components`: 8-connected blobs of the mask; [`BlobSelection`] picks one.
+//! 4. `measure`: coverage-weighted centroid (ring of partly covered pixels included), and the
+//!    maximum Feret diameter (`feret`) of sub-pixel edge points (`subpixel_edge`).
+//! 5. [`BlobStatus`]: `Ok`, `NotFound`, `Truncated` (touches the border), `TooSmall`.
+//!
+//! Pixel conventions are those of [`crate::render::camera`]: pixel (i, j) covers
+//! [i, i+1) x [j, j+1), u right, v down; [`BlobMeasurement::image_measurement`] converts to the
+//! SPEC's (yI, zI, bI).
+
+mod background;
+mod components;
+mod config;
+mod feret;
+mod font;
+mod frame;
+mod measure;
+pub mod overlay;
+mod pipeline;
+mod segment;
+mod subpixel_edge;
+#[cfg(test)]
+mod synthetic;
+#[cfg(test)]
+mod tests;
+pub mod truth;
+
+pub use components::{BlobSummary, PixelBox};
+pub use config::{
+    BackgroundSource, BlobSelection, DetectionThreshold, SegmentationConfig, TargetColour,
+    VisionConfig, VisionConfigError,
+};
+pub use feret::{FeretDiameter, FeretFinder, PixelPoint, convex_hull_into, max_feret_diameter};
+pub use frame::FrameError;
+pub use pipeline::{BlobMeasurement, BlobStatus, VisionPipeline};
+pub use truth::{ImageTruth, TruthProjector, image_truth};

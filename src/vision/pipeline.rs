@@ -1,0 +1,251 @@
+//! The frame-to-measurement pipeline: background model, segmentation, connected components,
+//! blob selection, centroid and maximal length. [`VisionPipeline`] owns every scratch buffer,
+//! so measuring frames of an unchanged size allocates nothing once the buffers have grown.
+
+use crate::render::camera::CameraIntrinsics;
+use crate::sensing::ImageMeasurement;
+
+use super::background::BackgroundFitter;
+use super::components::{BlobSummary, ComponentLabeller, PixelBox};
+use super::config::{BlobSelection, VisionConfig, VisionConfigError};
+use super::feret::FeretDiameter;
+use super::frame::{FrameError, RgbaFrame};
+use super::measure::{BlobMeasurer, BlobToMeasure};
+use super::segment::{CoverageModel, Segmenter};
+
+/// Edge points need a coverage of at least this many noise standard deviations of the coverage
+/// (σ / contrast): the debiased coverage of a background pixel exceeds 3.6 σ/contrast with
+/// probability 1e-3 (χ²(3) quantile 16.3, minus the 3 subtracted).
+const EDGE_MIN_COVERAGE_SIGMAS: f64 = 4.0;
+/// Bounds of the edge-point coverage cut: at least 0.1 (a pixel can be 10% covered by noise-free
+/// rounding artefacts of the renderer), at most 0.5.
+const EDGE_MIN_COVERAGE_RANGE: (f64, f64) = (0.1, 0.5);
+
+/// How trustworthy a frame's measurement is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BlobStatus {
+    /// A blob inside the image, at least `min_pixel_count` pixels.
+    Ok,
+    /// No target pixel at all (or an empty image).
+    NotFound,
+    /// The measured blob touches the image border: centroid and length are of the visible part.
+    Truncated,
+    /// Every blob is smaller than `min_pixel_count`; the largest is measured.
+    TooSmall,
+}
+
+impl BlobStatus {
+    /// Short upper-case name for logs and overlays: OK, LOST, TRUNC, SMALL.
+    pub fn label(&self) -> &'static str {
+        match self {
+            BlobStatus::Ok => "OK",
+            BlobStatus::NotFound => "LOST",
+            BlobStatus::Truncated => "TRUNC",
+            BlobStatus::TooSmall => "SMALL",
+        }
+    }
+}
+
+/// What the image pipeline measured in one frame, in pixel coordinates (u right, v down).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlobMeasurement {
+    /// Whether the numbers below can be trusted.
+    pub status: BlobStatus,
+    /// Coverage-weighted centroid, column, px (NaN when `NotFound`).
+    pub centroid_u_px: f64,
+    /// Coverage-weighted centroid, row, px (NaN when `NotFound`).
+    pub centroid_v_px: f64,
+    /// Maximal length (maximum Feret diameter of the sub-pixel edge), px (NaN when `NotFound`).
+    pub max_length_px: f64,
+    /// Silhouette area, the sum of coverage weights, px² (0 when `NotFound`).
+    pub area_px: f64,
+    /// Mask pixels in the measured blob.
+    pub pixel_count: usize,
+    /// Bounding box of the measured blob's mask pixels.
+    pub bbox: Option<PixelBox>,
+    /// Ends of the maximal length, for overlays.
+    pub feret: Option<FeretDiameter>,
+    /// Blobs found in the frame (all sizes).
+    pub blob_count: usize,
+    /// Estimated per-channel background noise, grey levels (NaN for an empty image).
+    pub background_noise_sigma: f64,
+}
+
+impl BlobMeasurement {
+    fn not_found(blob_count: usize, background_noise_sigma: f64) -> Self {
+        Self {
+            status: BlobStatus::NotFound,
+            centroid_u_px: f64::NAN,
+            centroid_v_px: f64::NAN,
+            max_length_px: f64::NAN,
+            area_px: 0.0,
+            pixel_count: 0,
+            bbox: None,
+            feret: None,
+            blob_count,
+            background_noise_sigma,
+        }
+    }
+
+    /// Centroid and maximal length in the SPEC's image coordinates (yI right, zI up, relative to
+    /// the principal point), whatever the status except `NotFound` (then `None`): check
+    /// `status` before trusting a `Truncated` or `TooSmall` measurement.
+    pub fn image_measurement(&self, camera: &CameraIntrinsics) -> Option<ImageMeasurement> {
+        if self.status == BlobStatus::NotFound {
+            return None;
+        }
+        let (y_i_px, z_i_px) = camera.image_from_pixel(self.centroid_u_px, self.centroid_v_px);
+        Some(ImageMeasurement {
+            y_i_px,
+            z_i_px,
+            b_i_px: self.max_length_px,
+        })
+    }
+}
+
+/// Measures the target's centroid and maximal length in RGBA frames; reuse one per camera.
+#[derive(Debug, Clone)]
+pub struct VisionPipeline {
+    config: VisionConfig,
+    background: BackgroundFitter,
+    segmenter: Segmenter,
+    labeller: ComponentLabeller,
+    measurer: BlobMeasurer,
+}
+
+impl VisionPipeline {
+    /// A pipeline with `config`, after checking it.
+    pub fn new(config: VisionConfig) -> Result<Self, VisionConfigError> {
+        config.validate()?;
+        Ok(Self {
+            config,
+            background: BackgroundFitter::default(),
+            segmenter: Segmenter::default(),
+            labeller: ComponentLabeller::default(),
+            measurer: BlobMeasurer::default(),
+        })
+    }
+
+    /// The configuration in use.
+    pub fn config(&self) -> &VisionConfig {
+        &self.config
+    }
+
+    /// Every blob of the last measured frame (mask pixels, 8-connected), in raster order of
+    /// their first pixel.
+    pub fn blobs(&self) -> &[BlobSummary] {
+        &self.labeller.blobs
+    }
+
+    /// Measures the blob chosen by `selection` in an RGBA8 frame (row-major, top row first,
+    /// `width_px * 4` bytes per row). Errors only when the buffer length does not match.
+    pub fn measure(
+        &mut self,
+        rgba: &[u8],
+        width_px: u32,
+        height_px: u32,
+        selection: BlobSelection,
+    ) -> Result<BlobMeasurement, FrameError> {
+        let frame = RgbaFrame::new(rgba, width_px, height_px)?;
+        if frame.pixel_count() == 0 {
+            self.labeller.label(&[], 0, 0);
+            return Ok(BlobMeasurement::not_found(0, f64::NAN));
+        }
+        let seg = &self.config.segmentation;
+        let background = self.background.fit(&frame, seg.background);
+        let sigma = background.noise_sigma;
+        let Some(coverage) = self.segmenter.segment(&frame, background, seg) else {
+            self.labeller.label(&[], frame.width, frame.height);
+            return Ok(BlobMeasurement::not_found(0, sigma));
+        };
+        self.labeller
+            .label(&self.segmenter.mask, frame.width, frame.height);
+        let blobs = &self.labeller.blobs;
+        let Some((index, too_small)) = select_blob(blobs, self.config.min_pixel_count, selection)
+        else {
+            return Ok(BlobMeasurement::not_found(0, sigma));
+        };
+        let summary = blobs[index];
+        let blob_count = blobs.len();
+        let geometry = self.measurer.measure(
+            &frame,
+            &BlobToMeasure {
+                labels: &self.labeller.labels,
+                label: index as u32 + 1,
+                bbox: summary.bbox,
+                coverage: &coverage,
+                edge_min_coverage: edge_min_coverage(&coverage, &summary),
+            },
+        );
+        let status = if too_small {
+            BlobStatus::TooSmall
+        } else if geometry.truncated {
+            BlobStatus::Truncated
+        } else {
+            BlobStatus::Ok
+        };
+        Ok(BlobMeasurement {
+            status,
+            centroid_u_px: geometry.centroid_u_px,
+            centroid_v_px: geometry.centroid_v_px,
+            max_length_px: geometry.feret.map_or(0.0, |f| f.length_px),
+            area_px: geometry.area_px,
+            pixel_count: summary.pixel_count,
+            bbox: Some(summary.bbox),
+            feret: geometry.feret,
+            blob_count,
+            background_noise_sigma: sigma,
+        })
+    }
+}
+
+/// Index of the blob to measure and whether it is below `min_pixel_count` (then it is the
+/// largest blob, because no blob is big enough); `None` when there are no blobs. A non-finite
+/// `NearestTo` point falls back to `Largest`.
+fn select_blob(
+    blobs: &[BlobSummary],
+    min_pixel_count: usize,
+    selection: BlobSelection,
+) -> Option<(usize, bool)> {
+    let largest = |eligible: &dyn Fn(&BlobSummary) -> bool| {
+        blobs
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| eligible(b))
+            .max_by_key(|(i, b)| (b.pixel_count, std::cmp::Reverse(*i)))
+            .map(|(i, _)| i)
+    };
+    let big_enough = |b: &BlobSummary| b.pixel_count >= min_pixel_count;
+    let chosen = match selection {
+        BlobSelection::NearestTo { u_px, v_px } if u_px.is_finite() && v_px.is_finite() => blobs
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| big_enough(b))
+            .min_by(|(_, a), (_, b)| {
+                let da = (a.mean_u_px - u_px).hypot(a.mean_v_px - v_px);
+                let db = (b.mean_u_px - u_px).hypot(b.mean_v_px - v_px);
+                da.total_cmp(&db)
+            })
+            .map(|(i, _)| i),
+        _ => largest(&big_enough),
+    };
+    match chosen {
+        Some(i) => Some((i, false)),
+        None => largest(&|_| true).map(|i| (i, true)),
+    }
+}
+
+/// Coverage below which an edge pixel is indistinguishable from background noise, using the
+/// contrast at the blob's mean position.
+fn edge_min_coverage(coverage: &CoverageModel, blob: &BlobSummary) -> f64 {
+    let b = coverage
+        .background
+        .colour_at(blob.mean_u_px, blob.mean_v_px);
+    let contrast = (0..3)
+        .map(|c| (coverage.target_rgb[c] - b[c]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+        .max(coverage.threshold);
+    let (lo, hi) = EDGE_MIN_COVERAGE_RANGE;
+    (EDGE_MIN_COVERAGE_SIGMAS * coverage.background.noise_sigma / contrast).clamp(lo, hi)
+}
