@@ -21,6 +21,7 @@ pub mod output;
 pub mod render;
 pub mod scenario;
 pub mod sensing;
+pub mod sensor;
 pub mod sim;
 
 pub mod vision;

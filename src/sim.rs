@@ -16,8 +16,10 @@ use crate::guidance::velocity::{
     VelocityEstimator, VelocityGuidance, VelocityGuidanceInput, VelocityGuidanceOutput,
 };
 use crate::integrate::Rk4;
-use crate::scenario::{CommandFrame, ExcitationUnits, Mission, Scenario};
+use crate::scenario::{CommandFrame, ExcitationUnits, Mission, Scenario, SensorMode};
 use crate::sensing::line_of_sight_body;
+use crate::sensor::{CameraSensor, CaptureGeometry, FrameRecord};
+use std::time::{Duration, Instant};
 use crate::world::kinematic::{self, KinematicFollower};
 use crate::world::target::{TargetMotionModel, TargetState};
 
@@ -38,6 +40,14 @@ pub enum SimError {
     /// A stage could not be built from the scenario.
     #[error("cannot set up the simulation: {0}")]
     Setup(String),
+    /// The camera failed to take or measure a frame.
+    #[error("camera failure at t = {t_s:.3} s: {what}")]
+    Camera {
+        /// Time of the frame, s.
+        t_s: f64,
+        /// What failed.
+        what: String,
+    },
 }
 
 /// What a step ended in.
@@ -83,6 +93,8 @@ pub struct Snapshot {
     pub d_hat: Vec3,
     /// Guidance output.
     pub guidance: VelocityGuidanceOutput,
+    /// The last camera frame's measurement and truth (camera runs).
+    pub frame: Option<FrameRecord>,
 }
 
 /// Where the guidance's r comes from during a step.
@@ -92,10 +104,13 @@ enum Measurement {
     Continuous,
     /// A sampled measurement held over the step; None while the target is lost.
     Held(Option<Vec3>),
+    /// No measurement has arrived yet: the guidance has not started and the follower cruises
+    /// at b̂(0) d̂(0).
+    AwaitingFirst,
 }
 
 /// A running simulation.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Simulation {
     scenario: Scenario,
     target: TargetMotionModel,
@@ -103,6 +118,9 @@ pub struct Simulation {
     guidance: VelocityGuidance,
     excitation: Excitation,
     measurement: Measurement,
+    camera: Option<CameraSensor>,
+    /// Wall time spent integrating (guidance, follower), s.
+    integrate_time: Duration,
     /// V_F at the start of the step: the direction the attitude turns to during the step
     /// (a one-tick delay that breaks the loop attitude → body-frame command → V_F).
     heading_velocity_ned_fps: Vec3,
@@ -138,6 +156,16 @@ impl Simulation {
         let [phi, theta, psi] = scenario.follower.initial_attitude_deg.map(f64::to_radians);
         let attitude0 = EulerAngles::new(phi, theta, psi);
         let r0 = (target.position_ned_ft(0.0) - follower0) / scenario.target.size_ft;
+        let camera = match scenario.sensor.mode {
+            SensorMode::Perfect => None,
+            SensorMode::Camera => {
+                Some(CameraSensor::new(scenario).map_err(|e| SimError::Setup(e.to_string()))?)
+            }
+        };
+        let measurement = match camera {
+            None => Measurement::Continuous,
+            Some(_) => Measurement::AwaitingFirst,
+        };
         let mut state = KinematicFollower::initial_state(&follower0, &attitude0).to_vec();
         state.extend(guidance.initial_state(&r0));
         let mut sim = Self {
@@ -148,7 +176,9 @@ impl Simulation {
             follower,
             guidance,
             excitation,
-            measurement: Measurement::Continuous,
+            measurement,
+            camera,
+            integrate_time: Duration::ZERO,
             heading_velocity_ned_fps: Vec3::zeros(),
             state,
             tick: 0,
@@ -190,6 +220,50 @@ impl Simulation {
         self.total_ticks
     }
 
+    /// The camera, in camera runs.
+    pub fn camera(&self) -> Option<&CameraSensor> {
+        self.camera.as_ref()
+    }
+
+    /// Wall time spent integrating follower and guidance so far.
+    pub fn integrate_time(&self) -> Duration {
+        self.integrate_time
+    }
+
+    /// Takes a camera frame at this tick if one is due and holds its (delayed) measurement.
+    fn sense(&mut self) -> Result<(), SimError> {
+        let tick = self.tick;
+        let t_s = self.time_s();
+        let Some(camera) = self.camera.as_mut() else {
+            return Ok(());
+        };
+        if !camera.is_frame_tick(tick) {
+            return Ok(());
+        }
+        let follower_x = &self.state[..GUIDANCE];
+        let geometry = CaptureGeometry {
+            relative_ned_ft: self.target.position_ned_ft(t_s)
+                - KinematicFollower::position_ned_ft(follower_x),
+            follower_attitude: KinematicFollower::attitude(follower_x),
+            target_attitude: self.target.state(t_s).attitude,
+        };
+        let held = camera
+            .capture(t_s, &geometry)
+            .map_err(|e| SimError::Camera { t_s, what: e.to_string() })?;
+        let Some(record) = held else {
+            return Ok(());
+        };
+        let r = record.r_measured;
+        if let (Measurement::AwaitingFirst, Some(r0)) = (self.measurement, r) {
+            // The guidance starts on its first measurement.
+            self.guidance.start_at(&mut self.state[GUIDANCE..], &r0);
+        }
+        if r.is_some() || self.measurement != Measurement::AwaitingFirst {
+            self.measurement = Measurement::Held(r);
+        }
+        Ok(())
+    }
+
     /// The user's command R_c and Ṙ_c (NED, ft and ft/s) for a follower state: zero for
     /// interception, fixed in NED, or (3.13)-(3.14) in the body frame, whose derivative
     /// R_range L_BEᵀ (ω × T_IBc) uses the follower's body rates ω.
@@ -227,6 +301,16 @@ impl Simulation {
                 Some(relative / self.scenario.target.size_ft)
             }
             Measurement::Held(r) => r,
+            Measurement::AwaitingFirst => {
+                let out = self.guidance.idle(guidance_x, guidance_dx);
+                self.follower.derivative(
+                    follower_x,
+                    &out.velocity_cmd_ned_fps,
+                    &self.heading_velocity_ned_fps,
+                    follower_dx,
+                );
+                return out;
+            }
         };
         let (command_ned_ft, command_rate_ned_fps) = self.command(follower_x);
         let (offset, offset_rate) = self.excitation.offset(t_s);
@@ -294,10 +378,12 @@ impl Simulation {
             r_measured: match self.measurement {
                 Measurement::Continuous => Some(relative / self.scenario.target.size_ft),
                 Measurement::Held(r) => r,
+                Measurement::AwaitingFirst => None,
             },
             b_hat_ft,
             d_hat: VelocityGuidance::d_hat(guidance_x),
             guidance: out,
+            frame: self.camera.as_ref().and_then(CameraSensor::last_record),
         }
     }
 
@@ -306,6 +392,8 @@ impl Simulation {
         if self.tick >= self.total_ticks {
             return Ok(StepOutcome::Finished);
         }
+        self.sense()?;
+        let integrate_started = Instant::now();
         let t_s = self.time_s();
         let dt_s = self.scenario.run.dt_s;
         let mut state = std::mem::take(&mut self.state);
@@ -319,6 +407,7 @@ impl Simulation {
         self.guidance.enforce_bounds(guidance_x);
         self.state = state;
         self.tick += 1;
+        self.integrate_time += integrate_started.elapsed();
         let t_end_s = self.time_s();
 
         if let Some(i) = self.state.iter().position(|v| !v.is_finite()) {

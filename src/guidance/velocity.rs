@@ -143,6 +143,25 @@ impl VelocityGuidance {
         x
     }
 
+    /// Restarts the shaping filter and the estimator at the first measurement r(0), keeping
+    /// b̂ and d̂ (a camera's first frame arrives after the run starts).
+    pub fn start_at(&self, x: &mut [f64], r0: &Vec3) {
+        x[R_CF..R_CF + 3].copy_from_slice(r0.as_slice());
+        if self.estimator.is_some() {
+            x[R_HAT..R_HAT + 3].copy_from_slice(r0.as_slice());
+        }
+    }
+
+    /// Before the first measurement: no state moves and the follower cruises at V_F = b̂ d̂.
+    pub fn idle(&self, x: &[f64], dx: &mut [f64]) -> VelocityGuidanceOutput {
+        dx.fill(0.0);
+        VelocityGuidanceOutput {
+            velocity_cmd_ned_fps: vec3_at(x, D_HAT) * x[B_HAT],
+            r_command: vec3_at(x, R_CF),
+            error: Vec3::zeros(),
+        }
+    }
+
     /// b̂ of a state slice, ft.
     pub fn b_hat_ft(x: &[f64]) -> f64 {
         x[B_HAT]

@@ -2,6 +2,7 @@
 //! driver that steps a simulation while writing them.
 
 pub mod figures;
+pub mod frames;
 pub mod plots;
 pub mod summary;
 pub mod telemetry;
@@ -68,6 +69,10 @@ pub fn run_to_directory(
     let mut logged: Vec<Snapshot> = Vec::new();
     let log_every = u64::from(scenario.run.log_every);
     let progress_every = (sim.total_ticks() / 100).max(1);
+    let mut frame_saver = (scenario.output.frames_every > 0).then(|| {
+        frames::FrameSaver::new(&out_dir.join("frames"), scenario.output.frames_every, scenario.output.overlay)
+    });
+    let mut warnings = Vec::new();
     let mut log = |snapshot: Snapshot, telemetry: &mut TelemetryWriter| -> Result<(), RunError> {
         telemetry
             .write(&row_of(&snapshot))
@@ -77,7 +82,14 @@ pub fn run_to_directory(
     };
     log(sim.snapshot(), &mut telemetry)?;
     let failure = loop {
-        match sim.step() {
+        let outcome = sim.step();
+        if let (Some(saver), Some(camera)) = (frame_saver.as_mut(), sim.camera())
+            && let Err(e) = saver.offer(camera)
+        {
+            warnings.push(format!("frame not saved: {e}"));
+            frame_saver = None;
+        }
+        match outcome {
             Ok(StepOutcome::Running) => {
                 if sim.tick().is_multiple_of(log_every) {
                     log(sim.snapshot(), &mut telemetry)?;
@@ -100,7 +112,6 @@ pub fn run_to_directory(
     let summary_path = out_dir.join("summary.json");
     std::fs::write(&summary_path, summary.to_json()).map_err(io_error(&summary_path))?;
 
-    let mut warnings = Vec::new();
     if scenario.output.plots
         && let Err(e) = figures::draw_all(&out_dir.join("plots"), scenario, &logged)
     {

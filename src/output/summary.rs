@@ -51,6 +51,27 @@ pub struct Summary {
     pub centroid_rms_px: Option<f64>,
     /// RMS of measured minus true maximal length, px (camera runs).
     pub length_rms_px: Option<f64>,
+    /// Graphics adapter that rendered the frames (camera runs).
+    pub adapter: Option<String>,
+    /// Mean wall time per camera frame of each stage, ms (camera runs): render (command
+    /// submission), readback (GPU wait and copy), vision, truth (ground truth and sensing),
+    /// and guidance + follower integration per frame period.
+    pub per_frame_ms: Option<PerFrameCost>,
+}
+
+/// Mean wall-clock cost per camera frame, ms.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PerFrameCost {
+    /// Building and submitting the draw.
+    pub render: f64,
+    /// Waiting for the GPU and reading the frame back.
+    pub readback: f64,
+    /// Image pipeline.
+    pub vision: f64,
+    /// Ground truth and sensing transform.
+    pub truth: f64,
+    /// Guidance and follower integration over one frame period.
+    pub guidance_and_plant: f64,
 }
 
 impl Summary {
@@ -69,13 +90,25 @@ impl Summary {
         };
         let duration_s = sim.time_s();
         let last = logged.last();
+        let camera = sim.camera();
+        let per_frame_ms = camera.filter(|c| c.frames() > 0).map(|c| {
+            let t = c.timings();
+            let per = |d: std::time::Duration| 1e3 * d.as_secs_f64() / c.frames() as f64;
+            PerFrameCost {
+                render: per(t.render),
+                readback: per(t.readback),
+                vision: per(t.vision),
+                truth: per(t.truth),
+                guidance_and_plant: per(sim.integrate_time()),
+            }
+        });
         Self {
             scenario: name.to_string(),
             status,
             message: failure.map(|e| e.to_string()),
             duration_s,
             steps: sim.tick(),
-            frames: 0,
+            frames: camera.map_or(0, |c| c.frames()),
             wall_s,
             realtime_factor: if wall_s > 0.0 {
                 duration_s / wall_s
@@ -87,9 +120,11 @@ impl Summary {
             intercept_time_s: sim.intercept_time_s(),
             min_range_ft: sim.min_range_ft(),
             rms_error_last20s_ft: rms_error_since(logged, duration_s - 20.0),
-            lost_frames: 0,
-            centroid_rms_px: None,
-            length_rms_px: None,
+            lost_frames: camera.map_or(0, |c| c.lost_frames()),
+            centroid_rms_px: camera.and_then(|c| c.errors().centroid_rms_px()),
+            length_rms_px: camera.and_then(|c| c.errors().length_rms_px()),
+            adapter: camera.map(|c| c.adapter().to_string()),
+            per_frame_ms,
         }
     }
 

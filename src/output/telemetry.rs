@@ -2,6 +2,7 @@
 //! early keeps what it logged.
 
 use crate::sim::Snapshot;
+use crate::vision::BlobStatus;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
@@ -19,7 +20,14 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
     let [dx, dy, dz] = v(&s.d_hat);
     let [rx, ry, rz] = s.r_measured.map_or([f64::NAN; 3], |r| v(&r));
     let [rcx, rcy, rcz] = v(&s.guidance.r_command);
-    vec![
+    let image = |m: Option<crate::sensing::ImageMeasurement>| {
+        m.map_or([f64::NAN; 3], |m| [m.y_i_px, m.z_i_px, m.b_i_px])
+    };
+    let [yi, zi, bi] = image(s.frame.and_then(|f| f.measured));
+    let [yt, zt, bt] = image(s.frame.and_then(|f| f.truth));
+    let status = s.frame.map_or(f64::NAN, |f| status_code(f.status));
+    let frame_t = s.frame.map_or(f64::NAN, |f| f.t_s);
+    let mut row = vec![
         ("t_s", s.t_s),
         ("rel_n_ft", rel_n),
         ("rel_e_ft", rel_e),
@@ -59,7 +67,28 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
         ("r_cmd_x", rcx),
         ("r_cmd_y", rcy),
         ("r_cmd_z", rcz),
-    ]
+    ];
+    row.extend([
+        ("frame_t_s", frame_t),
+        ("y_i_px", yi),
+        ("z_i_px", zi),
+        ("b_i_px", bi),
+        ("meas_status", status),
+        ("y_i_true_px", yt),
+        ("z_i_true_px", zt),
+        ("b_i_true_px", bt),
+    ]);
+    row
+}
+
+/// `meas_status` codes: 0 ok, 1 not found, 2 truncated (touches the border), 3 too small.
+pub fn status_code(status: BlobStatus) -> f64 {
+    match status {
+        BlobStatus::Ok => 0.0,
+        BlobStatus::NotFound => 1.0,
+        BlobStatus::Truncated => 2.0,
+        BlobStatus::TooSmall => 3.0,
+    }
 }
 
 /// Streams rows to a CSV file; the header is the first row's names.

@@ -1,9 +1,11 @@
 //! Scenario files (TOML): schema with defaults, `--set section.key=value` overrides, and
 //! validation whose errors name the file, the key, the value and the allowed range.
 
+mod camera;
 pub mod check;
 mod sections;
 
+pub use camera::*;
 pub use sections::*;
 
 use std::path::{Path, PathBuf};
@@ -54,7 +56,25 @@ impl Scenario {
             path: path.to_path_buf(),
             reason: e.to_string(),
         })?;
-        Self::from_toml_str(&text, path, overrides)
+        let mut scenario = Self::from_toml_str(&text, path, overrides)?;
+        scenario.resolve_mesh_path(path);
+        Ok(scenario)
+    }
+
+    /// A relative mesh path not found from the working directory is looked up from the
+    /// scenario file's directory and its parent; the path found is written back so that the
+    /// resolved scenario runs from anywhere.
+    fn resolve_mesh_path(&mut self, scenario_path: &Path) {
+        let mesh = PathBuf::from(&self.camera.mesh);
+        if mesh.is_absolute() || mesh.exists() {
+            return;
+        }
+        let dir = scenario_path.parent().unwrap_or(Path::new("."));
+        let candidates = [dir.join(&mesh), dir.join("..").join(&mesh)];
+        if let Some(found) = candidates.iter().find(|p| p.exists()) {
+            let found = found.canonicalize().unwrap_or_else(|_| found.clone());
+            self.camera.mesh = found.to_string_lossy().into_owned();
+        }
     }
 
     /// Parses scenario text as if read from `path` (used in messages only).

@@ -146,6 +146,8 @@ impl FollowerSection {
 pub enum SensorMode {
     /// r = R / b exactly, continuously (seed Chapters 4-5).
     Perfect,
+    /// Rendered frames measured by the image pipeline (`[camera]`).
+    Camera,
 }
 
 /// `[sensor]`: the measurement model.
@@ -399,11 +401,19 @@ impl ExcitationSection {
 pub struct OutputSection {
     /// Draw the seed's figure panels into `plots/`.
     pub plots: bool,
+    /// Save every N-th camera frame to `frames/NNNNNN.png` (0: none).
+    pub frames_every: u32,
+    /// Draw the measurement (centroid cross, maximal-length segment, status) on saved frames.
+    pub overlay: bool,
 }
 
 impl Default for OutputSection {
     fn default() -> Self {
-        Self { plots: true }
+        Self {
+            plots: true,
+            frames_every: 0,
+            overlay: true,
+        }
     }
 }
 
@@ -423,6 +433,8 @@ pub struct Scenario {
     pub guidance: GuidanceSection,
     /// Excitation.
     pub excitation: ExcitationSection,
+    /// Camera (sensor `camera`).
+    pub camera: super::CameraSection,
     /// Outputs.
     pub output: OutputSection,
 }
@@ -434,6 +446,10 @@ impl Scenario {
         self.target.validate()?;
         self.follower.validate()?;
         self.guidance.validate()?;
-        self.excitation.validate()
+        self.excitation.validate()?;
+        if self.sensor.mode == SensorMode::Camera {
+            self.camera.validate(self.run.dt_s)?;
+        }
+        Ok(())
     }
 }

@@ -1,0 +1,132 @@
+//! `[camera]`: the follower's camera, its renderer and its image pipeline (sensor `camera`).
+
+use super::check::{self, Check};
+use serde::{Deserialize, Serialize};
+
+/// The sky behind the target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SkyKind {
+    /// One colour, `sky_rgb`.
+    Uniform,
+    /// From `sky_top_rgb` at the top row to `sky_bottom_rgb` at the bottom row.
+    Gradient,
+}
+
+/// Which blob the image pipeline measures when it finds several.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BlobChoice {
+    /// The largest.
+    Largest,
+    /// The one nearest the previous frame's centroid (the largest on the first frame or after
+    /// a loss).
+    Nearest,
+}
+
+/// `[camera]` section.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CameraSection {
+    /// Image width, px.
+    pub width_px: u32,
+    /// Image height, px.
+    pub height_px: u32,
+    /// Horizontal field of view, deg (used when `focal_px` is 0).
+    pub hfov_deg: f64,
+    /// Focal length, px; 0 derives it from `hfov_deg`.
+    pub focal_px: f64,
+    /// Frames per second; its period must be a whole number of `run.dt_s`.
+    pub rate_hz: f64,
+    /// Frames between taking a picture and its measurement reaching the guidance.
+    pub latency_frames: u32,
+    /// Samples per pixel: 1 or 4 (anti-aliased edges, sub-pixel centroid).
+    pub msaa_samples: u32,
+    /// Sky model.
+    pub sky: SkyKind,
+    /// Uniform sky colour, RGB 0-255.
+    pub sky_rgb: [u8; 3],
+    /// Gradient sky, top row colour.
+    pub sky_top_rgb: [u8; 3],
+    /// Gradient sky, bottom row colour.
+    pub sky_bottom_rgb: [u8; 3],
+    /// Per-pixel Gaussian noise, grey levels (0 = none).
+    pub noise_std_grey: f64,
+    /// Target mesh (OBJ), scaled so that its maximal dimension is `target.size_ft`; a relative
+    /// path is looked up from the working directory, then from the scenario file's directory
+    /// and its parent.
+    pub mesh: String,
+    /// Blob selection.
+    pub selection: BlobChoice,
+    /// Blobs with fewer mask pixels are too small to measure.
+    pub min_pixel_count: u32,
+    /// A candidate pixel joins the target mask when at least this fraction of it is covered,
+    /// in (0, 1]; lower keeps thin parts (a wing seen edge-on) connected.
+    pub mask_coverage: f64,
+}
+
+impl Default for CameraSection {
+    fn default() -> Self {
+        Self {
+            width_px: 640,
+            height_px: 480,
+            hfov_deg: 60.0,
+            focal_px: 0.0,
+            rate_hz: 30.0,
+            latency_frames: 1,
+            msaa_samples: 1,
+            sky: SkyKind::Uniform,
+            sky_rgb: [175, 200, 230],
+            sky_top_rgb: [150, 180, 225],
+            sky_bottom_rgb: [215, 225, 235],
+            noise_std_grey: 0.0,
+            mesh: "assets/target_aircraft.obj".to_string(),
+            selection: BlobChoice::Nearest,
+            min_pixel_count: 4,
+            mask_coverage: 0.5,
+        }
+    }
+}
+
+impl CameraSection {
+    /// Checks every value; `dt_s` is the simulation step the frame period must divide.
+    pub fn validate(&self, dt_s: f64) -> Check {
+        check::int_in("camera.width_px", i64::from(self.width_px), 8, 8192)?;
+        check::int_in("camera.height_px", i64::from(self.height_px), 8, 8192)?;
+        check::in_open("camera.hfov_deg", self.hfov_deg, 0.0, 179.0, "(0, 179)")?;
+        check::in_closed("camera.focal_px", self.focal_px, 0.0, 1e6)?;
+        check::in_closed("camera.rate_hz", self.rate_hz, 0.01, 10_000.0)?;
+        let ticks = 1.0 / (self.rate_hz * dt_s);
+        check::require(
+            ticks >= 1.0 - 1e-9 && (ticks - ticks.round()).abs() < 1e-6 * ticks,
+            "camera.rate_hz",
+            self.rate_hz,
+            format!("a rate whose period is a whole number of run.dt_s = {dt_s} s"),
+        )?;
+        check::int_in("camera.latency_frames", i64::from(self.latency_frames), 0, 100)?;
+        check::require(
+            matches!(self.msaa_samples, 1 | 4),
+            "camera.msaa_samples",
+            self.msaa_samples,
+            "1 or 4",
+        )?;
+        check::in_closed("camera.noise_std_grey", self.noise_std_grey, 0.0, 100.0)?;
+        check::require(!self.mesh.is_empty(), "camera.mesh", "\"\"", "a path to an OBJ file")?;
+        check::int_in("camera.min_pixel_count", i64::from(self.min_pixel_count), 1, 1_000_000)?;
+        check::in_open("camera.mask_coverage", self.mask_coverage, 0.0, 1.0 + 1e-12, "(0, 1]")
+    }
+
+    /// Focal length, px: `focal_px`, or from `hfov_deg` when that is 0.
+    pub fn focal_length_px(&self) -> f64 {
+        if self.focal_px > 0.0 {
+            self.focal_px
+        } else {
+            0.5 * f64::from(self.width_px) / (0.5 * self.hfov_deg.to_radians()).tan()
+        }
+    }
+
+    /// Simulation ticks between frames.
+    pub fn period_ticks(&self, dt_s: f64) -> u64 {
+        (1.0 / (self.rate_hz * dt_s)).round().max(1.0) as u64
+    }
+}

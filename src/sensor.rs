@@ -1,0 +1,354 @@
+//! The camera sensor stage: on camera ticks it renders the target as the follower's camera sees
+//! it, measures the frame with the image pipeline, computes the ground truth beside it, and
+//! turns the measurement into r* through the sensing transform (3.3)-(3.12). Measurements
+//! reach the guidance `latency_frames` frames after their frame was taken and are held
+//! between frames; a frame whose status is not `Ok` is a lost frame: the guidance then coasts.
+
+use crate::frames::{EulerAngles, Vec3};
+use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use crate::render::frame::Frame;
+use crate::render::gpu::GpuContext;
+use crate::render::mesh::TargetMesh;
+use crate::render::renderer::{RenderTimings, Renderer};
+use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
+use crate::scenario::{BlobChoice, CameraSection, Scenario, SkyKind};
+use crate::sensing::{ImageMeasurement, scaled_relative_position};
+use crate::vision::{BlobMeasurement, BlobSelection, BlobStatus, ImageTruth, TruthProjector, VisionConfig, VisionPipeline};
+use std::collections::VecDeque;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// Why the camera could not be set up or a frame not taken.
+#[derive(Debug, thiserror::Error)]
+pub enum SensorError {
+    /// No GPU adapter (the message says what to install).
+    #[error("{0}")]
+    Gpu(String),
+    /// The target mesh could not be loaded.
+    #[error("camera.mesh: {0}")]
+    Mesh(String),
+    /// The renderer or the image pipeline rejected its settings, or a frame failed.
+    #[error("camera: {0}")]
+    Camera(String),
+}
+
+/// Where the follower and target are when a frame is taken.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CaptureGeometry {
+    /// R_T - R_F, NED, ft.
+    pub relative_ned_ft: Vec3,
+    /// Follower attitude (camera = body).
+    pub follower_attitude: EulerAngles,
+    /// Target attitude.
+    pub target_attitude: EulerAngles,
+}
+
+impl CaptureGeometry {
+    /// The target's pose in camera axes.
+    pub fn pose(&self) -> TargetPoseInCamera {
+        let body_from_ned = self.follower_attitude.body_from_ned();
+        TargetPoseInCamera {
+            position_body_ft: body_from_ned * self.relative_ned_ft,
+            body_from_target: body_from_ned * self.target_attitude.body_from_ned().transpose(),
+        }
+    }
+}
+
+/// One frame's measurement beside its truth.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameRecord {
+    /// Frame number (0-based).
+    pub index: u64,
+    /// Time the frame was taken, s.
+    pub t_s: f64,
+    /// Vision status.
+    pub status: BlobStatus,
+    /// Measured (yI, zI, bI), px (None when nothing was found).
+    pub measured: Option<ImageMeasurement>,
+    /// True (yI, zI) of the target's reference point and true maximal length of the projected
+    /// mesh, px (None when part of the target is behind the camera).
+    pub truth: Option<ImageMeasurement>,
+    /// r* from this frame (None when lost).
+    pub r_measured: Option<Vec3>,
+}
+
+/// Wall-clock time spent in each stage of the camera, summed over the run.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CameraTimings {
+    /// Building the command buffer and submitting it.
+    pub render: Duration,
+    /// Waiting for the GPU and copying the frame back (pixel noise included).
+    pub readback: Duration,
+    /// Image pipeline.
+    pub vision: Duration,
+    /// Ground truth and sensing transform.
+    pub truth: Duration,
+}
+
+impl CameraTimings {
+    fn add_render(&mut self, t: RenderTimings) {
+        self.render += Duration::from_secs_f64(t.submit_s);
+        self.readback += Duration::from_secs_f64(t.readback_s + t.noise_s);
+    }
+}
+
+/// Accumulated measurement-error statistics over `Ok` frames.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MeasurementErrors {
+    /// Frames with both a measurement and its truth.
+    pub count: u64,
+    /// Σ of squared centroid distance, px².
+    pub centroid_sq_px2: f64,
+    /// Σ of squared maximal-length error, px².
+    pub length_sq_px2: f64,
+}
+
+impl MeasurementErrors {
+    /// RMS centroid error, px (None before any frame).
+    pub fn centroid_rms_px(&self) -> Option<f64> {
+        (self.count > 0).then(|| (self.centroid_sq_px2 / self.count as f64).sqrt())
+    }
+
+    /// RMS maximal-length error, px (None before any frame).
+    pub fn length_rms_px(&self) -> Option<f64> {
+        (self.count > 0).then(|| (self.length_sq_px2 / self.count as f64).sqrt())
+    }
+}
+
+/// The camera in the loop.
+pub struct CameraSensor {
+    intrinsics: CameraIntrinsics,
+    renderer: Renderer,
+    vision: VisionPipeline,
+    truth: TruthProjector,
+    mesh_vertices_ft: Vec<Vec3>,
+    selection: BlobChoice,
+    period_ticks: u64,
+    latency_frames: u64,
+    pending: VecDeque<FrameRecord>,
+    held: Option<FrameRecord>,
+    last_frame: Option<FrameRecord>,
+    last_measurement: Option<BlobMeasurement>,
+    previous_centroid_px: Option<(f64, f64)>,
+    frames: u64,
+    lost_frames: u64,
+    errors: MeasurementErrors,
+    timings: CameraTimings,
+    adapter: String,
+}
+
+impl std::fmt::Debug for CameraSensor {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CameraSensor")
+            .field("intrinsics", &self.intrinsics)
+            .field("adapter", &self.adapter)
+            .field("frames", &self.frames)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The renderer's settings for a `[camera]` section.
+pub fn render_settings(camera: &CameraSection, seed: u64) -> RenderSettings {
+    let sky = match camera.sky {
+        SkyKind::Uniform => Sky::Uniform { rgb: camera.sky_rgb },
+        SkyKind::Gradient => Sky::VerticalGradient {
+            top_rgb: camera.sky_top_rgb,
+            bottom_rgb: camera.sky_bottom_rgb,
+        },
+    };
+    let noise = (camera.noise_std_grey > 0.0).then_some(PixelNoise {
+        std_grey_levels: camera.noise_std_grey,
+        seed,
+    });
+    RenderSettings {
+        intrinsics: intrinsics(camera),
+        msaa_samples: camera.msaa_samples,
+        background: Background { sky, noise },
+        shading: TargetShading::default(),
+    }
+}
+
+/// The pinhole intrinsics of a `[camera]` section.
+pub fn intrinsics(camera: &CameraSection) -> CameraIntrinsics {
+    CameraIntrinsics {
+        width_px: camera.width_px,
+        height_px: camera.height_px,
+        focal_px: camera.focal_length_px(),
+    }
+}
+
+/// Loads the scenario's target mesh, scaled so that its maximal dimension is `target.size_ft`.
+pub fn load_target_mesh(scenario: &Scenario) -> Result<TargetMesh, SensorError> {
+    let path = Path::new(&scenario.camera.mesh);
+    let unscaled = TargetMesh::load_obj(path, 1.0).map_err(|e| SensorError::Mesh(e.to_string()))?;
+    let span = unscaled.max_dimension_ft();
+    if !(span.is_finite() && span > 0.0) {
+        return Err(SensorError::Mesh(format!(
+            "{}: the mesh has no extent",
+            path.display()
+        )));
+    }
+    TargetMesh::load_obj(path, scenario.target.size_ft / span).map_err(|e| SensorError::Mesh(e.to_string()))
+}
+
+impl CameraSensor {
+    /// Sets up GPU, renderer, mesh and image pipeline for a camera scenario.
+    pub fn new(scenario: &Scenario) -> Result<Self, SensorError> {
+        let camera = &scenario.camera;
+        let mesh = load_target_mesh(scenario)?;
+        let gpu = GpuContext::new().map_err(|e| SensorError::Gpu(e.to_string()))?;
+        let adapter = gpu.description();
+        let settings = render_settings(camera, scenario.run.seed);
+        let renderer =
+            Renderer::new(&gpu, settings, &mesh).map_err(|e| SensorError::Camera(e.to_string()))?;
+        let mut vision_config = VisionConfig {
+            min_pixel_count: camera.min_pixel_count as usize,
+            ..VisionConfig::default()
+        };
+        vision_config.segmentation.mask_coverage = camera.mask_coverage;
+        let vision =
+            VisionPipeline::new(vision_config).map_err(|e| SensorError::Camera(e.to_string()))?;
+        Ok(Self {
+            intrinsics: settings.intrinsics,
+            renderer,
+            vision,
+            truth: TruthProjector::new(),
+            mesh_vertices_ft: mesh.vertices_ft.clone(),
+            selection: camera.selection,
+            period_ticks: camera.period_ticks(scenario.run.dt_s),
+            latency_frames: u64::from(camera.latency_frames),
+            pending: VecDeque::new(),
+            held: None,
+            last_frame: None,
+            last_measurement: None,
+            previous_centroid_px: None,
+            frames: 0,
+            lost_frames: 0,
+            errors: MeasurementErrors::default(),
+            timings: CameraTimings::default(),
+            adapter,
+        })
+    }
+
+    /// Whether a frame is taken at this tick.
+    pub fn is_frame_tick(&self, tick: u64) -> bool {
+        tick.is_multiple_of(self.period_ticks)
+    }
+
+    /// Takes, measures and queues a frame; returns the record the guidance holds from now on
+    /// (the frame taken `latency_frames` frames ago; None before the first one arrives).
+    pub fn capture(
+        &mut self,
+        t_s: f64,
+        geometry: &CaptureGeometry,
+    ) -> Result<Option<FrameRecord>, SensorError> {
+        let index = self.frames;
+        let pose = geometry.pose();
+        self.renderer
+            .render(&pose, index)
+            .map_err(|e| SensorError::Camera(e.to_string()))?;
+        self.timings.add_render(self.renderer.last_timings());
+
+        let vision_started = Instant::now();
+        let selection = match (self.selection, self.previous_centroid_px) {
+            (BlobChoice::Nearest, Some((u_px, v_px))) => BlobSelection::NearestTo { u_px, v_px },
+            _ => BlobSelection::Largest,
+        };
+        let frame = self.renderer.frame();
+        let blob = self
+            .vision
+            .measure(&frame.rgba, frame.width_px, frame.height_px, selection)
+            .map_err(|e| SensorError::Camera(e.to_string()))?;
+        self.timings.vision += vision_started.elapsed();
+
+        let truth_started = Instant::now();
+        let truth = self
+            .truth
+            .image_truth(&self.mesh_vertices_ft, &pose, &self.intrinsics)
+            .map(|t: ImageTruth| t.image_measurement());
+        let measured = blob.image_measurement(&self.intrinsics);
+        let ok = blob.status == BlobStatus::Ok;
+        let r_measured = match (ok, measured) {
+            (true, Some(m)) => Some(scaled_relative_position(
+                &m,
+                self.intrinsics.focal_px,
+                &geometry.follower_attitude.body_from_ned(),
+            )),
+            _ => None,
+        };
+        if let (true, Some(m), Some(t)) = (ok, measured, truth) {
+            self.errors.count += 1;
+            self.errors.centroid_sq_px2 += (m.y_i_px - t.y_i_px).powi(2) + (m.z_i_px - t.z_i_px).powi(2);
+            self.errors.length_sq_px2 += (m.b_i_px - t.b_i_px).powi(2);
+        }
+        self.timings.truth += truth_started.elapsed();
+
+        self.previous_centroid_px = ok.then_some((blob.centroid_u_px, blob.centroid_v_px));
+        if !ok {
+            self.lost_frames += 1;
+        }
+        let record = FrameRecord {
+            index,
+            t_s,
+            status: blob.status,
+            measured,
+            truth,
+            r_measured,
+        };
+        self.last_frame = Some(record);
+        self.last_measurement = Some(blob);
+        self.frames += 1;
+        self.pending.push_back(record);
+        while self
+            .pending
+            .front()
+            .is_some_and(|r| r.index + self.latency_frames <= index)
+        {
+            self.held = self.pending.pop_front();
+        }
+        Ok(self.held)
+    }
+
+    /// The last frame taken and its measurement record.
+    pub fn last_frame(&self) -> Option<(&Frame, &FrameRecord, &BlobMeasurement)> {
+        match (&self.last_frame, &self.last_measurement) {
+            (Some(record), Some(blob)) => Some((self.renderer.frame(), record, blob)),
+            _ => None,
+        }
+    }
+
+    /// The record of the last frame taken.
+    pub fn last_record(&self) -> Option<FrameRecord> {
+        self.last_frame
+    }
+
+    /// The intrinsics of this camera.
+    pub fn intrinsics(&self) -> &CameraIntrinsics {
+        &self.intrinsics
+    }
+
+    /// Frames taken.
+    pub fn frames(&self) -> u64 {
+        self.frames
+    }
+
+    /// Frames whose status was not `Ok`.
+    pub fn lost_frames(&self) -> u64 {
+        self.lost_frames
+    }
+
+    /// Measurement errors against truth.
+    pub fn errors(&self) -> MeasurementErrors {
+        self.errors
+    }
+
+    /// Time spent per stage.
+    pub fn timings(&self) -> CameraTimings {
+        self.timings
+    }
+
+    /// The adapter, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) (Cpu, Vulkan)".
+    pub fn adapter(&self) -> &str {
+        &self.adapter
+    }
+}
