@@ -15,6 +15,7 @@ use super::config::{
 use super::pipeline::{BlobMeasurement, BlobStatus, VisionPipeline};
 use super::synthetic::{Background, Shape, SyntheticScene};
 use crate::render::camera::CameraIntrinsics;
+use proptest::prelude::*;
 
 const SKY: [f64; 3] = [170.0, 200.0, 235.0];
 const DARK: [f64; 3] = [40.0, 45.0, 55.0];
@@ -399,4 +400,43 @@ fn time_per_frame() {
         m.status,
         m.max_length_px
     );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Arbitrary frame content and sizes (0-20 px a side) and selections, NaN included, never
+    /// panic; a found blob's centroid lies within the frame and its length is finite and at
+    /// most the frame's diagonal (+2 px for outline points just outside a border pixel).
+    #[test]
+    fn arbitrary_frames_do_not_panic(
+        width in 0u32..20,
+        height in 0u32..20,
+        seed in any::<u64>(),
+        sparse in any::<bool>(),
+        near in prop::option::of((-5.0f64..25.0, -5.0f64..25.0)),
+    ) {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let n = (width * height) as usize;
+        let mut rgba = vec![200u8; n * 4];
+        for px in rgba.chunks_exact_mut(4) {
+            if !sparse || rng.random_bool(0.1) {
+                px.copy_from_slice(&rng.random::<[u8; 4]>());
+            }
+        }
+        let selection = match near {
+            Some((u, v)) => BlobSelection::NearestTo { u_px: u, v_px: v },
+            None => BlobSelection::NearestTo { u_px: f64::NAN, v_px: 1.0 },
+        };
+        let mut p = VisionPipeline::new(VisionConfig::default()).unwrap();
+        let m = p.measure(&rgba, width, height, selection).unwrap();
+        if m.status != BlobStatus::NotFound {
+            let (w, h) = (f64::from(width), f64::from(height));
+            prop_assert!(m.centroid_u_px >= 0.0 && m.centroid_u_px <= w);
+            prop_assert!(m.centroid_v_px >= 0.0 && m.centroid_v_px <= h);
+            prop_assert!(m.max_length_px.is_finite());
+            prop_assert!(m.max_length_px <= w.hypot(h) + 2.0);
+        }
+    }
 }
