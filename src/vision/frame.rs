@@ -19,6 +19,14 @@ pub enum FrameError {
         /// Length of the buffer passed in.
         actual_bytes: usize,
     },
+    /// More pixels than 32-bit pixel indices can address.
+    #[error("RGBA frame of {width_px}x{height_px} px has more than 2^32 - 1 pixels")]
+    TooLarge {
+        /// Stated width, px.
+        width_px: u32,
+        /// Stated height, px.
+        height_px: u32,
+    },
 }
 
 /// Expected byte length of a tightly packed RGBA8 frame, or an error naming the mismatch.
@@ -50,8 +58,15 @@ pub(crate) struct RgbaFrame<'a> {
 
 impl<'a> RgbaFrame<'a> {
     /// Wraps `rgba` after checking its length.
+    /// Also rejects frames with more than `u32::MAX` pixels (pixel lists hold u32 indices).
     pub fn new(rgba: &'a [u8], width_px: u32, height_px: u32) -> Result<Self, FrameError> {
         check_rgba_len(rgba.len(), width_px, height_px)?;
+        if u64::from(width_px) * u64::from(height_px) > u64::from(u32::MAX) {
+            return Err(FrameError::TooLarge {
+                width_px,
+                height_px,
+            });
+        }
         Ok(Self {
             rgba,
             width: width_px as usize,

@@ -5,25 +5,20 @@
 //! anti-aliased edge pixels below the mask threshold are) get their coverage α. The centroid is
 //! the first moment of these weights, so partly covered pixels count by the area they hold.
 //!
-//! Maximal length: each boundary or ring pixel with coverage above the noise gives one
-//! sub-pixel edge point, its centre moved along the edge normal (the coverage gradient) by the
-//! offset at which a straight edge covers that fraction of the pixel
-//! ([`super::subpixel_edge::edge_offset_px`]). The maximum Feret diameter of these points
-//! estimates the silhouette's, where pixel centres of the mask would fall short by about a pixel
-//! (half a pixel at each end). Pixels with coverage ≈ 0 are left out: their offset says only
-//! that the edge lies beyond the pixel, which would overshoot by up to half a pixel.
+//! Maximal length: the maximum Feret diameter of the blob's sub-pixel outline points
+//! (`super::edge_points`), where pixel centres of the mask would fall short by about a pixel
+//! (half a pixel at each end).
 
 use super::components::PixelBox;
+use super::edge_points::{CoverageGrid, EdgePointFinder};
 use super::feret::{FeretDiameter, FeretFinder, PixelPoint};
 use super::frame::RgbaFrame;
 use super::segment::CoverageModel;
-use super::subpixel_edge::edge_offset_px;
 
 /// Ring pixels on the image border with at least this coverage mean the target crosses the
 /// border (0.25: far above the noise of a 1-px gap, which is debiased to ≈ 0).
 const TRUNCATION_COVERAGE: f64 = 0.25;
 
-const OUTSIDE: u8 = 0;
 const RING: u8 = 1;
 const BOUNDARY: u8 = 2;
 const INTERIOR: u8 = 3;
@@ -56,14 +51,16 @@ pub(crate) struct BlobToMeasure<'a> {
     pub coverage: &'a CoverageModel,
     /// Edge points need at least this coverage (above the noise).
     pub edge_min_coverage: f64,
+    /// How far a corner model's predicted coverage may be from a measured one.
+    pub corner_tolerance: f64,
 }
 
 /// Measures blobs; owns its weight and point buffers between frames.
 #[derive(Debug, Default, Clone)]
 pub(crate) struct BlobMeasurer {
-    weights: Vec<f32>,
-    kinds: Vec<u8>,
+    grid: CoverageGrid,
     edge_points: Vec<PixelPoint>,
+    finder: EdgePointFinder,
     feret: FeretFinder,
 }
 
@@ -98,10 +95,8 @@ impl BlobMeasurer {
         let (w, h) = (frame.width, frame.height);
         // Weights live on the bbox + 2 (ring + one more for the gradient stencil).
         let region = Region::around(blob.bbox, 2, w, h);
-        self.weights.clear();
-        self.weights.resize(region.width * region.height, 0.0);
-        self.kinds.clear();
-        self.kinds.resize(region.width * region.height, OUTSIDE);
+        self.grid
+            .reset(region.u0, region.v0, region.width, region.height);
         let labels = blob.labels;
         let label_at = |u: isize, v: isize| -> u32 {
             if u < 0 || v < 0 || u >= w as isize || v >= h as isize {
@@ -147,8 +142,8 @@ impl BlobMeasurer {
                     truncated = true;
                 }
                 let local = (v - region.v0) * region.width + (u - region.u0);
-                self.weights[local] = weight as f32;
-                self.kinds[local] = kind;
+                self.grid.weights[local] = weight as f32;
+                self.grid.is_edge[local] = kind != INTERIOR;
                 sum_w += weight;
                 sum_wu += weight * (u as f64 + 0.5);
                 sum_wv += weight * (v as f64 + 0.5);
@@ -162,55 +157,18 @@ impl BlobMeasurer {
                 0.5 * f64::from(blob.bbox.min_v + blob.bbox.max_v + 1),
             )
         };
-        self.collect_edge_points(region, blob.edge_min_coverage);
+        self.finder.find(
+            &self.grid,
+            blob.edge_min_coverage,
+            blob.corner_tolerance,
+            &mut self.edge_points,
+        );
         BlobGeometry {
             centroid_u_px,
             centroid_v_px,
             area_px: sum_w,
             feret: self.feret.diameter(&mut self.edge_points),
             truncated,
-        }
-    }
-
-    /// One sub-pixel edge point per boundary or ring pixel covered at least `min_coverage`;
-    /// normals from a Sobel gradient of the weights (replicated at the region's edge).
-    fn collect_edge_points(&mut self, region: Region, min_coverage: f64) {
-        self.edge_points.clear();
-        let (rw, rh) = (region.width as isize, region.height as isize);
-        let weight = |x: isize, y: isize| -> f64 {
-            let x = x.clamp(0, rw - 1) as usize;
-            let y = y.clamp(0, rh - 1) as usize;
-            f64::from(self.weights[y * region.width + x])
-        };
-        for y in 0..rh {
-            for x in 0..rw {
-                let local = y as usize * region.width + x as usize;
-                let kind = self.kinds[local];
-                let alpha = f64::from(self.weights[local]);
-                if !(kind == BOUNDARY || kind == RING) || alpha < min_coverage {
-                    continue;
-                }
-                let gx = weight(x + 1, y - 1) + 2.0 * weight(x + 1, y) + weight(x + 1, y + 1)
-                    - weight(x - 1, y - 1)
-                    - 2.0 * weight(x - 1, y)
-                    - weight(x - 1, y + 1);
-                let gy = weight(x - 1, y + 1) + 2.0 * weight(x, y + 1) + weight(x + 1, y + 1)
-                    - weight(x - 1, y - 1)
-                    - 2.0 * weight(x, y - 1)
-                    - weight(x + 1, y - 1);
-                // Outward normal: coverage decreases outward.
-                let norm = gx.hypot(gy);
-                let (nx, ny) = if norm > 1e-9 {
-                    (-gx / norm, -gy / norm)
-                } else {
-                    (0.0, 0.0)
-                };
-                let s = edge_offset_px(alpha, nx, ny);
-                let cu = (region.u0 + x as usize) as f64 + 0.5;
-                let cv = (region.v0 + y as usize) as f64 + 0.5;
-                self.edge_points
-                    .push(PixelPoint::new(cu + s * nx, cv + s * ny));
-            }
         }
     }
 }

@@ -9,7 +9,9 @@
 //!    α ∈ [0, 1] for anti-aliased edges, binary mask (α ≥ 0.5 or interior).
 //! 3. `components`: 8-connected blobs of the mask; [`BlobSelection`] picks one.
 //! 4. `measure`: coverage-weighted centroid (ring of partly covered pixels included), and the
-//!    maximum Feret diameter (`feret`) of sub-pixel edge points (`subpixel_edge`).
+//!    maximum Feret diameter (`feret`: hull + rotating calipers) of sub-pixel outline points
+//!    (`edge_points`: the straight edge each edge pixel's coverage implies, plus corners where
+//!    straight edges meet).
 //! 5. [`BlobStatus`]: `Ok`, `NotFound`, `Truncated` (touches the border), `TooSmall`.
 //!
 //! Pixel conventions are those of [`crate::render::camera`]: pixel (i, j) covers
@@ -19,6 +21,7 @@
 mod background;
 mod components;
 mod config;
+mod edge_points;
 mod feret;
 mod font;
 mod frame;

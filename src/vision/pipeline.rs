@@ -167,6 +167,7 @@ impl VisionPipeline {
         };
         let summary = blobs[index];
         let blob_count = blobs.len();
+        let noise = CoverageNoise::at(&coverage, &summary);
         let geometry = self.measurer.measure(
             &frame,
             &BlobToMeasure {
@@ -174,7 +175,8 @@ impl VisionPipeline {
                 label: index as u32 + 1,
                 bbox: summary.bbox,
                 coverage: &coverage,
-                edge_min_coverage: edge_min_coverage(&coverage, &summary),
+                edge_min_coverage: noise.edge_min_coverage(),
+                corner_tolerance: noise.corner_tolerance(),
             },
         );
         let status = if too_small {
@@ -235,17 +237,37 @@ fn select_blob(
     }
 }
 
-/// Coverage below which an edge pixel is indistinguishable from background noise, using the
-/// contrast at the blob's mean position.
-fn edge_min_coverage(coverage: &CoverageModel, blob: &BlobSummary) -> f64 {
-    let b = coverage
-        .background
-        .colour_at(blob.mean_u_px, blob.mean_v_px);
-    let contrast = (0..3)
-        .map(|c| (coverage.target_rgb[c] - b[c]).powi(2))
-        .sum::<f64>()
-        .sqrt()
-        .max(coverage.threshold);
-    let (lo, hi) = EDGE_MIN_COVERAGE_RANGE;
-    (EDGE_MIN_COVERAGE_SIGMAS * coverage.background.noise_sigma / contrast).clamp(lo, hi)
+/// How noisy coverage is near a blob: σ of the background over the target's contrast there.
+#[derive(Debug, Clone, Copy)]
+struct CoverageNoise {
+    sigma: f64,
+}
+
+impl CoverageNoise {
+    fn at(coverage: &CoverageModel, blob: &BlobSummary) -> Self {
+        let b = coverage
+            .background
+            .colour_at(blob.mean_u_px, blob.mean_v_px);
+        let contrast = (0..3)
+            .map(|c| (coverage.target_rgb[c] - b[c]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+            .max(coverage.threshold);
+        Self {
+            sigma: coverage.background.noise_sigma / contrast,
+        }
+    }
+
+    /// Coverage below which an edge pixel is indistinguishable from background noise.
+    fn edge_min_coverage(&self) -> f64 {
+        let (lo, hi) = EDGE_MIN_COVERAGE_RANGE;
+        (EDGE_MIN_COVERAGE_SIGMAS * self.sigma).clamp(lo, hi)
+    }
+
+    /// Largest difference between a corner model's predicted coverage of a pixel and the
+    /// measured one: 0.05 (the supersampled or multisampled coverage of a pixel cut by a
+    /// slightly curved edge, and line-offset errors of ~0.03 px) plus 3σ of the noise.
+    fn corner_tolerance(&self) -> f64 {
+        0.05 + 3.0 * self.sigma
+    }
 }

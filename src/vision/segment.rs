@@ -12,6 +12,10 @@ use super::background::BackgroundModel;
 use super::config::{DetectionThreshold, SegmentationConfig, TargetColour};
 use super::frame::RgbaFrame;
 
+/// Without core pixels, the target colour is the median of this fraction of the candidates,
+/// those farthest from the background.
+const FULL_CONTRAST_FRACTION: f64 = 0.1;
+
 /// Flag: colour distance to the background is at least the detection threshold.
 pub(crate) const CANDIDATE: u8 = 1;
 /// Flag: candidate whose 8 neighbours are all candidates (fully covered interior).
@@ -59,7 +63,9 @@ pub(crate) struct Segmenter {
     pub candidates: Vec<u32>,
     /// Indices of mask pixels, in raster order.
     pub mask: Vec<u32>,
-    row_background: Vec<[f32; 4]>,
+    row_words: Vec<u32>,
+    distances: Vec<f64>,
+    scratch: Vec<f64>,
     histogram: [[u32; 256]; 3],
 }
 
@@ -69,7 +75,9 @@ impl Default for Segmenter {
             class: Vec::new(),
             candidates: Vec::new(),
             mask: Vec::new(),
-            row_background: Vec::new(),
+            row_words: Vec::new(),
+            distances: Vec::new(),
+            scratch: Vec::new(),
             histogram: [[0; 256]; 3],
         }
     }
@@ -84,6 +92,34 @@ fn detection_threshold(detection: DetectionThreshold, noise_sigma: f64) -> f64 {
         } => (sigmas * noise_sigma).max(min_distance),
         DetectionThreshold::ColourDistance { distance } => distance,
     }
+}
+
+/// Per-channel median colour of the pixels `indices` of `frame` (0 when there are none).
+fn median_colour(
+    frame: &RgbaFrame<'_>,
+    indices: impl Iterator<Item = usize>,
+    histogram: &mut [[u32; 256]; 3],
+) -> [f64; 3] {
+    *histogram = [[0; 256]; 3];
+    let mut total = 0u32;
+    for i in indices {
+        let p = frame.rgb(i);
+        for (counts, value) in histogram.iter_mut().zip(p) {
+            counts[value as usize] += 1;
+        }
+        total += 1;
+    }
+    let half = total.div_ceil(2).max(1);
+    histogram.map(|counts| {
+        let mut seen = 0;
+        for (level, &n) in counts.iter().enumerate() {
+            seen += n;
+            if seen >= half {
+                return level as f64;
+            }
+        }
+        0.0
+    })
 }
 
 impl Segmenter {
@@ -104,7 +140,7 @@ impl Segmenter {
         let core_count = self.mark_core(frame.width, frame.height);
         let target_rgb = match config.target_colour {
             TargetColour::Fixed { rgb } => rgb.map(f64::from),
-            TargetColour::Estimated => self.median_colour(frame, core_count > 0),
+            TargetColour::Estimated => self.estimate_target_colour(frame, &background, core_count),
         };
         let model = CoverageModel {
             background,
@@ -118,23 +154,30 @@ impl Segmenter {
     /// Pass over every pixel: flags and lists the candidates.
     fn find_candidates(&mut self, frame: &RgbaFrame<'_>, bg: &BackgroundModel, threshold: f64) {
         let (w, h) = (frame.width, frame.height);
-        self.class.clear();
+        // Every flag is overwritten below: no need to clear.
         self.class.resize(w * h, 0);
         self.candidates.clear();
         let threshold2 = (threshold * threshold) as f32;
         for v in 0..h {
-            bg.fill_row(v, w, &mut self.row_background);
+            let row_background = bg.row_background(v);
             let class_row = &mut self.class[v * w..(v + 1) * w];
-            let pixels = frame.row(v).chunks_exact(4);
-            for ((flag, px), b) in class_row
-                .iter_mut()
-                .zip(pixels)
-                .zip(self.row_background.iter())
-            {
-                let dr = f32::from(px[0]) - b[0];
-                let dg = f32::from(px[1]) - b[1];
-                let db = f32::from(px[2]) - b[2];
+            // The row as little-endian RGBA words (R in the low byte), copied into an aligned
+            // buffer so that the loop below loads whole pixels and vectorises.
+            self.row_words.clear();
+            self.row_words.resize(w, 0);
+            bytemuck::cast_slice_mut::<u32, u8>(&mut self.row_words).copy_from_slice(frame.row(v));
+            let mut any = 0u8;
+            for (u, (flag, &word)) in class_row.iter_mut().zip(self.row_words.iter()).enumerate() {
+                let rgba = u32::from_le(word);
+                let [br, bg, bb] = row_background.rgb_at(u);
+                let dr = (rgba & 0xff) as f32 - br;
+                let dg = ((rgba >> 8) & 0xff) as f32 - bg;
+                let db = ((rgba >> 16) & 0xff) as f32 - bb;
                 *flag = u8::from(dr * dr + dg * dg + db * db >= threshold2);
+                any |= *flag;
+            }
+            if any == 0 {
+                continue;
             }
             let base = v * w;
             for (u, flag) in class_row.iter().enumerate() {
@@ -172,32 +215,49 @@ impl Segmenter {
         count
     }
 
-    /// Per-channel median colour of the core pixels (all candidates when `core_only` is false).
-    fn median_colour(&mut self, frame: &RgbaFrame<'_>, core_only: bool) -> [f64; 3] {
-        self.histogram = [[0; 256]; 3];
-        let mut total = 0u32;
-        for &i in &self.candidates {
-            let i = i as usize;
-            if core_only && self.class[i] & CORE == 0 {
-                continue;
-            }
-            let p = frame.rgb(i);
-            for (counts, value) in self.histogram.iter_mut().zip(p) {
-                counts[value as usize] += 1;
-            }
-            total += 1;
+    /// The colour of a fully covered target pixel: the per-channel median of the core pixels;
+    /// without core pixels (a target thinner than 3 px), of the candidates farthest from the
+    /// background (top [`FULL_CONTRAST_FRACTION`] by distance), which are the most covered.
+    /// The median of all candidates would be a mix of target and background there, making
+    /// every edge pixel look fully covered.
+    fn estimate_target_colour(
+        &mut self,
+        frame: &RgbaFrame<'_>,
+        background: &BackgroundModel,
+        core_count: usize,
+    ) -> [f64; 3] {
+        if core_count > 0 {
+            let class = &self.class;
+            let core = self
+                .candidates
+                .iter()
+                .map(|&i| i as usize)
+                .filter(|&i| class[i] & CORE != 0);
+            return median_colour(frame, core, &mut self.histogram);
         }
-        let half = total.div_ceil(2);
-        self.histogram.map(|counts| {
-            let mut seen = 0;
-            for (level, &n) in counts.iter().enumerate() {
-                seen += n;
-                if seen >= half {
-                    return level as f64;
-                }
-            }
-            255.0
-        })
+        let w = frame.width;
+        self.distances.clear();
+        self.distances.extend(self.candidates.iter().map(|&i| {
+            let i = i as usize;
+            let p = frame.rgb(i);
+            let b = background.colour_at((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+            (0..3).map(|c| (p[c] - b[c]).powi(2)).sum::<f64>()
+        }));
+        self.scratch.clear();
+        self.scratch.extend_from_slice(&self.distances);
+        let n = self.scratch.len();
+        let keep = ((n as f64 * FULL_CONTRAST_FRACTION).ceil() as usize).clamp(1, n);
+        let (_, cut, _) = self
+            .scratch
+            .select_nth_unstable_by(n - keep, f64::total_cmp);
+        let cut = *cut;
+        let most_different = self
+            .candidates
+            .iter()
+            .zip(self.distances.iter())
+            .filter(|(_, d)| **d >= cut)
+            .map(|(&i, _)| i as usize);
+        median_colour(frame, most_different, &mut self.histogram)
     }
 
     /// Flags and lists the mask pixels: core, or candidates covered at least `mask_coverage`.

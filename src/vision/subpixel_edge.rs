@@ -35,6 +35,99 @@ pub(crate) fn edge_offset_px(coverage: f64, nx: f64, ny: f64) -> f64 {
     t - 0.5 * (a + b)
 }
 
+/// A straight edge in pixel coordinates: the target side is {x : n·x ≤ offset}, n a unit
+/// outward normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct EdgeLine {
+    /// Outward unit normal, u component.
+    pub nx: f64,
+    /// Outward unit normal, v component.
+    pub ny: f64,
+    /// n·x on the line, px.
+    pub offset_px: f64,
+}
+
+impl EdgeLine {
+    /// The edge through the pixel with centre (cu, cv) that covers the fraction `coverage` of
+    /// it with outward normal (nx, ny) (any length); `None` for a zero or non-finite normal.
+    pub fn through_pixel(cu: f64, cv: f64, coverage: f64, nx: f64, ny: f64) -> Option<Self> {
+        let norm = nx.hypot(ny);
+        if !(norm.is_finite() && norm > 0.0) {
+            return None;
+        }
+        let (nx, ny) = (nx / norm, ny / norm);
+        let s = edge_offset_px(coverage, nx, ny);
+        Some(Self {
+            nx,
+            ny,
+            offset_px: nx * cu + ny * cv + s,
+        })
+    }
+
+    /// The point of the line nearest the pixel centre (cu, cv).
+    pub fn foot_px(&self, cu: f64, cv: f64) -> (f64, f64) {
+        let d = self.offset_px - (self.nx * cu + self.ny * cv);
+        (cu + d * self.nx, cv + d * self.ny)
+    }
+
+    /// Where this line meets `other`, when they cross at an angle whose sine is at least
+    /// `min_sine`.
+    pub fn intersection(&self, other: &EdgeLine, min_sine: f64) -> Option<(f64, f64)> {
+        let det = self.nx * other.ny - self.ny * other.nx;
+        if det.abs() < min_sine {
+            return None;
+        }
+        let u = (self.offset_px * other.ny - self.ny * other.offset_px) / det;
+        let v = (self.nx * other.offset_px - self.offset_px * other.nx) / det;
+        Some((u, v))
+    }
+}
+
+/// Area of the pixel [u0, u0 + 1] x [v0, v0 + 1] on the target side of every line in `lines`
+/// (Sutherland-Hodgman clipping of the square, then the shoelace formula), px².
+pub(crate) fn pixel_area_inside(u0: f64, v0: f64, lines: &[EdgeLine]) -> f64 {
+    // A square clipped by k half-planes has at most 4 + k vertices.
+    const MAX_VERTICES: usize = 12;
+    let mut poly = [(0.0f64, 0.0f64); MAX_VERTICES];
+    let mut next = [(0.0f64, 0.0f64); MAX_VERTICES];
+    poly[..4].copy_from_slice(&[
+        (u0, v0),
+        (u0 + 1.0, v0),
+        (u0 + 1.0, v0 + 1.0),
+        (u0, v0 + 1.0),
+    ]);
+    let mut n = 4;
+    for line in lines {
+        let inside = |p: (f64, f64)| line.offset_px - (line.nx * p.0 + line.ny * p.1);
+        let mut m = 0;
+        for k in 0..n {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            let (da, db) = (inside(a), inside(b));
+            if da >= 0.0 && m < MAX_VERTICES {
+                next[m] = a;
+                m += 1;
+            }
+            if (da >= 0.0) != (db >= 0.0) && m < MAX_VERTICES {
+                let t = da / (da - db);
+                next[m] = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+                m += 1;
+            }
+        }
+        poly[..m].copy_from_slice(&next[..m]);
+        n = m;
+        if n < 3 {
+            return 0.0;
+        }
+    }
+    let twice: f64 = (0..n)
+        .map(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            a.0 * b.1 - b.0 * a.1
+        })
+        .sum();
+    0.5 * twice.abs()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -90,5 +183,39 @@ mod tests {
         let h = std::f64::consts::FRAC_1_SQRT_2;
         assert!((edge_offset_px(2.0, 1.0, 1.0) - h).abs() < 1e-12);
         assert!((edge_offset_px(-1.0, 1.0, 1.0) + h).abs() < 1e-12);
+    }
+
+    /// A line built from a pixel's coverage covers that pixel by exactly that area (to
+    /// rounding); two perpendicular lines through a corner clip the expected rectangle; lines
+    /// meet where they should.
+    #[test]
+    fn edge_lines_and_clipped_areas() {
+        for (alpha, nx, ny) in [
+            (0.3, 1.0, 0.0),
+            (0.05, 0.6, 0.8),
+            (0.7, -0.2, 0.9),
+            (0.95, -1.0, -1.0),
+        ] {
+            let line = EdgeLine::through_pixel(10.5, 20.5, alpha, nx, ny).unwrap();
+            let area = pixel_area_inside(10.0, 20.0, &[line]);
+            assert!((area - alpha).abs() < 1e-9, "{alpha} {nx} {ny}: {area}");
+        }
+        // x ≤ 3.3 and y ≤ 7.6 leave 0.3 x 0.6 of pixel (3, 7).
+        let right = EdgeLine {
+            nx: 1.0,
+            ny: 0.0,
+            offset_px: 3.3,
+        };
+        let bottom = EdgeLine {
+            nx: 0.0,
+            ny: 1.0,
+            offset_px: 7.6,
+        };
+        assert!((pixel_area_inside(3.0, 7.0, &[right, bottom]) - 0.18).abs() < 1e-12);
+        let (u, v) = right.intersection(&bottom, 0.3).unwrap();
+        assert!((u - 3.3).abs() < 1e-12 && (v - 7.6).abs() < 1e-12);
+        assert!(right.intersection(&right, 0.3).is_none());
+        assert_eq!(right.foot_px(1.0, 2.0), (3.3, 2.0));
+        assert!(EdgeLine::through_pixel(0.5, 0.5, 0.5, 0.0, 0.0).is_none());
     }
 }

@@ -51,10 +51,22 @@ pub(crate) enum Shape {
         breadth: f64,
         angle_rad: f64,
     },
+    /// Triangle with corners `a`, `b`, `c` (u, v).
+    Triangle {
+        a: (f64, f64),
+        b: (f64, f64),
+        c: (f64, f64),
+    },
+}
+
+/// Twice the signed area of (o, p, q).
+fn cross(o: (f64, f64), p: (f64, f64), q: (f64, f64)) -> f64 {
+    (p.0 - o.0) * (q.1 - o.1) - (p.1 - o.1) * (q.0 - o.0)
 }
 
 impl Shape {
-    fn contains(&self, pu: f64, pv: f64) -> bool {
+    /// Whether the point (u, v) is inside the shape.
+    pub fn contains(&self, pu: f64, pv: f64) -> bool {
         match *self {
             Shape::Disc { u, v, radius } => (pu - u).powi(2) + (pv - v).powi(2) <= radius * radius,
             Shape::Rectangle {
@@ -70,11 +82,24 @@ impl Shape {
                 let across = -du * s + dv * c;
                 along.abs() <= 0.5 * length && across.abs() <= 0.5 * breadth
             }
+            Shape::Triangle { a, b, c } => {
+                let p = (pu, pv);
+                let (d1, d2, d3) = (cross(a, b, p), cross(b, c, p), cross(c, a, p));
+                (d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0) || (d1 <= 0.0 && d2 <= 0.0 && d3 <= 0.0)
+            }
         }
     }
 
     /// Conservative bounding box (min u, min v, max u, max v).
     fn bounds(&self) -> (f64, f64, f64, f64) {
+        if let Shape::Triangle { a, b, c } = *self {
+            return (
+                a.0.min(b.0).min(c.0),
+                a.1.min(b.1).min(c.1),
+                a.0.max(b.0).max(c.0),
+                a.1.max(b.1).max(c.1),
+            );
+        }
         let (u, v, r) = match *self {
             Shape::Disc { u, v, radius } => (u, v, radius),
             Shape::Rectangle {
@@ -84,6 +109,7 @@ impl Shape {
                 breadth,
                 ..
             } => (u, v, 0.5 * length.hypot(breadth)),
+            Shape::Triangle { .. } => (0.0, 0.0, 0.0),
         };
         (u - r, v - r, u + r, v + r)
     }
@@ -95,6 +121,10 @@ impl Shape {
             Shape::Rectangle {
                 length, breadth, ..
             } => length.hypot(breadth),
+            Shape::Triangle { a, b, c } => {
+                let d = |p: (f64, f64), q: (f64, f64)| (p.0 - q.0).hypot(p.1 - q.1);
+                d(a, b).max(d(b, c)).max(d(c, a))
+            }
         }
     }
 
@@ -102,6 +132,7 @@ impl Shape {
     pub fn centroid_px(&self) -> (f64, f64) {
         match *self {
             Shape::Disc { u, v, .. } | Shape::Rectangle { u, v, .. } => (u, v),
+            Shape::Triangle { a, b, c } => ((a.0 + b.0 + c.0) / 3.0, (a.1 + b.1 + c.1) / 3.0),
         }
     }
 }
@@ -153,6 +184,18 @@ impl SyntheticScene {
             breadth,
             angle_rad,
         };
+        self.shapes.push((s, rgb));
+        s
+    }
+
+    pub fn add_triangle(
+        &mut self,
+        a: (f64, f64),
+        b: (f64, f64),
+        c: (f64, f64),
+        rgb: [f64; 3],
+    ) -> Shape {
+        let s = Shape::Triangle { a, b, c };
         self.shapes.push((s, rgb));
         s
     }

@@ -4,8 +4,9 @@
 //! rounded to 8 bits (0.5 grey level over a contrast of ≥ 100 levels: coverage error ≤ 0.005
 //! per pixel); the centroid from exact coverages of a shape is its area centroid, so what
 //! remains is that quantisation, averaged over the edge pixels: 0.05 px is generous by ~5x.
-//! The length estimate's error comes from the straight-edge model at corners and from the
-//! coverage-gradient normals, measured at ≤ 0.5 px here; the task's requirement is 1 px.
+//! The length estimate's errors come from where its outline points fall short (corners of
+//! short sides, sharp tips) or long (tangents of small curves); each test states what it
+//! measured. The task's requirement is 1 px.
 
 use super::config::{
     BackgroundSource, BlobSelection, DetectionThreshold, SegmentationConfig, TargetColour,
@@ -14,6 +15,7 @@ use super::config::{
 use super::pipeline::{BlobMeasurement, BlobStatus, VisionPipeline};
 use super::synthetic::{Background, Shape, SyntheticScene};
 use crate::render::camera::CameraIntrinsics;
+use proptest::prelude::*;
 
 const SKY: [f64; 3] = [170.0, 200.0, 235.0];
 const DARK: [f64; 3] = [40.0, 45.0, 55.0];
@@ -54,8 +56,8 @@ fn check_shape(
 }
 
 /// Discs of several radii at sub-pixel positions on a uniform background: centroid to 0.05 px
-/// (see module doc), length to 0.5 px of the diameter (a disc's edge is smooth, so the
-/// straight-edge model is near exact; 0.5 leaves margin for the 4-px disc).
+/// (see module doc), length to 0.3 px of the diameter (a disc's edge is smooth, so the
+/// straight-edge model is near exact: measured ≤ 0.19 px over radii 3-38 with noise).
 #[test]
 fn discs_centroid_and_length() {
     let mut worst = (0.0f64, 0.0f64);
@@ -64,7 +66,7 @@ fn discs_centroid_and_length() {
         let offset = 0.137 * k as f64;
         let disc = scene.add_disc(80.0 + offset, 60.0 + 0.71 * offset, radius, DARK);
         let m = measure_scene(&scene, BlobSelection::Largest);
-        let (c, l) = check_shape(&m, &disc, 0.05, 0.5);
+        let (c, l) = check_shape(&m, &disc, 0.05, 0.3);
         worst = (worst.0.max(c), worst.1.max(l.abs()));
         // The area is the sum of coverages: πr² to within the rounding of edge pixels.
         let area = std::f64::consts::PI * radius * radius;
@@ -80,23 +82,64 @@ fn discs_centroid_and_length() {
     );
 }
 
-/// A 40 x 12 px rectangle at angles every 7.5° through 180°: length within 1 px of the diagonal
-/// (the requirement; the corners are where sub-pixel edge points fall short), centroid 0.05 px.
+/// Rectangles at angles every 7.5° through 180°: the length is the diagonal within the task's
+/// 1 px everywhere, and within what the outline points achieve (see `edge_points`, measured
+/// over 2.5° steps with and without noise): 0.3 px for 40 x 12 and 20 x 20 (measured ≤ 0.16),
+/// 0.5 px for a 1.5-px-thin bar like a wing seen edge-on (measured ≤ 0.26), 0.75 px for a
+/// 10 x 4 rectangle whose short sides are too short for corner detection (measured ≤ 0.56,
+/// always short). Centroid within 0.05 px (0.1 for the thin bar: measured 0.07, all of its
+/// pixels are edge pixels).
 #[test]
 fn rectangles_at_angles() {
-    let mut worst = (0.0f64, 0.0f64);
-    for k in 0..24 {
-        let angle = f64::from(k) * 7.5f64.to_radians();
-        let mut scene = SyntheticScene::new(120, 100, Background::Uniform(SKY));
-        let rect = scene.add_rectangle((60.3, 50.6), (40.0, 12.0), angle, DARK);
-        let m = measure_scene(&scene, BlobSelection::Largest);
-        let (c, l) = check_shape(&m, &rect, 0.05, 1.0);
-        worst = (worst.0.max(c), worst.1.max(l.abs()));
+    let cases = [
+        ((40.0, 12.0), 0.3, 0.05),
+        ((20.0, 20.0), 0.3, 0.05),
+        ((60.0, 1.5), 0.5, 0.1),
+        ((10.0, 4.0), 0.75, 0.05),
+    ];
+    for (size, length_tol, centroid_tol) in cases {
+        let mut worst = (0.0f64, 0.0f64);
+        for k in 0..24 {
+            let angle = f64::from(k) * 7.5f64.to_radians();
+            let mut scene = SyntheticScene::new(120, 100, Background::Uniform(SKY));
+            let rect = scene.add_rectangle((60.3, 50.6), size, angle, DARK);
+            let m = measure_scene(&scene, BlobSelection::Largest);
+            let (c, l) = check_shape(&m, &rect, centroid_tol, length_tol);
+            worst = (worst.0.max(c), worst.1.max(l.abs()));
+        }
+        eprintln!(
+            "rectangle {size:?}: worst centroid error {:.4} px, length error {:.3} px",
+            worst.0, worst.1
+        );
     }
-    eprintln!(
-        "rectangles: worst centroid error {:.4} px, length error {:.3} px",
-        worst.0, worst.1
-    );
+}
+
+/// Triangles, turned every 15°: with 60° and 90° corners the length is within 1 px (measured
+/// −0.67..+0.16; the 90° triangle's hypotenuse ends in 45° corners). A 20° tip is measured
+/// short (its last ~2 px are covered less than the noise cut, and no straight edge runs close
+/// enough to find the vertex) but never long: between −2.5 and +0.3 px (measured −2.07..+0.2).
+#[test]
+fn triangles_and_sharp_tips() {
+    for (apex_deg, short_tol, long_tol) in [(60.0f64, 1.0, 1.0), (90.0, 1.0, 1.0), (20.0, 2.5, 0.3)]
+    {
+        for k in 0..24 {
+            let turn = f64::from(k) * 15f64.to_radians() + 0.1;
+            let half = 0.5 * apex_deg.to_radians();
+            let apex = (60.3, 50.4);
+            let corner = |a: f64| (apex.0 + 30.0 * a.cos(), apex.1 + 30.0 * a.sin());
+            let mut scene = SyntheticScene::new(120, 100, Background::Uniform(SKY));
+            let tri = scene.add_triangle(apex, corner(turn - half), corner(turn + half), DARK);
+            let m = measure_scene(&scene, BlobSelection::Largest);
+            assert_eq!(m.status, BlobStatus::Ok);
+            let err = m.max_length_px - tri.max_length_px();
+            assert!(
+                err > -short_tol && err < long_tol,
+                "apex {apex_deg}°, turn {turn}: length error {err}"
+            );
+            let (cu, cv) = tri.centroid_px();
+            assert!((m.centroid_u_px - cu).hypot(m.centroid_v_px - cv) < 0.1);
+        }
+    }
 }
 
 /// Sky gradient (vertical, and tilted as from a banked follower) with σ = 3 grey levels of
@@ -357,4 +400,43 @@ fn time_per_frame() {
         m.status,
         m.max_length_px
     );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Arbitrary frame content and sizes (0-20 px a side) and selections, NaN included, never
+    /// panic; a found blob's centroid lies within the frame and its length is finite and at
+    /// most the frame's diagonal (+2 px for outline points just outside a border pixel).
+    #[test]
+    fn arbitrary_frames_do_not_panic(
+        width in 0u32..20,
+        height in 0u32..20,
+        seed in any::<u64>(),
+        sparse in any::<bool>(),
+        near in prop::option::of((-5.0f64..25.0, -5.0f64..25.0)),
+    ) {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let n = (width * height) as usize;
+        let mut rgba = vec![200u8; n * 4];
+        for px in rgba.chunks_exact_mut(4) {
+            if !sparse || rng.random_bool(0.1) {
+                px.copy_from_slice(&rng.random::<[u8; 4]>());
+            }
+        }
+        let selection = match near {
+            Some((u, v)) => BlobSelection::NearestTo { u_px: u, v_px: v },
+            None => BlobSelection::NearestTo { u_px: f64::NAN, v_px: 1.0 },
+        };
+        let mut p = VisionPipeline::new(VisionConfig::default()).unwrap();
+        let m = p.measure(&rgba, width, height, selection).unwrap();
+        if m.status != BlobStatus::NotFound {
+            let (w, h) = (f64::from(width), f64::from(height));
+            prop_assert!(m.centroid_u_px >= 0.0 && m.centroid_u_px <= w);
+            prop_assert!(m.centroid_v_px >= 0.0 && m.centroid_v_px <= h);
+            prop_assert!(m.max_length_px.is_finite());
+            prop_assert!(m.max_length_px <= w.hypot(h) + 2.0);
+        }
+    }
 }
