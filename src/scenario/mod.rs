@@ -1,9 +1,11 @@
 //! Scenario files (TOML): schema with defaults, `--set section.key=value` overrides, and
 //! validation whose errors name the file, the key, the value and the allowed range.
 
+mod acceleration;
 pub mod check;
 mod sections;
 
+pub use acceleration::*;
 pub use sections::*;
 
 use std::path::{Path, PathBuf};
