@@ -1,10 +1,12 @@
 //! Scenario files (TOML): schema with defaults, `--set section.key=value` overrides, and
 //! validation whose errors name the file, the key, the value and the allowed range.
 
+mod acceleration;
 mod camera;
 pub mod check;
 mod sections;
 
+pub use acceleration::*;
 pub use camera::*;
 pub use sections::*;
 
