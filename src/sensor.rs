@@ -13,7 +13,10 @@ use crate::render::renderer::{RenderTimings, Renderer};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
 use crate::scenario::{BlobChoice, CameraSection, Scenario, SkyKind};
 use crate::sensing::{ImageMeasurement, scaled_relative_position};
-use crate::vision::{BlobMeasurement, BlobSelection, BlobStatus, ImageTruth, TruthProjector, VisionConfig, VisionPipeline};
+use crate::vision::{
+    BlobMeasurement, BlobSelection, BlobStatus, ImageTruth, TruthProjector, VisionConfig,
+    VisionPipeline,
+};
 use std::collections::VecDeque;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -150,7 +153,9 @@ impl std::fmt::Debug for CameraSensor {
 /// The renderer's settings for a `[camera]` section.
 pub fn render_settings(camera: &CameraSection, seed: u64) -> RenderSettings {
     let sky = match camera.sky {
-        SkyKind::Uniform => Sky::Uniform { rgb: camera.sky_rgb },
+        SkyKind::Uniform => Sky::Uniform {
+            rgb: camera.sky_rgb,
+        },
         SkyKind::Gradient => Sky::VerticalGradient {
             top_rgb: camera.sky_top_rgb,
             bottom_rgb: camera.sky_bottom_rgb,
@@ -188,7 +193,8 @@ pub fn load_target_mesh(scenario: &Scenario) -> Result<TargetMesh, SensorError> 
             path.display()
         )));
     }
-    TargetMesh::load_obj(path, scenario.target.size_ft / span).map_err(|e| SensorError::Mesh(e.to_string()))
+    TargetMesh::load_obj(path, scenario.target.size_ft / span)
+        .map_err(|e| SensorError::Mesh(e.to_string()))
 }
 
 impl CameraSensor {
@@ -278,7 +284,8 @@ impl CameraSensor {
         };
         if let (true, Some(m), Some(t)) = (ok, measured, truth) {
             self.errors.count += 1;
-            self.errors.centroid_sq_px2 += (m.y_i_px - t.y_i_px).powi(2) + (m.z_i_px - t.z_i_px).powi(2);
+            self.errors.centroid_sq_px2 +=
+                (m.y_i_px - t.y_i_px).powi(2) + (m.z_i_px - t.z_i_px).powi(2);
             self.errors.length_sq_px2 += (m.b_i_px - t.b_i_px).powi(2);
         }
         self.timings.truth += truth_started.elapsed();

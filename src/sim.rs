@@ -19,9 +19,9 @@ use crate::integrate::Rk4;
 use crate::scenario::{CommandFrame, ExcitationUnits, Mission, Scenario, SensorMode};
 use crate::sensing::line_of_sight_body;
 use crate::sensor::{CameraSensor, CaptureGeometry, FrameRecord};
-use std::time::{Duration, Instant};
 use crate::world::kinematic::{self, KinematicFollower};
 use crate::world::target::{TargetMotionModel, TargetState};
+use std::time::{Duration, Instant};
 
 /// Offset of the guidance slice in the state vector.
 const GUIDANCE: usize = kinematic::STATE_LEN;
@@ -249,7 +249,10 @@ impl Simulation {
         };
         let held = camera
             .capture(t_s, &geometry)
-            .map_err(|e| SimError::Camera { t_s, what: e.to_string() })?;
+            .map_err(|e| SimError::Camera {
+                t_s,
+                what: e.to_string(),
+            })?;
         let Some(record) = held else {
             return Ok(());
         };

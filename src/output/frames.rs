@@ -3,8 +3,8 @@
 
 use crate::render::frame::Frame;
 use crate::sensor::CameraSensor;
-use crate::vision::overlay::draw_measurement_overlay;
 use crate::vision::BlobMeasurement;
+use crate::vision::overlay::draw_measurement_overlay;
 use std::path::{Path, PathBuf};
 
 /// Saves every N-th frame of a camera into a directory.
@@ -44,7 +44,11 @@ impl FrameSaver {
 }
 
 /// Writes a frame as PNG, with the measurement drawn on a copy when given.
-pub fn write_frame(path: &Path, frame: &Frame, overlay: Option<&BlobMeasurement>) -> Result<(), String> {
+pub fn write_frame(
+    path: &Path,
+    frame: &Frame,
+    overlay: Option<&BlobMeasurement>,
+) -> Result<(), String> {
     match overlay {
         None => frame.save_png(path).map_err(|e| e.to_string()),
         Some(blob) => {

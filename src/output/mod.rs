@@ -70,7 +70,11 @@ pub fn run_to_directory(
     let log_every = u64::from(scenario.run.log_every);
     let progress_every = (sim.total_ticks() / 100).max(1);
     let mut frame_saver = (scenario.output.frames_every > 0).then(|| {
-        frames::FrameSaver::new(&out_dir.join("frames"), scenario.output.frames_every, scenario.output.overlay)
+        frames::FrameSaver::new(
+            &out_dir.join("frames"),
+            scenario.output.frames_every,
+            scenario.output.overlay,
+        )
     });
     let mut warnings = Vec::new();
     let mut log = |snapshot: Snapshot, telemetry: &mut TelemetryWriter| -> Result<(), RunError> {

@@ -103,7 +103,12 @@ impl CameraSection {
             self.rate_hz,
             format!("a rate whose period is a whole number of run.dt_s = {dt_s} s"),
         )?;
-        check::int_in("camera.latency_frames", i64::from(self.latency_frames), 0, 100)?;
+        check::int_in(
+            "camera.latency_frames",
+            i64::from(self.latency_frames),
+            0,
+            100,
+        )?;
         check::require(
             matches!(self.msaa_samples, 1 | 4),
             "camera.msaa_samples",
@@ -111,9 +116,25 @@ impl CameraSection {
             "1 or 4",
         )?;
         check::in_closed("camera.noise_std_grey", self.noise_std_grey, 0.0, 100.0)?;
-        check::require(!self.mesh.is_empty(), "camera.mesh", "\"\"", "a path to an OBJ file")?;
-        check::int_in("camera.min_pixel_count", i64::from(self.min_pixel_count), 1, 1_000_000)?;
-        check::in_open("camera.mask_coverage", self.mask_coverage, 0.0, 1.0 + 1e-12, "(0, 1]")
+        check::require(
+            !self.mesh.is_empty(),
+            "camera.mesh",
+            "\"\"",
+            "a path to an OBJ file",
+        )?;
+        check::int_in(
+            "camera.min_pixel_count",
+            i64::from(self.min_pixel_count),
+            1,
+            1_000_000,
+        )?;
+        check::in_open(
+            "camera.mask_coverage",
+            self.mask_coverage,
+            0.0,
+            1.0 + 1e-12,
+            "(0, 1]",
+        )
     }
 
     /// Focal length, px: `focal_px`, or from `hfov_deg` when that is 0.
