@@ -1,6 +1,7 @@
 //! The simulation: owns every stage and wires one tick in a fixed order (DESIGN §1).
 //!
-//! Continuous state, integrated as one vector by RK4: `[follower (R_F, φ, θ, ψ) | guidance]`.
+//! Continuous state, integrated as one vector by RK4:
+//! `[follower (R_F, φ, θ, ψ) | command frame (ψ_c) | guidance]`.
 //! The target's motion is closed-form. With the `perfect` sensor r = R/b is evaluated at every
 //! RK4 stage (the seed's continuous-time loop); a sampled sensor's measurement is held over
 //! the step.
@@ -11,20 +12,22 @@
 //! interception are checked.
 
 use crate::frames::{EulerAngles, Mat3, Vec3};
+use crate::guidance::command::{self, FormationCommand};
 use crate::guidance::excitation::Excitation;
 use crate::guidance::velocity::{
     VelocityEstimator, VelocityGuidance, VelocityGuidanceInput, VelocityGuidanceOutput,
 };
 use crate::integrate::Rk4;
-use crate::scenario::{CommandFrame, ExcitationUnits, Mission, Scenario, SensorMode};
-use crate::sensing::line_of_sight_body;
+use crate::scenario::{ExcitationUnits, Mission, Scenario, SensorMode};
 use crate::sensor::{CameraSensor, CaptureGeometry, FrameRecord};
 use crate::world::kinematic::{self, KinematicFollower};
 use crate::world::target::{TargetMotionModel, TargetState};
 use std::time::{Duration, Instant};
 
+/// Offset of the command slice in the state vector.
+const COMMAND: usize = kinematic::STATE_LEN;
 /// Offset of the guidance slice in the state vector.
-const GUIDANCE: usize = kinematic::STATE_LEN;
+const GUIDANCE: usize = COMMAND + command::STATE_LEN;
 
 /// Why a simulation could not start or go on.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -115,6 +118,7 @@ pub struct Simulation {
     scenario: Scenario,
     target: TargetMotionModel,
     follower: KinematicFollower,
+    command: FormationCommand,
     guidance: VelocityGuidance,
     excitation: Excitation,
     measurement: Measurement,
@@ -167,6 +171,7 @@ impl Simulation {
             Some(_) => Measurement::AwaitingFirst,
         };
         let mut state = KinematicFollower::initial_state(&follower0, &attitude0).to_vec();
+        state.extend(FormationCommand::initial_state(&attitude0));
         state.extend(guidance.initial_state(&r0));
         let mut sim = Self {
             rk4: Rk4::new(state.len()),
@@ -174,6 +179,7 @@ impl Simulation {
             scenario: scenario.clone(),
             target,
             follower,
+            command: FormationCommand::new(g),
             guidance,
             excitation,
             measurement,
@@ -267,36 +273,30 @@ impl Simulation {
         Ok(())
     }
 
-    /// The user's command R_c and Ṙ_c (NED, ft and ft/s) for a follower state: zero for
-    /// interception, fixed in NED, or (3.13)-(3.14) in the body frame, whose derivative
-    /// R_range L_BEᵀ (ω × T_IBc) uses the follower's body rates ω.
-    fn command(&self, follower_x: &[f64]) -> (Vec3, Vec3) {
-        let g = &self.scenario.guidance;
-        match (g.mission, g.command_frame) {
-            (Mission::Intercept, _) => (Vec3::zeros(), Vec3::zeros()),
-            (Mission::Formation, CommandFrame::Inertial) => {
-                (Vec3::from(g.command_ft), Vec3::zeros())
-            }
-            (Mission::Formation, CommandFrame::Body) => {
-                let attitude = KinematicFollower::attitude(follower_x);
-                let ned_from_body = attitude.body_from_ned().transpose();
-                let los = line_of_sight_body(
-                    g.command_bearing_deg.to_radians(),
-                    g.command_elevation_deg.to_radians(),
-                ) * g.command_range_ft;
-                let euler_rates = self
-                    .follower
-                    .attitude_rates(follower_x, &self.heading_velocity_ned_fps);
-                let omega = KinematicFollower::body_rates(&attitude, &euler_rates);
-                (ned_from_body * los, ned_from_body * omega.cross(&los))
-            }
-        }
+    /// The user's command R_c and Ṙ_c (NED, ft and ft/s) for the follower and command
+    /// slices of a state (see [`FormationCommand`]).
+    fn command(&self, x: &[f64]) -> (Vec3, Vec3) {
+        let follower_x = &x[..COMMAND];
+        let attitude = KinematicFollower::attitude(follower_x);
+        let euler_rates = self
+            .follower
+            .attitude_rates(follower_x, &self.heading_velocity_ned_fps);
+        let omega = KinematicFollower::body_rates(&attitude, &euler_rates);
+        self.command
+            .command(&x[COMMAND..GUIDANCE], &attitude, &omega)
     }
 
     /// ẋ of the whole state and the guidance output at (t, x).
     fn derivative(&self, t_s: f64, x: &[f64], dx: &mut [f64]) -> VelocityGuidanceOutput {
-        let (follower_x, guidance_x) = x.split_at(GUIDANCE);
-        let (follower_dx, guidance_dx) = dx.split_at_mut(GUIDANCE);
+        let (command_and_follower_x, guidance_x) = x.split_at(GUIDANCE);
+        let (follower_x, command_x) = command_and_follower_x.split_at(COMMAND);
+        let (command_and_follower_dx, guidance_dx) = dx.split_at_mut(GUIDANCE);
+        let (follower_dx, command_dx) = command_and_follower_dx.split_at_mut(COMMAND);
+        self.command.derivative(
+            command_x,
+            &KinematicFollower::attitude(follower_x),
+            command_dx,
+        );
         let r_measured = match self.measurement {
             Measurement::Continuous => {
                 let relative = self.target.position_ned_ft(t_s)
@@ -315,7 +315,7 @@ impl Simulation {
                 return out;
             }
         };
-        let (command_ned_ft, command_rate_ned_fps) = self.command(follower_x);
+        let (command_ned_ft, command_rate_ned_fps) = self.command(x);
         let (offset, offset_rate) = self.excitation.offset(t_s);
         let zero = Vec3::zeros();
         let (
@@ -360,7 +360,7 @@ impl Simulation {
         let (follower_x, guidance_x) = self.state.split_at(GUIDANCE);
         let follower = KinematicFollower::position_ned_ft(follower_x);
         let target = self.target.state(t_s);
-        let (command, _) = self.command(follower_x);
+        let (command, _) = self.command(&self.state);
         let b_hat_ft = VelocityGuidance::b_hat_ft(guidance_x);
         let (offset, _) = self.excitation.offset(t_s);
         let excitation_ned_ft = match self.excitation.units() {
@@ -405,8 +405,10 @@ impl Simulation {
             self.derivative(t, x, dx);
         });
         self.rk4 = rk4;
-        let (follower_x, guidance_x) = state.split_at_mut(GUIDANCE);
+        let (command_and_follower_x, guidance_x) = state.split_at_mut(GUIDANCE);
+        let (follower_x, command_x) = command_and_follower_x.split_at_mut(COMMAND);
         KinematicFollower::normalize(follower_x);
+        FormationCommand::normalize(command_x);
         self.guidance.enforce_bounds(guidance_x);
         self.state = state;
         self.tick += 1;

@@ -2,6 +2,7 @@
 //! command, with their projection bounds and the intelligent excitation.
 
 pub mod acceleration;
+pub mod command;
 pub mod excitation;
 pub mod projection;
 pub mod velocity;

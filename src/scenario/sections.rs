@@ -192,6 +192,9 @@ pub enum CommandFrame {
     Inertial,
     /// Range, bearing and elevation in the follower's body frame, (3.13)-(3.14).
     Body,
+    /// Range, bearing and elevation in a level frame that follows the follower's heading
+    /// with the lag `command_heading_lag_s` (see `guidance::command`).
+    Heading,
 }
 
 /// `[guidance]`: law, mission, gains and projection bounds.
@@ -212,6 +215,8 @@ pub struct GuidanceSection {
     pub command_bearing_deg: f64,
     /// Commanded elevation ϑ_c, deg, positive up (body frame).
     pub command_elevation_deg: f64,
+    /// Heading frame: time constant with which it follows the follower's heading, s.
+    pub command_heading_lag_s: f64,
     /// Drive the law with the Chapter 6 state estimator (6.10)-(6.17).
     pub estimator: bool,
     /// Estimator gain L_v = estimator_gain I, 1/s.
@@ -252,6 +257,7 @@ impl Default for GuidanceSection {
             command_range_ft: 33.0,
             command_bearing_deg: 14.0,
             command_elevation_deg: 0.0,
+            command_heading_lag_s: 3.0,
             estimator: false,
             estimator_gain: 1.7,
             k: 3.5,
@@ -287,6 +293,12 @@ impl GuidanceSection {
             89.0,
         )?;
         check::positive("guidance.estimator_gain", self.estimator_gain)?;
+        check::in_closed(
+            "guidance.command_heading_lag_s",
+            self.command_heading_lag_s,
+            0.01,
+            1000.0,
+        )?;
         check::positive("guidance.k", self.k)?;
         check::non_negative("guidance.sigma", self.sigma)?;
         check::non_negative("guidance.gamma_d", self.gamma_d)?;
