@@ -2,8 +2,10 @@
 //! validation whose errors name the file, the key, the value and the allowed range.
 
 pub mod check;
+mod control;
 mod sections;
 
+pub use control::*;
 pub use sections::*;
 
 use std::path::{Path, PathBuf};
