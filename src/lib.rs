@@ -10,9 +10,10 @@
 //! or through a flight controller on a 6-DOF aircraft); the recorder logs every stage.
 //!
 //! Modules, in the order data flows: [`frames`], [`scenario`], [`world`], [`sensing`],
-//! [`guidance`], [`integrate`], [`sim`], [`output`].
+//! [`guidance`], [`control`], [`integrate`], [`sim`], [`output`].
 #![warn(missing_docs)]
 
+pub mod control;
 pub mod frames;
 pub mod guidance;
 pub mod integrate;

@@ -4,10 +4,18 @@
 mod acceleration;
 mod camera;
 pub mod check;
+mod control;
+mod sections;
+
+mod acceleration;
+mod camera;
+pub mod check;
+mod control;
 mod sections;
 
 pub use acceleration::*;
 pub use camera::*;
+pub use control::*;
 pub use sections::*;
 
 use std::path::{Path, PathBuf};

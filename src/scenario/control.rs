@@ -1,0 +1,296 @@
+//! `[autopilot]`: gains and filters of the Chapter 7 flight controller (`crate::control`).
+//!
+//! The seed prints the control laws (7.20)-(7.33) but no numbers for them (section 7.4 gives
+//! only the aircraft data and the surface limits), so every default here is a documented
+//! choice. Gains are rates (1/s) of the error dynamics they set: (7.24) gives
+//! ė_φ = -k_φ e_φ, so 1/k_φ is the time constant of the roll-angle error. The inner (rate)
+//! loop is made about five times faster than the outer (angle) loop, and both slower than the
+//! surface servos (τ = 25 ms, 40 rad/s).
+
+use serde::{Deserialize, Serialize};
+
+use super::check::{self, Check};
+
+/// `[autopilot]`: the follower's flight controller (seed Chapter 7).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AutopilotSection {
+    /// k_V of the airspeed loop (7.20), 1/s. 1 s error time constant; it also damps the
+    /// phugoid, which the plant's T ∝ V² thrust leaves almost undamped.
+    pub airspeed_gain_per_s: f64,
+    /// k_φ of (7.24), 1/s.
+    pub roll_gain_per_s: f64,
+    /// k_θ of (7.24), 1/s.
+    pub pitch_gain_per_s: f64,
+    /// k_ψ of (7.24), 1/s.
+    pub yaw_gain_per_s: f64,
+    /// k_p of (7.25), 1/s.
+    pub roll_rate_gain_per_s: f64,
+    /// k_q of (7.25), 1/s.
+    pub pitch_rate_gain_per_s: f64,
+    /// k_r of (7.25), 1/s.
+    pub yaw_rate_gain_per_s: f64,
+    /// ω_V of the airspeed prefilter (7.33), rad/s.
+    pub airspeed_prefilter_omega_rps: f64,
+    /// ζ_V of the airspeed prefilter (7.33).
+    pub airspeed_prefilter_zeta: f64,
+    /// ω of the roll-angle prefilter ((7.33) with one more integrator, on φ_c), rad/s.
+    pub roll_prefilter_omega_rps: f64,
+    /// ζ of the roll-angle prefilter.
+    pub roll_prefilter_zeta: f64,
+    /// ω of the pitch-angle prefilter ((7.33) with one more integrator, on θ_c), rad/s.
+    pub pitch_prefilter_omega_rps: f64,
+    /// ζ of the pitch-angle prefilter.
+    pub pitch_prefilter_zeta: f64,
+    /// ω of the heading prefilter ((7.33) with one more integrator, on ψ_c), rad/s.
+    pub heading_prefilter_omega_rps: f64,
+    /// ζ of the heading prefilter.
+    pub heading_prefilter_zeta: f64,
+    /// Natural frequency of the command filter that gives ṗ_c, q̇_c, ṙ_c, rad/s.
+    pub rate_filter_omega_rps: f64,
+    /// Damping ratio of the rate command filter.
+    pub rate_filter_zeta: f64,
+    /// θ_c = γ_c + α_ref cos φ, α_ref from the nominal lift curve (true), or the seed's
+    /// Remark 9 θ_c = γ_c (false: the aircraft then flies α below the commanded path).
+    pub alpha_feedforward: bool,
+    /// Largest |α_ref| the pitch offset may ask for, deg (the stall blend starts near 27°).
+    pub max_alpha_ref_deg: f64,
+    /// α envelope, upper end, deg: θ_c ≤ γ + α_max cos φ (beyond the seed; the stall blend of
+    /// the seed follower's lift curve is centred on 27°).
+    pub max_alpha_deg: f64,
+    /// α envelope, lower end, deg: θ_c ≥ γ + α_min cos φ.
+    pub min_alpha_deg: f64,
+    /// Largest |φ_c| of the coordinated turn (7.14), deg.
+    pub max_bank_deg: f64,
+    /// Keep γ_c between the steepest descent and the steepest climb that (7.20) can hold
+    /// with the throttle inside its range (speed has priority over the path; beyond the seed,
+    /// whose thrust T ∝ V² cannot hold the target profile's slow climbs).
+    pub flight_path_limits: bool,
+    /// Fraction of the throttle range kept in reserve at each end by the flight-path limits.
+    pub thrust_margin_fraction: f64,
+    /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
+    /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below
+    /// the target profile's slowest 35.4 ft/s.
+    pub min_airspeed_cmd_fps: f64,
+    /// The inversion of (7.19) uses at least the dynamic pressure of this airspeed, ft/s.
+    pub min_control_airspeed_fps: f64,
+    /// Fly V_F relative to the air mass: V_F - ŵ, ŵ the measured wind (inertial minus
+    /// air-relative velocity) low-passed with `wind_filter_time_constant_s`. False: the seed's
+    /// V_c = ‖V_F‖, exact only in still air.
+    pub wind_compensation: bool,
+    /// Time constant of the wind estimate's low-pass filter, s.
+    pub wind_filter_time_constant_s: f64,
+    /// Adapt the RBF networks (7.23), (7.28); false keeps Ŵ = 0.
+    pub rbf_enabled: bool,
+    /// Width σ of the Gaussian RBFs (2.34) in normalised input units.
+    pub rbf_width: f64,
+    /// Adaptation gain G_D of the drag network (7.23).
+    pub drag_adaptation_gain: f64,
+    /// Adaptation gain G_p of the roll-moment network (7.28).
+    pub roll_adaptation_gain: f64,
+    /// Adaptation gain G_q of the pitch-moment network (7.28).
+    pub pitch_adaptation_gain: f64,
+    /// Adaptation gain G_r of the yaw-moment network (7.28).
+    pub yaw_adaptation_gain: f64,
+    /// Projection bound ‖Ŵ_D‖ ≤ this (Ω_0), ft/s² per unit RBF.
+    pub drag_weight_max: f64,
+    /// Projection bound ‖Ŵ_l‖, ‖Ŵ_m‖, ‖Ŵ_n‖ ≤ this (Ω_0), rad/s² per unit RBF.
+    pub moment_weight_max: f64,
+    /// Projection tolerance ε of f(W) = (WᵀW - W_max²)/ε (Appendix A).
+    pub weight_epsilon: f64,
+    /// Stop a network's adaptation while the actuator it acts through is at its limit.
+    pub freeze_adaptation_on_saturation: bool,
+}
+
+impl Default for AutopilotSection {
+    fn default() -> Self {
+        Self {
+            airspeed_gain_per_s: 1.0,
+            roll_gain_per_s: 2.0,
+            pitch_gain_per_s: 2.0,
+            yaw_gain_per_s: 1.0,
+            roll_rate_gain_per_s: 10.0,
+            pitch_rate_gain_per_s: 10.0,
+            yaw_rate_gain_per_s: 5.0,
+            airspeed_prefilter_omega_rps: 1.0,
+            airspeed_prefilter_zeta: 0.9,
+            roll_prefilter_omega_rps: 2.0,
+            roll_prefilter_zeta: 0.9,
+            pitch_prefilter_omega_rps: 2.0,
+            pitch_prefilter_zeta: 0.9,
+            heading_prefilter_omega_rps: 1.5,
+            heading_prefilter_zeta: 0.9,
+            rate_filter_omega_rps: 30.0,
+            rate_filter_zeta: 0.8,
+            alpha_feedforward: true,
+            max_alpha_ref_deg: 15.0,
+            max_alpha_deg: 18.0,
+            min_alpha_deg: -8.0,
+            max_bank_deg: 30.0,
+            flight_path_limits: true,
+            thrust_margin_fraction: 0.1,
+            min_airspeed_cmd_fps: 35.0,
+            min_control_airspeed_fps: 15.0,
+            wind_compensation: true,
+            wind_filter_time_constant_s: 1.0,
+            rbf_enabled: true,
+            rbf_width: 1.0,
+            drag_adaptation_gain: 0.1,
+            roll_adaptation_gain: 1.0,
+            pitch_adaptation_gain: 1.0,
+            yaw_adaptation_gain: 1.0,
+            drag_weight_max: 2.0,
+            moment_weight_max: 3.0,
+            weight_epsilon: 0.5,
+            freeze_adaptation_on_saturation: true,
+        }
+    }
+}
+
+impl AutopilotSection {
+    /// Checks every value; keys are named as under `[autopilot]`.
+    pub fn validate(&self) -> Check {
+        let gains = [
+            ("autopilot.airspeed_gain_per_s", self.airspeed_gain_per_s),
+            ("autopilot.roll_gain_per_s", self.roll_gain_per_s),
+            ("autopilot.pitch_gain_per_s", self.pitch_gain_per_s),
+            ("autopilot.yaw_gain_per_s", self.yaw_gain_per_s),
+            ("autopilot.roll_rate_gain_per_s", self.roll_rate_gain_per_s),
+            (
+                "autopilot.pitch_rate_gain_per_s",
+                self.pitch_rate_gain_per_s,
+            ),
+            ("autopilot.yaw_rate_gain_per_s", self.yaw_rate_gain_per_s),
+        ];
+        for (key, value) in gains {
+            check::in_closed(key, value, 1e-3, 1e3)?;
+        }
+        let filters = [
+            (
+                "autopilot.airspeed_prefilter_omega_rps",
+                self.airspeed_prefilter_omega_rps,
+            ),
+            (
+                "autopilot.roll_prefilter_omega_rps",
+                self.roll_prefilter_omega_rps,
+            ),
+            (
+                "autopilot.pitch_prefilter_omega_rps",
+                self.pitch_prefilter_omega_rps,
+            ),
+            (
+                "autopilot.heading_prefilter_omega_rps",
+                self.heading_prefilter_omega_rps,
+            ),
+            (
+                "autopilot.rate_filter_omega_rps",
+                self.rate_filter_omega_rps,
+            ),
+        ];
+        for (key, value) in filters {
+            check::in_closed(key, value, 1e-3, 1e3)?;
+        }
+        let dampings = [
+            (
+                "autopilot.airspeed_prefilter_zeta",
+                self.airspeed_prefilter_zeta,
+            ),
+            ("autopilot.roll_prefilter_zeta", self.roll_prefilter_zeta),
+            ("autopilot.pitch_prefilter_zeta", self.pitch_prefilter_zeta),
+            (
+                "autopilot.heading_prefilter_zeta",
+                self.heading_prefilter_zeta,
+            ),
+            ("autopilot.rate_filter_zeta", self.rate_filter_zeta),
+        ];
+        for (key, value) in dampings {
+            check::in_closed(key, value, 0.1, 10.0)?;
+        }
+        check::in_closed(
+            "autopilot.max_alpha_ref_deg",
+            self.max_alpha_ref_deg,
+            0.0,
+            25.0,
+        )?;
+        check::in_closed("autopilot.max_alpha_deg", self.max_alpha_deg, 1.0, 40.0)?;
+        check::in_closed("autopilot.min_alpha_deg", self.min_alpha_deg, -40.0, -1.0)?;
+        check::require(
+            self.max_alpha_ref_deg <= self.max_alpha_deg,
+            "autopilot.max_alpha_ref_deg",
+            self.max_alpha_ref_deg,
+            format!("<= autopilot.max_alpha_deg = {}", self.max_alpha_deg),
+        )?;
+        check::in_closed("autopilot.max_bank_deg", self.max_bank_deg, 1.0, 80.0)?;
+        check::in_closed(
+            "autopilot.thrust_margin_fraction",
+            self.thrust_margin_fraction,
+            0.0,
+            0.45,
+        )?;
+        check::in_closed(
+            "autopilot.min_airspeed_cmd_fps",
+            self.min_airspeed_cmd_fps,
+            0.0,
+            500.0,
+        )?;
+        check::in_closed(
+            "autopilot.min_control_airspeed_fps",
+            self.min_control_airspeed_fps,
+            1.0,
+            500.0,
+        )?;
+        check::in_closed(
+            "autopilot.wind_filter_time_constant_s",
+            self.wind_filter_time_constant_s,
+            1e-3,
+            1e3,
+        )?;
+        check::in_closed("autopilot.rbf_width", self.rbf_width, 0.05, 100.0)?;
+        let adaptation = [
+            ("autopilot.drag_adaptation_gain", self.drag_adaptation_gain),
+            ("autopilot.roll_adaptation_gain", self.roll_adaptation_gain),
+            (
+                "autopilot.pitch_adaptation_gain",
+                self.pitch_adaptation_gain,
+            ),
+            ("autopilot.yaw_adaptation_gain", self.yaw_adaptation_gain),
+        ];
+        for (key, value) in adaptation {
+            check::in_closed(key, value, 0.0, 1e4)?;
+        }
+        check::in_closed("autopilot.drag_weight_max", self.drag_weight_max, 0.0, 1e4)?;
+        check::in_closed(
+            "autopilot.moment_weight_max",
+            self.moment_weight_max,
+            0.0,
+            1e4,
+        )?;
+        check::in_closed("autopilot.weight_epsilon", self.weight_epsilon, 1e-6, 1e4)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_round_trip() {
+        let section = AutopilotSection::default();
+        assert!(section.validate().is_ok());
+        let text = toml::to_string(&section).expect("serialisable");
+        let back: AutopilotSection = toml::from_str(&text).expect("parses");
+        assert_eq!(back, section);
+    }
+
+    #[test]
+    fn unknown_key_and_bad_value_are_named() {
+        let err = toml::from_str::<AutopilotSection>("k_v = 1.0").expect_err("unknown key");
+        assert!(err.to_string().contains("k_v"), "{err}");
+        let section = AutopilotSection {
+            rate_filter_zeta: 0.0,
+            ..AutopilotSection::default()
+        };
+        let err = section.validate().expect_err("out of range");
+        assert_eq!(err.key, "autopilot.rate_filter_zeta");
+    }
+}
