@@ -7,12 +7,6 @@ pub mod check;
 mod control;
 mod sections;
 
-mod acceleration;
-mod camera;
-pub mod check;
-mod control;
-mod sections;
-
 pub use acceleration::*;
 pub use camera::*;
 pub use control::*;
