@@ -5,6 +5,7 @@ use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use wingman::output::frames::render_frame_at;
 use wingman::output::{RunError, run_to_directory};
 use wingman::scenario::Scenario;
 
@@ -35,6 +36,21 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Render the follower camera's view at one instant of a scenario, with the measurement
+    /// (status colour) and the truth (projected mesh) drawn on it.
+    Render {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        /// Time of the frame, s.
+        #[arg(long = "at", value_name = "T_S")]
+        at_s: f64,
+        /// Output PNG (default: runs/<scenario stem>/frame_<T>.png).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Override a scenario value: section.key=value (repeatable).
+        #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
+        overrides: Vec<String>,
+    },
 }
 
 fn stem(path: &Path) -> String {
@@ -52,6 +68,67 @@ fn main() -> ExitCode {
             overrides,
             quiet,
         } => run(&scenario, out, &overrides, quiet),
+        Command::Render {
+            scenario,
+            at_s,
+            out,
+            overrides,
+        } => render(&scenario, at_s, out, &overrides),
+    }
+}
+
+fn render(path: &Path, at_s: f64, out: Option<PathBuf>, overrides: &[String]) -> ExitCode {
+    let scenario = match Scenario::load(path, overrides) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if !(at_s.is_finite() && at_s >= 0.0 && at_s <= scenario.run.duration_s) {
+        eprintln!(
+            "error: --at {at_s} is outside the scenario's [0, {}] s",
+            scenario.run.duration_s
+        );
+        return ExitCode::from(2);
+    }
+    let out = out.unwrap_or_else(|| {
+        PathBuf::from("runs")
+            .join(stem(path))
+            .join(format!("frame_{at_s:.3}s.png"))
+    });
+    match render_frame_at(&scenario, at_s, &out) {
+        Ok(record) => {
+            let measured = record
+                .measured
+                .map(|m| {
+                    format!(
+                        "yI {:.2}, zI {:.2}, bI {:.2} px",
+                        m.y_i_px, m.z_i_px, m.b_i_px
+                    )
+                })
+                .unwrap_or_else(|| "nothing".to_string());
+            let truth = record
+                .truth
+                .map(|m| {
+                    format!(
+                        "yI {:.2}, zI {:.2}, bI {:.2} px",
+                        m.y_i_px, m.z_i_px, m.b_i_px
+                    )
+                })
+                .unwrap_or_else(|| "target partly behind the camera".to_string());
+            eprintln!(
+                "frame at t = {:.3} s: {} measured {measured}; truth {truth}; written to {}",
+                record.t_s,
+                record.status.label(),
+                out.display()
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
     }
 }
 

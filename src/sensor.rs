@@ -40,6 +40,8 @@ pub enum SensorError {
 pub struct CaptureGeometry {
     /// R_T - R_F, NED, ft.
     pub relative_ned_ft: Vec3,
+    /// R_F, NED, ft (the follower's own navigation state, known to it).
+    pub follower_position_ned_ft: Vec3,
     /// Follower attitude (camera = body).
     pub follower_attitude: EulerAngles,
     /// Target attitude.
@@ -73,6 +75,8 @@ pub struct FrameRecord {
     pub truth: Option<ImageMeasurement>,
     /// r* from this frame (None when lost).
     pub r_measured: Option<Vec3>,
+    /// Where the follower was when the frame was taken, NED, ft.
+    pub follower_position_ned_ft: Vec3,
 }
 
 /// Wall-clock time spent in each stage of the camera, summed over the run.
@@ -132,6 +136,7 @@ pub struct CameraSensor {
     held: Option<FrameRecord>,
     last_frame: Option<FrameRecord>,
     last_measurement: Option<BlobMeasurement>,
+    last_truth: Option<ImageTruth>,
     previous_centroid_px: Option<(f64, f64)>,
     frames: u64,
     lost_frames: u64,
@@ -212,6 +217,7 @@ impl CameraSensor {
             ..VisionConfig::default()
         };
         vision_config.segmentation.mask_coverage = camera.mask_coverage;
+        vision_config.link_radius_px = camera.link_radius_px as usize;
         let vision =
             VisionPipeline::new(vision_config).map_err(|e| SensorError::Camera(e.to_string()))?;
         Ok(Self {
@@ -227,6 +233,7 @@ impl CameraSensor {
             held: None,
             last_frame: None,
             last_measurement: None,
+            last_truth: None,
             previous_centroid_px: None,
             frames: 0,
             lost_frames: 0,
@@ -268,10 +275,10 @@ impl CameraSensor {
         self.timings.vision += vision_started.elapsed();
 
         let truth_started = Instant::now();
-        let truth = self
+        self.last_truth = self
             .truth
-            .image_truth(&self.mesh_vertices_ft, &pose, &self.intrinsics)
-            .map(|t: ImageTruth| t.image_measurement());
+            .image_truth(&self.mesh_vertices_ft, &pose, &self.intrinsics);
+        let truth = self.last_truth.map(|t: ImageTruth| t.image_measurement());
         let measured = blob.image_measurement(&self.intrinsics);
         let ok = blob.status == BlobStatus::Ok;
         let r_measured = match (ok, measured) {
@@ -301,6 +308,7 @@ impl CameraSensor {
             measured,
             truth,
             r_measured,
+            follower_position_ned_ft: geometry.follower_position_ned_ft,
         };
         self.last_frame = Some(record);
         self.last_measurement = Some(blob);
@@ -322,6 +330,12 @@ impl CameraSensor {
             (Some(record), Some(blob)) => Some((self.renderer.frame(), record, blob)),
             _ => None,
         }
+    }
+
+    /// The ground truth of the last frame taken (None when part of the target was behind
+    /// the camera).
+    pub fn last_truth(&self) -> Option<ImageTruth> {
+        self.last_truth
     }
 
     /// The record of the last frame taken.

@@ -105,11 +105,44 @@ pub struct Snapshot {
 enum Measurement {
     /// r = R/b from the stage's state (seed Chapters 4-5).
     Continuous,
-    /// A sampled measurement held over the step; None while the target is lost.
-    Held(Option<Vec3>),
+    /// A sampled measurement held until the next one arrives; None while the target is lost.
+    Held(Option<HeldMeasurement>),
     /// No measurement has arrived yet: the guidance has not started and the follower cruises
     /// at b̂(0) d̂(0).
     AwaitingFirst,
+}
+
+/// A camera measurement as the guidance holds it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct HeldMeasurement {
+    /// r* of the frame.
+    r: Vec3,
+    /// When the frame was taken, s.
+    t_s: f64,
+    /// Where the follower was then, NED, ft.
+    follower_position_ned_ft: Vec3,
+}
+
+impl HeldMeasurement {
+    /// The measurement brought forward to time `t_s` (when `compensate` is set): the frame is
+    /// a frame period plus the latency old, and in that time r has moved by the follower's own
+    /// displacement, known from its navigation, over b̂, and by the target's drift d̂ (t - t_k):
+    /// r ≈ r*(t_k) - (R_F(t) - R_F(t_k))/b̂ + d̂ (t - t_k). The seed assumed continuous,
+    /// instantaneous measurements; without this the stale r* biases the adaptation every frame.
+    fn at(
+        &self,
+        t_s: f64,
+        follower_position_ned_ft: &Vec3,
+        b_hat_ft: f64,
+        d_hat: &Vec3,
+        compensate: bool,
+    ) -> Vec3 {
+        if !compensate {
+            return self.r;
+        }
+        self.r - (follower_position_ned_ft - self.follower_position_ned_ft) / b_hat_ft
+            + d_hat * (t_s - self.t_s)
+    }
 }
 
 /// A running simulation.
@@ -125,9 +158,6 @@ pub struct Simulation {
     camera: Option<CameraSensor>,
     /// Wall time spent integrating (guidance, follower), s.
     integrate_time: Duration,
-    /// V_F at the start of the step: the direction the attitude turns to during the step
-    /// (a one-tick delay that breaks the loop attitude → body-frame command → V_F).
-    heading_velocity_ned_fps: Vec3,
     rk4: Rk4,
     state: Vec<f64>,
     /// Scratch for derivative evaluations outside the integrator.
@@ -170,7 +200,8 @@ impl Simulation {
             None => Measurement::Continuous,
             Some(_) => Measurement::AwaitingFirst,
         };
-        let mut state = KinematicFollower::initial_state(&follower0, &attitude0).to_vec();
+        let mut state =
+            KinematicFollower::initial_state(&follower0, &attitude0, &Vec3::zeros()).to_vec();
         state.extend(FormationCommand::initial_state(&attitude0));
         state.extend(guidance.initial_state(&r0));
         let mut sim = Self {
@@ -185,14 +216,14 @@ impl Simulation {
             measurement,
             camera,
             integrate_time: Duration::ZERO,
-            heading_velocity_ned_fps: Vec3::zeros(),
             state,
             tick: 0,
             total_ticks: scenario.run.total_ticks(),
             min_range_ft: r0.norm() * scenario.target.size_ft,
             intercept_time_s: None,
         };
-        sim.heading_velocity_ned_fps = sim.evaluate().velocity_cmd_ned_fps;
+        let v0 = sim.evaluate().velocity_cmd_ned_fps;
+        KinematicFollower::set_heading_velocity(&mut sim.state[..COMMAND], &v0);
         Ok(sim)
     }
 
@@ -236,22 +267,29 @@ impl Simulation {
         self.integrate_time
     }
 
+    /// Where follower and target are now, as a camera frame would see them.
+    pub fn capture_geometry(&self) -> CaptureGeometry {
+        let t_s = self.time_s();
+        let follower_x = &self.state[..GUIDANCE];
+        CaptureGeometry {
+            relative_ned_ft: self.target.position_ned_ft(t_s)
+                - KinematicFollower::position_ned_ft(follower_x),
+            follower_position_ned_ft: KinematicFollower::position_ned_ft(follower_x),
+            follower_attitude: KinematicFollower::attitude(follower_x),
+            target_attitude: self.target.state(t_s).attitude,
+        }
+    }
+
     /// Takes a camera frame at this tick if one is due and holds its (delayed) measurement.
     fn sense(&mut self) -> Result<(), SimError> {
         let tick = self.tick;
         let t_s = self.time_s();
-        let Some(camera) = self.camera.as_mut() else {
-            return Ok(());
-        };
-        if !camera.is_frame_tick(tick) {
+        if !self.camera.as_ref().is_some_and(|c| c.is_frame_tick(tick)) {
             return Ok(());
         }
-        let follower_x = &self.state[..GUIDANCE];
-        let geometry = CaptureGeometry {
-            relative_ned_ft: self.target.position_ned_ft(t_s)
-                - KinematicFollower::position_ned_ft(follower_x),
-            follower_attitude: KinematicFollower::attitude(follower_x),
-            target_attitude: self.target.state(t_s).attitude,
+        let geometry = self.capture_geometry();
+        let Some(camera) = self.camera.as_mut() else {
+            return Ok(());
         };
         let held = camera
             .capture(t_s, &geometry)
@@ -262,9 +300,21 @@ impl Simulation {
         let Some(record) = held else {
             return Ok(());
         };
-        let r = record.r_measured;
-        if let (Measurement::AwaitingFirst, Some(r0)) = (self.measurement, r) {
-            // The guidance starts on its first measurement.
+        let r = record.r_measured.map(|r| HeldMeasurement {
+            r,
+            t_s: record.t_s,
+            follower_position_ned_ft: record.follower_position_ned_ft,
+        });
+        if let (Measurement::AwaitingFirst, Some(first)) = (self.measurement, r) {
+            // The guidance starts on its first measurement, brought forward to now.
+            let guidance_x = &self.state[GUIDANCE..];
+            let r0 = first.at(
+                t_s,
+                &KinematicFollower::position_ned_ft(&self.state[..COMMAND]),
+                VelocityGuidance::b_hat_ft(guidance_x),
+                &VelocityGuidance::d_hat(guidance_x),
+                self.scenario.camera.compensate_delay,
+            );
             self.guidance.start_at(&mut self.state[GUIDANCE..], &r0);
         }
         if r.is_some() || self.measurement != Measurement::AwaitingFirst {
@@ -278,9 +328,7 @@ impl Simulation {
     fn command(&self, x: &[f64]) -> (Vec3, Vec3) {
         let follower_x = &x[..COMMAND];
         let attitude = KinematicFollower::attitude(follower_x);
-        let euler_rates = self
-            .follower
-            .attitude_rates(follower_x, &self.heading_velocity_ned_fps);
+        let euler_rates = self.follower.attitude_rates(follower_x);
         let omega = KinematicFollower::body_rates(&attitude, &euler_rates);
         self.command
             .command(&x[COMMAND..GUIDANCE], &attitude, &omega)
@@ -303,15 +351,19 @@ impl Simulation {
                     - KinematicFollower::position_ned_ft(follower_x);
                 Some(relative / self.scenario.target.size_ft)
             }
-            Measurement::Held(r) => r,
+            Measurement::Held(held) => held.map(|m| {
+                m.at(
+                    t_s,
+                    &KinematicFollower::position_ned_ft(follower_x),
+                    VelocityGuidance::b_hat_ft(guidance_x),
+                    &VelocityGuidance::d_hat(guidance_x),
+                    self.scenario.camera.compensate_delay,
+                )
+            }),
             Measurement::AwaitingFirst => {
                 let out = self.guidance.idle(guidance_x, guidance_dx);
-                self.follower.derivative(
-                    follower_x,
-                    &out.velocity_cmd_ned_fps,
-                    &self.heading_velocity_ned_fps,
-                    follower_dx,
-                );
+                self.follower
+                    .derivative(follower_x, &out.velocity_cmd_ned_fps, follower_dx);
                 return out;
             }
         };
@@ -335,12 +387,8 @@ impl Simulation {
             excitation_scaled_rate,
         };
         let out = self.guidance.derivative(guidance_x, &input, guidance_dx);
-        self.follower.derivative(
-            follower_x,
-            &out.velocity_cmd_ned_fps,
-            &self.heading_velocity_ned_fps,
-            follower_dx,
-        );
+        self.follower
+            .derivative(follower_x, &out.velocity_cmd_ned_fps, follower_dx);
         out
     }
 
@@ -380,7 +428,7 @@ impl Simulation {
             excitation_amplitude: self.excitation.amplitude(),
             r_measured: match self.measurement {
                 Measurement::Continuous => Some(relative / self.scenario.target.size_ft),
-                Measurement::Held(r) => r,
+                Measurement::Held(held) => held.map(|m| m.r),
                 Measurement::AwaitingFirst => None,
             },
             b_hat_ft,
@@ -431,7 +479,6 @@ impl Simulation {
             });
         }
         let out = self.evaluate();
-        self.heading_velocity_ned_fps = out.velocity_cmd_ned_fps;
         self.excitation.record(t_end_s, out.error.norm_squared());
 
         if self.scenario.guidance.mission == Mission::Intercept

@@ -59,3 +59,57 @@ pub fn write_frame(
         }
     }
 }
+
+/// Why `wingman render` could not write its frame.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderFrameError {
+    /// The simulation stopped before the requested time.
+    #[error("{0}")]
+    Sim(#[from] crate::sim::SimError),
+    /// The camera could not be set up or the frame not taken.
+    #[error("{0}")]
+    Camera(#[from] crate::sensor::SensorError),
+    /// The PNG could not be written.
+    #[error("{0}")]
+    Write(String),
+}
+
+/// Runs `scenario` to `t_s` (no outputs), takes one camera frame of the geometry there with the
+/// scenario's `[camera]` (whatever its sensor mode), and writes it to `path` with the measured
+/// (status colour) and true (projected mesh) maximal-length segments and centroids drawn on it.
+pub fn render_frame_at(
+    scenario: &crate::scenario::Scenario,
+    t_s: f64,
+    path: &Path,
+) -> Result<crate::sensor::FrameRecord, RenderFrameError> {
+    let mut sim = crate::sim::Simulation::new(scenario)?;
+    let target_tick = (t_s / scenario.run.dt_s).round() as u64;
+    while sim.tick() < target_tick.min(sim.total_ticks()) {
+        match sim.step()? {
+            crate::sim::StepOutcome::Running => {}
+            _ => break,
+        }
+    }
+    let mut camera = CameraSensor::new(scenario)?;
+    let geometry = sim.capture_geometry();
+    camera.capture(sim.time_s(), &geometry)?;
+    let Some((frame, record, blob)) = camera.last_frame() else {
+        return Err(RenderFrameError::Write("no frame was taken".to_string()));
+    };
+    let mut copy = frame.clone();
+    let intrinsics = *camera.intrinsics();
+    if let Some(truth) = camera.last_truth() {
+        crate::vision::overlay::draw_truth_overlay(&mut copy.rgba, &intrinsics, &truth)
+            .map_err(|e| RenderFrameError::Write(e.to_string()))?;
+    }
+    draw_measurement_overlay(&mut copy.rgba, copy.width_px, copy.height_px, blob)
+        .map_err(|e| RenderFrameError::Write(e.to_string()))?;
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| {
+            RenderFrameError::Write(format!("cannot create {}: {e}", dir.display()))
+        })?;
+    }
+    copy.save_png(path)
+        .map_err(|e| RenderFrameError::Write(e.to_string()))?;
+    Ok(*record)
+}

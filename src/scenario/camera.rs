@@ -60,6 +60,12 @@ pub struct CameraSection {
     pub selection: BlobChoice,
     /// Blobs with fewer mask pixels are too small to measure.
     pub min_pixel_count: u32,
+    /// Mask pixels up to this far apart (px, in u and v) are one blob: 2 bridges the broken
+    /// lines a distant wing seen edge-on rasterises to.
+    pub link_radius_px: u32,
+    /// Bring each held measurement forward to the current time with the follower's own known
+    /// displacement and the estimated target drift (see `sim`); false holds r* as measured.
+    pub compensate_delay: bool,
     /// A candidate pixel joins the target mask when at least this fraction of it is covered,
     /// in (0, 1]; lower keeps thin parts (a wing seen edge-on) connected.
     pub mask_coverage: f64,
@@ -84,6 +90,8 @@ impl Default for CameraSection {
             selection: BlobChoice::Nearest,
             min_pixel_count: 4,
             mask_coverage: 0.5,
+            compensate_delay: true,
+            link_radius_px: 2,
         }
     }
 }
@@ -127,6 +135,12 @@ impl CameraSection {
             i64::from(self.min_pixel_count),
             1,
             1_000_000,
+        )?;
+        check::int_in(
+            "camera.link_radius_px",
+            i64::from(self.link_radius_px),
+            1,
+            8,
         )?;
         check::in_open(
             "camera.mask_coverage",

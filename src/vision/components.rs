@@ -61,10 +61,24 @@ fn union(parents: &mut [u32], a: u32, b: u32) -> u32 {
 }
 
 impl ComponentLabeller {
-    /// Labels the mask pixels `mask` (indices in raster order) of a `width` x `height` image;
-    /// afterwards `labels[i]` is the blob index + 1 of pixel `i` (0 outside the mask) and
-    /// `blobs` holds one summary per blob.
+    /// Labels the mask pixels `mask` (indices in raster order) of a `width` x `height` image
+    /// with 8-connectivity; afterwards `labels[i]` is the blob index + 1 of pixel `i` (0
+    /// outside the mask) and `blobs` holds one summary per blob.
     pub fn label(&mut self, mask: &[u32], width: usize, height: usize) {
+        self.label_linked(mask, width, height, 1);
+    }
+
+    /// As [`Self::label`], but two mask pixels are in one blob when a chain of mask pixels
+    /// joins them with steps of at most `link_radius_px` in u and in v (1: 8-connectivity;
+    /// 2 bridges one-pixel gaps, e.g. a wing seen edge-on that rasterises as a broken line).
+    pub fn label_linked(
+        &mut self,
+        mask: &[u32],
+        width: usize,
+        height: usize,
+        link_radius_px: usize,
+    ) {
+        let radius = link_radius_px.max(1);
         let n = width * height;
         if self.labels.len() != n {
             self.labels.clear();
@@ -95,17 +109,16 @@ impl ComponentLabeller {
                     };
                 }
             };
-            if u > 0 {
-                neighbour(i - 1, &self.labels, &mut self.parents);
+            // Already visited neighbours: the `radius` rows above (u ± radius) and the
+            // `radius` pixels to the left on this row.
+            for dv in 1..=radius.min(v) {
+                let row = i - dv * w - u;
+                for nu in u.saturating_sub(radius)..=(u + radius).min(w - 1) {
+                    neighbour(row + nu, &self.labels, &mut self.parents);
+                }
             }
-            if v > 0 {
-                if u > 0 {
-                    neighbour(i - w - 1, &self.labels, &mut self.parents);
-                }
-                neighbour(i - w, &self.labels, &mut self.parents);
-                if u + 1 < w {
-                    neighbour(i - w + 1, &self.labels, &mut self.parents);
-                }
+            for nu in u.saturating_sub(radius)..u {
+                neighbour(i - u + nu, &self.labels, &mut self.parents);
             }
             if label == 0 {
                 self.parents.push(self.parents.len() as u32);
@@ -216,5 +229,25 @@ mod tests {
         assert_eq!(l.labels, vec![0, 0, 0, 0, 0, 0, 0, 1]);
         l.label(&[], 0, 0);
         assert!(l.blobs.is_empty());
+    }
+
+    /// A one-pixel gap splits a line with 8-connectivity and is bridged with a link radius
+    /// of 2; a two-pixel gap needs 3.
+    #[test]
+    fn link_radius_bridges_gaps() {
+        let mut l = ComponentLabeller::default();
+        // Row 0 of a 10-wide image: pixels 0, 1, 3 (gap at 2) and 7 (gap at 4-6).
+        let mask = [0u32, 1, 3, 7];
+        l.label_linked(&mask, 10, 1, 1);
+        assert_eq!(l.blobs.len(), 3);
+        l.label_linked(&mask, 10, 1, 2);
+        assert_eq!(l.blobs.len(), 2);
+        l.label_linked(&mask, 10, 1, 4);
+        assert_eq!(l.blobs.len(), 1);
+        // Diagonal gap across rows: (0,0) and (2,2) in a 4x4 image.
+        l.label_linked(&[0, 10], 4, 4, 2);
+        assert_eq!(l.blobs.len(), 1);
+        l.label_linked(&[0, 10], 4, 4, 1);
+        assert_eq!(l.blobs.len(), 2);
     }
 }

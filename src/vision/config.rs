@@ -105,6 +105,10 @@ pub struct VisionConfig {
     /// Blobs with fewer mask pixels than this are not selected; when no blob has this many the
     /// measurement is `TooSmall` (≥ 1).
     pub min_pixel_count: usize,
+    /// Mask pixels up to this many pixels apart (in u and in v) belong to one blob (1:
+    /// 8-connectivity; ≥ 1). Thin parts of a distant target seen edge-on rasterise as broken
+    /// lines; 2 keeps them with the body they belong to.
+    pub link_radius_px: usize,
 }
 
 impl Default for VisionConfig {
@@ -112,6 +116,7 @@ impl Default for VisionConfig {
         Self {
             segmentation: SegmentationConfig::default(),
             min_pixel_count: 4,
+            link_radius_px: 1,
         }
     }
 }

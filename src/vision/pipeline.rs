@@ -158,8 +158,12 @@ impl VisionPipeline {
             self.labeller.label(&[], frame.width, frame.height);
             return Ok(BlobMeasurement::not_found(0, sigma));
         };
-        self.labeller
-            .label(&self.segmenter.mask, frame.width, frame.height);
+        self.labeller.label_linked(
+            &self.segmenter.mask,
+            frame.width,
+            frame.height,
+            self.config.link_radius_px,
+        );
         let blobs = &self.labeller.blobs;
         let Some((index, too_small)) = select_blob(blobs, self.config.min_pixel_count, selection)
         else {

@@ -322,6 +322,7 @@ fn explicit_threshold_configuration() {
             mask_coverage: 0.5,
         },
         min_pixel_count: 4,
+        link_radius_px: 1,
     };
     let mut p = VisionPipeline::new(config).unwrap();
     let m = p

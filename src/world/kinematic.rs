@@ -1,17 +1,22 @@
 //! The kinematic follower of the seed's Chapters 4-6: it realises the commanded velocity
 //! exactly. It has no attitude dynamics of its own; its camera needs an attitude, so the body
 //! x axis turns to the velocity direction (θ → γ, ψ → χ) and the wings to the coordinated-turn
-//! bank φ = atan(ψ̇ V / g) (SPEC §2, Remark 9) through a first-order lag of time constant τ.
-//! The lag keeps the attitude continuous and gives its rates exactly (the body-frame command
-//! (3.13)-(3.14) needs them) without differentiating a command.
+//! bank φ = atan(ψ̇ V / g) (SPEC §2, Remark 9) through first-order lags of time constant τ.
 //!
-//! State slice: `[R_F (3), φ, θ, ψ]`.
+//! The attitude follows a heading velocity v that itself lags V_F by τ (v̇ = (V_F - v)/τ), and
+//! the bank follows the attitude's own yaw rate: every attitude rate is then a function of
+//! the state alone. Were the attitude rates computed from V_F directly, the body-frame command
+//! (3.13)-(3.14), whose derivative needs those rates, would feed V_F back into itself within
+//! one step; at 33 ft and 100 ft/s that algebraic loop has a gain above one through the roll
+//! rate and V_F flips sign every tick (measured).
+//!
+//! State slice: `[R_F (3), φ, θ, ψ, v (3)]`.
 
 use crate::frames::{EulerAngles, GRAVITY_FPS2, Mat3, Vec3};
 use std::f64::consts::PI;
 
 /// Length of the kinematic follower's state slice.
-pub const STATE_LEN: usize = 6;
+pub const STATE_LEN: usize = 9;
 
 /// A follower that flies the commanded velocity.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -31,8 +36,13 @@ pub fn wrap_angle_rad(angle: f64) -> f64 {
 }
 
 impl KinematicFollower {
-    /// Initial state from a position and an attitude.
-    pub fn initial_state(position_ned_ft: &Vec3, attitude: &EulerAngles) -> [f64; STATE_LEN] {
+    /// Initial state from a position, an attitude and the velocity the attitude starts
+    /// following.
+    pub fn initial_state(
+        position_ned_ft: &Vec3,
+        attitude: &EulerAngles,
+        heading_velocity_ned_fps: &Vec3,
+    ) -> [f64; STATE_LEN] {
         [
             position_ned_ft.x,
             position_ned_ft.y,
@@ -40,7 +50,20 @@ impl KinematicFollower {
             attitude.phi_rad,
             attitude.theta_rad,
             attitude.psi_rad,
+            heading_velocity_ned_fps.x,
+            heading_velocity_ned_fps.y,
+            heading_velocity_ned_fps.z,
         ]
+    }
+
+    /// Sets the heading velocity v of a state slice.
+    pub fn set_heading_velocity(x: &mut [f64], heading_velocity_ned_fps: &Vec3) {
+        x[6..9].copy_from_slice(heading_velocity_ned_fps.as_slice());
+    }
+
+    /// The heading velocity v of a state slice, NED, ft/s.
+    pub fn heading_velocity_ned_fps(x: &[f64]) -> Vec3 {
+        Vec3::new(x[6], x[7], x[8])
     }
 
     /// R_F of a state slice, NED, ft.
@@ -53,15 +76,15 @@ impl KinematicFollower {
         EulerAngles::new(x[3], x[4], x[5])
     }
 
-    /// Euler-angle rates [φ̇, θ̇, ψ̇] turning the attitude toward `heading_velocity_ned_fps`
-    /// (the velocity the attitude follows; zero speed holds the attitude).
-    pub fn attitude_rates(&self, x: &[f64], heading_velocity_ned_fps: &Vec3) -> Vec3 {
+    /// Euler-angle rates [φ̇, θ̇, ψ̇] turning the attitude toward the state's heading
+    /// velocity v (zero speed holds the attitude and levels the wings).
+    pub fn attitude_rates(&self, x: &[f64]) -> Vec3 {
         let att = Self::attitude(x);
-        let speed = heading_velocity_ned_fps.norm();
+        let v = Self::heading_velocity_ned_fps(x);
+        let speed = v.norm();
         if speed <= 1e-9 {
             return Vec3::new(-att.phi_rad / self.attitude_lag_s, 0.0, 0.0);
         }
-        let v = heading_velocity_ned_fps;
         let gamma = (-v.z / speed).clamp(-1.0, 1.0).asin();
         let chi = v.y.atan2(v.x);
         let psi_rate = wrap_angle_rad(chi - att.psi_rad) / self.attitude_lag_s;
@@ -79,17 +102,13 @@ impl KinematicFollower {
         h * euler_rates
     }
 
-    /// Writes ẋ: Ṙ_F = V_F and the attitude rates toward `heading_velocity_ned_fps`.
-    pub fn derivative(
-        &self,
-        x: &[f64],
-        velocity_ned_fps: &Vec3,
-        heading_velocity_ned_fps: &Vec3,
-        dx: &mut [f64],
-    ) {
+    /// Writes ẋ: Ṙ_F = V_F, the attitude rates and v̇ = (V_F - v)/τ.
+    pub fn derivative(&self, x: &[f64], velocity_ned_fps: &Vec3, dx: &mut [f64]) {
         dx[0..3].copy_from_slice(velocity_ned_fps.as_slice());
-        let rates = self.attitude_rates(x, heading_velocity_ned_fps);
+        let rates = self.attitude_rates(x);
         dx[3..6].copy_from_slice(rates.as_slice());
+        let v_rate = (velocity_ned_fps - Self::heading_velocity_ned_fps(x)) / self.attitude_lag_s;
+        dx[6..9].copy_from_slice(v_rate.as_slice());
     }
 
     /// Wraps roll and yaw into (-π, π] after a step.
@@ -130,12 +149,12 @@ mod tests {
         let follower = KinematicFollower {
             attitude_lag_s: 0.05,
         };
-        let mut x = KinematicFollower::initial_state(&Vec3::zeros(), &EulerAngles::default());
         let v = Vec3::new(30.0, 40.0, -5.0);
+        let mut x = KinematicFollower::initial_state(&Vec3::zeros(), &EulerAngles::default(), &v);
         let dt = 0.001;
         let mut dx = [0.0; STATE_LEN];
         for _ in 0..1000 {
-            follower.derivative(&x, &v, &v, &mut dx);
+            follower.derivative(&x, &v, &mut dx);
             for (xi, di) in x.iter_mut().zip(dx.iter()) {
                 *xi += dt * di;
             }
