@@ -20,7 +20,9 @@ use crate::guidance::excitation::Excitation;
 use crate::guidance::law::{GuidanceInput, GuidanceLaw, GuidanceOutput};
 use crate::integrate::Rk4;
 use crate::noisy_sensor::NoisySensor;
-use crate::scenario::{ExcitationUnits, GuidanceLawKind, Mission, Scenario, SensorMode};
+use crate::scenario::{
+    ExcitationError, ExcitationUnits, GuidanceLawKind, Mission, Scenario, SensorMode,
+};
 use crate::sensor::{CameraSensor, CaptureGeometry, FrameRecord};
 use crate::world::kinematic::{FollowerCommand, KinematicFollower, Realises};
 use crate::world::target::{TargetMotionModel, TargetState};
@@ -530,7 +532,11 @@ impl Simulation {
         }
         let out = self.evaluate();
         self.heading_velocity_ned_fps = self.follower_velocity(&out);
-        self.excitation.record(t_end_s, out.error.norm_squared());
+        let error = match self.scenario.excitation.error {
+            ExcitationError::Measured => out.error,
+            ExcitationError::Estimated => out.estimated_error,
+        };
+        self.excitation.record(t_end_s, error.norm_squared());
 
         if self.scenario.guidance.mission == Mission::Intercept
             && range_ft < self.scenario.guidance.intercept_radius_ft

@@ -42,8 +42,18 @@ pub struct GuidanceOutput {
     pub command: FollowerCommand,
     /// The scaled command the law tracks (shaped, excitation included): r_c or y_c.
     pub r_command: Vec3,
-    /// Tracking error of the measurement, r - r_command (what the excitation integrates).
+    /// The measured error whose energy sets the intelligent excitation's amplitude
+    /// (`excitation.error = "measured"`): e = r* - r_c (velocity law, (4.31)); the combined
+    /// output y*_a = C_a ξ_a + 2 n_r = 2y* - y_m - C ẑ (acceleration law: (5.27) integrates
+    /// ‖ξ_a‖², of which y_a is the measurable part; the error y - y_c would keep the amplitude
+    /// up through the reference model's lag alone).
     pub error: Vec3,
+    /// The law's estimate of the same error from its filtered states
+    /// (`excitation.error = "estimated"`): r̂ - r_c (velocity law with the estimator (6.10));
+    /// C (ẑ - z_m), the observer's estimate of the output tracking error C e (acceleration
+    /// law). Without measurement noise both tend to zero with ξ; with noise they stay near
+    /// the estimator's residual noise instead of the sensor's.
+    pub estimated_error: Vec3,
     /// The acceleration law's internal signals (y_m, C ẑ, y_a, w_f, …).
     pub acceleration: Option<AccelerationGuidanceOutput>,
 }
@@ -85,7 +95,7 @@ impl GuidanceLaw {
                             .map_err(|e| GuidanceSetupError::Estimator(e.to_string()))?;
                             notes.push(format!(
                                 "velocity estimator: L_v = {:.4} I from the steady-state \
-                                 covariance (6.36) (q = {}, K_nr = {})",
+                                 covariance (6.36) (q = {:e} 1/s, K_nr = {:e} s)",
                                 gain[(0, 0)],
                                 g.estimator_process_psd,
                                 g.estimator_noise_psd
@@ -94,7 +104,7 @@ impl GuidanceLaw {
                         }
                     };
                     Some(
-                        VelocityEstimator::new(g.k, gain)
+                        VelocityEstimator::new(g.k, gain, g.estimator_lyapunov_weight)
                             .map_err(|e| GuidanceSetupError::Estimator(e.to_string()))?,
                     )
                 } else {
@@ -144,6 +154,7 @@ impl GuidanceLaw {
                     command: FollowerCommand::Velocity(out.velocity_cmd_ned_fps),
                     r_command: out.r_command,
                     error: out.error,
+                    estimated_error: out.estimated_error,
                     acceleration: None,
                 }
             }
@@ -153,6 +164,7 @@ impl GuidanceLaw {
                     command: FollowerCommand::Acceleration(Vec3::zeros()),
                     r_command: Vec3::zeros(),
                     error: Vec3::zeros(),
+                    estimated_error: Vec3::zeros(),
                     acceleration: None,
                 }
             }
@@ -180,6 +192,7 @@ impl GuidanceLaw {
                     command: FollowerCommand::Velocity(out.velocity_cmd_ned_fps),
                     r_command: out.r_command,
                     error: out.error,
+                    estimated_error: out.estimated_error,
                     acceleration: None,
                 }
             }
@@ -203,7 +216,8 @@ impl GuidanceLaw {
                 GuidanceOutput {
                     command: FollowerCommand::Acceleration(out.accel_cmd_ned_fps2),
                     r_command: out.y_command,
-                    error: out.error,
+                    error: out.y_combined,
+                    estimated_error: out.y_observer - out.y_model,
                     acceleration: Some(out),
                 }
             }

@@ -28,15 +28,20 @@ const R_HAT: usize = 7;
 pub struct VelocityEstimator {
     /// Estimator gain L_v.
     pub gain: Mat3,
-    /// B_vᵀ P_v with A_vᵀ P_v + P_v A_v = -I.
+    /// B_vᵀ P_v with A_vᵀ P_v + P_v A_v = -Q_v.
     pub bt_p: SMatrix<f64, 3, 6>,
 }
 
 impl VelocityEstimator {
-    /// Builds B_vᵀ P_v for A_v = [[-k I, k I], [0, -L_v]] (6.16) with Q_v = I.
-    pub fn new(k: f64, gain: Mat3) -> Result<Self, LinalgError> {
+    /// Builds B_vᵀ P_v for A_v = [[-k I, k I], [0, -L_v]] (6.16) with Q_v = q_v I (6.17).
+    ///
+    /// The seed leaves Q_v free. P_v, and with it the adaptation signal B_vᵀ P_v ξ*_v of
+    /// (6.16), scales with q_v: its e block is p_11 = q_v / (2k), so q_v = 2k makes (6.16)
+    /// weigh e as (4.5) does (up to the r̃ terms), q_v = 1 weighs it 2k times less. That
+    /// weight multiplies the measurement noise in ξ*_v as much as the error.
+    pub fn new(k: f64, gain: Mat3, lyapunov_weight: f64) -> Result<Self, LinalgError> {
         let a = error_system_matrix(k, &gain);
-        let p = solve_continuous_lyapunov(&a, &DMatrix::identity(6, 6))?;
+        let p = solve_continuous_lyapunov(&a, &(DMatrix::identity(6, 6) * lyapunov_weight))?;
         let mut bt_p = SMatrix::<f64, 3, 6>::zeros();
         for i in 0..3 {
             for j in 0..6 {
@@ -161,6 +166,9 @@ pub struct VelocityGuidanceOutput {
     pub r_command: Vec3,
     /// Tracking error e = r - r_command of the measurement.
     pub error: Vec3,
+    /// The law's estimate of its tracking error: r̂ - r_command with the estimator (6.10),
+    /// the measured error without it (zero while the target is lost).
+    pub estimated_error: Vec3,
 }
 
 /// Velocity guidance (4.3)-(4.5), (4.14)-(4.15), (4.40), with optional estimator (6.10)-(6.17).
@@ -234,6 +242,7 @@ impl VelocityGuidance {
             velocity_cmd_ned_fps: vec3_at(x, D_HAT) * x[B_HAT],
             r_command: vec3_at(x, R_CF),
             error: Vec3::zeros(),
+            estimated_error: Vec3::zeros(),
         }
     }
 
@@ -328,6 +337,7 @@ impl VelocityGuidance {
             velocity_cmd_ned_fps: g * b_hat,
             r_command: r_cmd,
             error: input.r_measured.unwrap_or(r_used) - r_cmd,
+            estimated_error: e_used,
         }
     }
 
@@ -399,7 +409,7 @@ mod tests {
     /// The estimator's B_vᵀ P_v comes from a Lyapunov solution with a small residual.
     #[test]
     fn estimator_matrix_is_consistent() {
-        let est = VelocityEstimator::new(3.5, Mat3::identity() * 1.7).expect("solvable");
+        let est = VelocityEstimator::new(3.5, Mat3::identity() * 1.7, 1.0).expect("solvable");
         // Per axis: p11 + p21 and p12 + p22 (see linalg's closed form).
         let (k, l) = (3.5, 1.7);
         let p11 = 1.0 / (2.0 * k);
@@ -408,6 +418,9 @@ mod tests {
         assert!((est.bt_p[(0, 0)] - (p11 + p12)).abs() < 1e-12);
         assert!((est.bt_p[(0, 3)] - (p12 + p22)).abs() < 1e-12);
         assert!(est.bt_p[(0, 1)].abs() < 1e-12);
+        // P_v scales with Q_v = q_v I.
+        let scaled = VelocityEstimator::new(3.5, Mat3::identity() * 1.7, 7.0).expect("solvable");
+        assert!((scaled.bt_p - est.bt_p * 7.0).norm() < 1e-12);
     }
 
     /// The covariance design reaches its fixed point: L_v = K_r(L_v) K_nr⁻¹ with the covariance

@@ -224,6 +224,9 @@ pub struct GuidanceSection {
     /// Covariance design: intensity K_nr (s, scaled units² · s) of the measurement noise n_r
     /// of r* = r + n_r (6.9), per axis; for noise of variance σ² held over T_s it is σ² T_s.
     pub estimator_noise_psd: f64,
+    /// q_v of Q_v = q_v I in the Lyapunov equation (6.17) whose P_v weighs the adaptive laws
+    /// (6.16): the seed leaves it free; 2k makes them weigh e as (4.5) does.
+    pub estimator_lyapunov_weight: f64,
     /// Tracking gain k, (4.3).
     pub k: f64,
     /// Adaptation gain σ of b̂, (4.5).
@@ -266,6 +269,7 @@ impl Default for GuidanceSection {
             estimator_gain_mode: EstimatorGainMode::Fixed,
             estimator_process_psd: 0.01,
             estimator_noise_psd: 1.8e-5,
+            estimator_lyapunov_weight: 1.0,
             k: 3.5,
             sigma: 39.0,
             gamma_d: 40.0,
@@ -301,6 +305,10 @@ impl GuidanceSection {
         check::positive("guidance.estimator_gain", self.estimator_gain)?;
         check::positive("guidance.estimator_process_psd", self.estimator_process_psd)?;
         check::positive("guidance.estimator_noise_psd", self.estimator_noise_psd)?;
+        check::positive(
+            "guidance.estimator_lyapunov_weight",
+            self.estimator_lyapunov_weight,
+        )?;
         check::in_closed(
             "guidance.command_heading_lag_s",
             self.command_heading_lag_s,
@@ -371,6 +379,19 @@ pub enum ExcitationUnits {
     Scaled,
 }
 
+/// Which tracking error's energy sets the excitation amplitude.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExcitationError {
+    /// The measured error: e = r* - r_c (velocity law, (4.31)), the combined output
+    /// y*_a = 2y* - y_m - C ẑ (acceleration law, (5.27)).
+    Measured,
+    /// The law's estimate of it from its filtered states: r̂ - r_c (velocity law with the
+    /// estimator (6.10)), C (ẑ - z_m) (acceleration law). With noisy measurements the
+    /// measured error never falls below the noise, and the amplitude never decays.
+    Estimated,
+}
+
 /// `[excitation]`: intelligent excitation R*_c = R_c + a(t) sin(ωt) E, (4.31).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -389,6 +410,8 @@ pub struct ExcitationSection {
     pub k3: f64,
     /// Direction E in NED (normalised on use).
     pub direction: [f64; 3],
+    /// The error whose energy ∫ eᵀe the amplitude follows.
+    pub error: ExcitationError,
 }
 
 impl Default for ExcitationSection {
@@ -401,6 +424,7 @@ impl Default for ExcitationSection {
             k2: 100.0,
             k3: 0.0002,
             direction: [1.0, 0.0, 0.0],
+            error: ExcitationError::Measured,
         }
     }
 }
