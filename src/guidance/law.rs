@@ -158,14 +158,14 @@ impl GuidanceLaw {
                     acceleration: None,
                 }
             }
-            Self::Acceleration(_) => {
-                dx.fill(0.0);
+            Self::Acceleration(law) => {
+                let out = law.idle(x, dx);
                 GuidanceOutput {
-                    command: FollowerCommand::Acceleration(Vec3::zeros()),
-                    r_command: Vec3::zeros(),
-                    error: Vec3::zeros(),
+                    command: FollowerCommand::Acceleration(out.accel_cmd_ned_fps2),
+                    r_command: out.y_command,
+                    error: out.y_combined,
                     estimated_error: Vec3::zeros(),
-                    acceleration: None,
+                    acceleration: Some(out),
                 }
             }
         }
@@ -279,6 +279,23 @@ mod tests {
         let (law, notes) = GuidanceLaw::from_scenario(&scenario).expect("builds");
         assert!(matches!(law, GuidanceLaw::Acceleration(_)));
         assert!(notes[0].contains("Riccati gain rejected"), "{notes:?}");
+    }
+
+    /// Before the first measurement the acceleration law commands a_F = 0, moves nothing, and
+    /// still reports its signals (telemetry columns do not change when the camera's first
+    /// frame arrives).
+    #[test]
+    fn acceleration_law_idles_with_its_signals() {
+        let mut scenario = Scenario::default();
+        scenario.guidance.law = GuidanceLawKind::Acceleration;
+        let (law, _) = GuidanceLaw::from_scenario(&scenario).expect("builds");
+        let x = law.initial_state(&Vec3::new(25.0, 6.25, 3.75));
+        let mut dx = vec![1.0; law.state_len()];
+        let out = law.idle(&x, &mut dx);
+        assert!(dx.iter().all(|v| *v == 0.0));
+        assert_eq!(out.command, FollowerCommand::Acceleration(Vec3::zeros()));
+        let signals = out.acceleration.expect("signals");
+        assert_eq!(signals.y_observer, Vec3::new(25.0, 6.25, 3.75));
     }
 
     /// Without a measurement the acceleration law coasts on its observer: at the equilibrium

@@ -86,22 +86,27 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
         ("z_i_true_px", zt),
         ("b_i_true_px", bt),
     ]);
-    if let Some(a) = &s.guidance.acceleration {
-        row.extend(acceleration_columns(a));
+    if let FollowerCommand::Acceleration(_) = s.guidance.command {
+        row.extend(acceleration_columns(s.guidance.acceleration.as_ref()));
     }
     row
 }
 
-/// The acceleration law's signals (appended to its runs' rows): a_F (5.38), the reference
-/// model's and the observer's outputs y_m and C ẑ, the combined output y_a, the virtual
-/// control w_f and b̂'.
-fn acceleration_columns(a: &AccelerationGuidanceOutput) -> Vec<(&'static str, f64)> {
-    let v = |x: &crate::frames::Vec3| [x.x, x.y, x.z];
-    let [an, ae, ad] = v(&a.accel_cmd_ned_fps2);
-    let [mx, my, mz] = v(&a.y_model);
-    let [ox, oy, oz] = v(&a.y_observer);
-    let [yx, yy, yz] = v(&a.y_combined);
-    let [wx, wy, wz] = v(&a.virtual_control_fps);
+/// The acceleration law's signals (appended to its runs' rows, empty cells when the law gave
+/// none): a_F (5.38), the reference model's and the observer's outputs y_m and C ẑ, the
+/// combined output y_a, the virtual control w_f and b̂'.
+fn acceleration_columns(a: Option<&AccelerationGuidanceOutput>) -> Vec<(&'static str, f64)> {
+    let v = |f: fn(&AccelerationGuidanceOutput) -> crate::frames::Vec3| {
+        a.map_or([f64::NAN; 3], |a| {
+            let x = f(a);
+            [x.x, x.y, x.z]
+        })
+    };
+    let [an, ae, ad] = v(|a| a.accel_cmd_ned_fps2);
+    let [mx, my, mz] = v(|a| a.y_model);
+    let [ox, oy, oz] = v(|a| a.y_observer);
+    let [yx, yy, yz] = v(|a| a.y_combined);
+    let [wx, wy, wz] = v(|a| a.virtual_control_fps);
     vec![
         ("fol_an_fps2", an),
         ("fol_ae_fps2", ae),
@@ -118,7 +123,7 @@ fn acceleration_columns(a: &AccelerationGuidanceOutput) -> Vec<(&'static str, f6
         ("w_f_x_fps", wx),
         ("w_f_y_fps", wy),
         ("w_f_z_fps", wz),
-        ("b_hat_rate_fps", a.b_hat_rate_fps),
+        ("b_hat_rate_fps", a.map_or(f64::NAN, |a| a.b_hat_rate_fps)),
     ]
 }
 
