@@ -120,7 +120,7 @@ enum Measurement {
     /// A sampled measurement held over the step; None while the target is lost.
     Held(Option<Vec3>),
     /// No measurement has arrived yet: the guidance has not started and the follower cruises
-    /// at b̂(0) d̂(0).
+    /// at b̂(0) d̂(0) (velocity law) or keeps V_F(0) (acceleration law).
     AwaitingFirst,
 }
 
@@ -290,14 +290,38 @@ impl Simulation {
         &self.notes
     }
 
+    // The follower stage as the rest of the tick sees it: its slice of the state, position,
+    // attitude, body rates and velocity. Another follower model plugs in here, in
+    // `derivative` and in `step`'s normalisation.
+
     /// The follower's slice of a state.
     fn follower_x<'a>(&self, x: &'a [f64]) -> &'a [f64] {
         &x[..self.layout.command]
     }
 
+    /// R_F of a state, NED, ft.
+    fn follower_position_ned_ft(&self, x: &[f64]) -> Vec3 {
+        KinematicFollower::position_ned_ft(self.follower_x(x))
+    }
+
+    /// The follower's attitude in a state (camera = body).
+    fn follower_attitude(&self, x: &[f64]) -> EulerAngles {
+        KinematicFollower::attitude(self.follower_x(x))
+    }
+
+    /// The follower's body rates [p, q, r] in a state, rad/s.
+    fn follower_body_rates(&self, x: &[f64]) -> Vec3 {
+        let follower_x = self.follower_x(x);
+        let heading = self
+            .follower
+            .heading_velocity_ned_fps(follower_x, &self.heading_velocity_ned_fps);
+        let euler_rates = self.follower.attitude_rates(follower_x, &heading);
+        KinematicFollower::body_rates(&self.follower_attitude(x), &euler_rates)
+    }
+
     /// R = R_T - R_F at time `t_s` for a state, NED, ft.
     fn relative_ned_ft(&self, t_s: f64, x: &[f64]) -> Vec3 {
-        self.target.position_ned_ft(t_s) - KinematicFollower::position_ned_ft(x)
+        self.target.position_ned_ft(t_s) - self.follower_position_ned_ft(x)
     }
 
     /// V_F of the follower at the current state for the guidance output `out`.
@@ -313,7 +337,7 @@ impl Simulation {
         match &self.noisy {
             None => Some(relative / self.scenario.target.size_ft),
             Some(sensor) => {
-                let body_from_ned = KinematicFollower::attitude(x).body_from_ned();
+                let body_from_ned = self.follower_attitude(x).body_from_ned();
                 sensor.measure(&relative, &body_from_ned)
             }
         }
@@ -327,7 +351,7 @@ impl Simulation {
             return;
         }
         let relative = self.relative_ned_ft(self.time_s(), &self.state);
-        let body_from_ned = KinematicFollower::attitude(&self.state).body_from_ned();
+        let body_from_ned = self.follower_attitude(&self.state).body_from_ned();
         if let Some(sensor) = self.noisy.as_mut().filter(|s| s.is_sample_tick(tick)) {
             sensor.draw(&relative, &body_from_ned);
         }
@@ -339,7 +363,7 @@ impl Simulation {
         let tick = self.tick;
         let t_s = self.time_s();
         let relative_ned_ft = self.relative_ned_ft(t_s, &self.state);
-        let follower_attitude = KinematicFollower::attitude(&self.state);
+        let follower_attitude = self.follower_attitude(&self.state);
         let Some(camera) = self.camera.as_mut() else {
             return Ok(());
         };
@@ -375,13 +399,8 @@ impl Simulation {
     /// The user's command R_c and Ṙ_c (NED, ft and ft/s) for the follower and command
     /// slices of a state (see [`FormationCommand`]).
     fn command(&self, x: &[f64]) -> (Vec3, Vec3) {
-        let follower_x = self.follower_x(x);
-        let attitude = KinematicFollower::attitude(follower_x);
-        let heading = self
-            .follower
-            .heading_velocity_ned_fps(follower_x, &self.heading_velocity_ned_fps);
-        let euler_rates = self.follower.attitude_rates(follower_x, &heading);
-        let omega = KinematicFollower::body_rates(&attitude, &euler_rates);
+        let attitude = self.follower_attitude(x);
+        let omega = self.follower_body_rates(x);
         self.command.command(
             &x[self.layout.command..self.layout.guidance],
             &attitude,
@@ -419,11 +438,8 @@ impl Simulation {
         let (follower_x, command_x) = command_and_follower_x.split_at(command);
         let (command_and_follower_dx, guidance_dx) = dx.split_at_mut(guidance);
         let (follower_dx, command_dx) = command_and_follower_dx.split_at_mut(command);
-        self.command.derivative(
-            command_x,
-            &KinematicFollower::attitude(follower_x),
-            command_dx,
-        );
+        self.command
+            .derivative(command_x, &self.follower_attitude(x), command_dx);
         let out = match self.measurement {
             Measurement::Continuous => {
                 let r_measured = self.continuous_measurement(t_s, x);
@@ -459,7 +475,7 @@ impl Simulation {
         let mut dx = vec![0.0; self.state.len()];
         let out = self.derivative(t_s, &self.state, &mut dx);
         let guidance_x = &self.state[self.layout.guidance..];
-        let follower = KinematicFollower::position_ned_ft(&self.state);
+        let follower = self.follower_position_ned_ft(&self.state);
         let target = self.target.state(t_s);
         let (command, _) = self.command(&self.state);
         let b_hat_ft = self.guidance.b_hat_ft(guidance_x);
@@ -474,7 +490,7 @@ impl Simulation {
             target,
             follower_position_ned_ft: follower,
             follower_velocity_ned_fps: self.follower_velocity(&out),
-            follower_attitude: KinematicFollower::attitude(&self.state),
+            follower_attitude: self.follower_attitude(&self.state),
             relative_ned_ft: relative,
             command_ned_ft: command,
             excited_command_ned_ft: command + excitation_ned_ft,
