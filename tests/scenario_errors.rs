@@ -128,6 +128,11 @@ fn chapter_5_and_6_keys() {
         ],
     );
     assert_rejected(
+        "[sensor]\nmode = \"noisy\"\nnoise_on = \"pixels\"\n[camera]\nhfov_deg = 0.0\n",
+        &[],
+        &["camera.hfov_deg = 0", "(0, 179)"],
+    );
+    assert_rejected(
         "[guidance]\nestimator_noise_psd = 0.0\n",
         &[],
         &["guidance.estimator_noise_psd = 0", "> 0"],

@@ -506,7 +506,10 @@ impl Scenario {
         self.excitation.validate()?;
         self.sensor
             .validate(self.run.dt_s, self.has_formation_command())?;
-        if self.sensor.mode == super::SensorMode::Camera {
+        // The camera section gives the focal length of noise on pixels, too.
+        let pixels = self.sensor.mode == super::SensorMode::Noisy
+            && self.sensor.noise_on == super::NoiseOn::Pixels;
+        if self.sensor.mode == super::SensorMode::Camera || pixels {
             self.camera.validate(self.run.dt_s)?;
         }
         Ok(())
