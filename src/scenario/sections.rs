@@ -506,10 +506,13 @@ impl Scenario {
         self.excitation.validate()?;
         self.sensor
             .validate(self.run.dt_s, self.has_formation_command())?;
-        // The camera section gives the focal length of noise on pixels, too.
-        let pixels = self.sensor.mode == super::SensorMode::Noisy
-            && self.sensor.noise_on == super::NoiseOn::Pixels;
-        if self.sensor.mode == super::SensorMode::Camera || pixels {
+        // The camera's focal length also serves the noisy sensor's noise on pixels.
+        if self.sensor.mode == super::SensorMode::Noisy
+            && self.sensor.noise_on == super::NoiseOn::Pixels
+        {
+            self.camera.validate_focal_length()?;
+        }
+        if self.sensor.mode == super::SensorMode::Camera {
             self.camera.validate(self.run.dt_s)?;
         }
         Ok(())
