@@ -10,7 +10,7 @@
 //! or through a flight controller on a 6-DOF aircraft); the recorder logs every stage.
 //!
 //! Modules, in the order data flows: [`frames`], [`scenario`], [`world`], [`sensing`],
-//! [`guidance`], [`control`], [`integrate`], [`sim`], [`output`].
+//! [`noisy_sensor`], [`sensor`], [`guidance`], [`control`], [`integrate`], [`sim`], [`output`].
 #![warn(missing_docs)]
 
 pub mod control;
@@ -18,6 +18,7 @@ pub mod frames;
 pub mod guidance;
 pub mod integrate;
 pub mod linalg;
+pub mod noisy_sensor;
 pub mod output;
 pub mod render;
 pub mod scenario;

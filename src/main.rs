@@ -162,6 +162,9 @@ fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> 
     }
     match result {
         Ok(report) => {
+            for note in &report.summary.notes {
+                eprintln!("note: {note}");
+            }
             for warning in &report.warnings {
                 eprintln!("warning: {warning}");
             }

@@ -1,33 +1,32 @@
 //! The simulation: owns every stage and wires one tick in a fixed order (DESIGN §1).
 //!
 //! Continuous state, integrated as one vector by RK4:
-//! `[follower (R_F, φ, θ, ψ) | command frame (ψ_c) | guidance]`.
-//! The target's motion is closed-form. With the `perfect` sensor r = R/b is evaluated at every
-//! RK4 stage (the seed's continuous-time loop); a sampled sensor's measurement is held over
-//! the step.
+//! `[follower (R_F, φ, θ, ψ[, V_F]) | command frame (ψ_c) | guidance law]`.
+//! The stages are swappable: the guidance law (`velocity` | `acceleration`, see
+//! [`GuidanceLaw`]) commands the follower with a [`FollowerCommand`] that the follower stage
+//! realises (the kinematic follower integrates V_F itself when it is given accelerations).
+//! The target's motion is closed-form. With the `perfect` and `noisy` sensors r = R/b is
+//! evaluated at every RK4 stage (the seed's continuous-time loop), the noisy sensor adding
+//! the noise it drew at the start of the tick; a camera's measurement is held over the step.
 //!
-//! One tick: (1) the sensor may deliver a measurement (taken from the truth at the start of
-//! the tick); (2) RK4 advances follower and guidance together; (3) projection bounds and angle
-//! wrapping are enforced; (4) the excitation records the tracking error; (5) divergence and
-//! interception are checked.
+//! One tick: (1) the sensor may draw noise or deliver a camera measurement (taken from the
+//! truth at the start of the tick); (2) RK4 advances follower and guidance together;
+//! (3) projection bounds and angle wrapping are enforced; (4) the excitation records the
+//! tracking error; (5) divergence and interception are checked.
 
-use crate::frames::{EulerAngles, Mat3, Vec3};
+use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::command::{self, FormationCommand};
 use crate::guidance::excitation::Excitation;
-use crate::guidance::velocity::{
-    VelocityEstimator, VelocityGuidance, VelocityGuidanceInput, VelocityGuidanceOutput,
-};
+use crate::guidance::law::{GuidanceInput, GuidanceLaw, GuidanceOutput};
 use crate::integrate::Rk4;
-use crate::scenario::{ExcitationUnits, Mission, Scenario, SensorMode};
+use crate::noisy_sensor::NoisySensor;
+use crate::scenario::{
+    ExcitationError, ExcitationUnits, GuidanceLawKind, Mission, Scenario, SensorMode,
+};
 use crate::sensor::{CameraSensor, CaptureGeometry, FrameRecord};
-use crate::world::kinematic::{self, KinematicFollower};
+use crate::world::kinematic::{FollowerCommand, KinematicFollower, Realises};
 use crate::world::target::{TargetMotionModel, TargetState};
 use std::time::{Duration, Instant};
-
-/// Offset of the command slice in the state vector.
-const COMMAND: usize = kinematic::STATE_LEN;
-/// Offset of the guidance slice in the state vector.
-const GUIDANCE: usize = COMMAND + command::STATE_LEN;
 
 /// Why a simulation could not start or go on.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -92,23 +91,36 @@ pub struct Snapshot {
     pub r_measured: Option<Vec3>,
     /// b̂, ft.
     pub b_hat_ft: f64,
-    /// d̂, 1/s.
+    /// d̂ in the law's units: 1/s (velocity law), ft/s (acceleration law), see
+    /// [`GuidanceLaw::d_hat`].
     pub d_hat: Vec3,
     /// Guidance output.
-    pub guidance: VelocityGuidanceOutput,
+    pub guidance: GuidanceOutput,
     /// The last camera frame's measurement and truth (camera runs).
     pub frame: Option<FrameRecord>,
+}
+
+impl Snapshot {
+    /// The commanded (and, kinematic follower, realised) acceleration a_F, NED, ft/s²: only
+    /// the acceleration law commands one.
+    pub fn follower_accel_ned_fps2(&self) -> Option<Vec3> {
+        match self.guidance.command {
+            FollowerCommand::Acceleration(a) => Some(a),
+            FollowerCommand::Velocity(_) => None,
+        }
+    }
 }
 
 /// Where the guidance's r comes from during a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Measurement {
-    /// r = R/b from the stage's state (seed Chapters 4-5).
+    /// r = R/b from the stage's state (seed Chapters 4-5), plus the noisy sensor's held noise
+    /// (Chapter 6).
     Continuous,
     /// A sampled measurement held until the next one arrives; None while the target is lost.
     Held(Option<HeldMeasurement>),
     /// No measurement has arrived yet: the guidance has not started and the follower cruises
-    /// at b̂(0) d̂(0).
+    /// at b̂(0) d̂(0) (velocity law) or keeps V_F(0) (acceleration law).
     AwaitingFirst,
 }
 
@@ -126,23 +138,26 @@ struct HeldMeasurement {
 impl HeldMeasurement {
     /// The measurement brought forward to time `t_s` (when `compensate` is set): the frame is
     /// a frame period plus the latency old, and in that time r has moved by the follower's own
-    /// displacement, known from its navigation, over b̂, and by the target's drift d̂ (t - t_k):
-    /// r ≈ r*(t_k) - (R_F(t) - R_F(t_k))/b̂ + d̂ (t - t_k). The seed assumed continuous,
-    /// instantaneous measurements; without this the stale r* biases the adaptation every frame.
-    fn at(
-        &self,
-        t_s: f64,
-        follower_position_ned_ft: &Vec3,
-        b_hat_ft: f64,
-        d_hat: &Vec3,
-        compensate: bool,
-    ) -> Vec3 {
+    /// displacement, known from its navigation, over b̂, and by the target's drift d̂ (t - t_k)
+    /// when the law estimates it (velocity law): r ≈ r*(t_k) - (R_F(t) - R_F(t_k))/b̂
+    /// + d̂ (t - t_k). The seed assumed continuous, instantaneous measurements; without this
+    /// the stale r* biases the adaptation every frame.
+    fn at(&self, t_s: f64, follower_position_ned_ft: &Vec3, b_hat_ft: f64, drift: Option<Vec3>, compensate: bool) -> Vec3 {
         if !compensate {
             return self.r;
         }
-        self.r - (follower_position_ned_ft - self.follower_position_ned_ft) / b_hat_ft
-            + d_hat * (t_s - self.t_s)
+        let own = (follower_position_ned_ft - self.follower_position_ned_ft) / b_hat_ft;
+        self.r - own + drift.unwrap_or_else(Vec3::zeros) * (t_s - self.t_s)
     }
+}
+
+/// Offsets of the stages' slices in the state vector.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct StateLayout {
+    /// Start of the command slice (the follower's slice is before it).
+    command: usize,
+    /// Start of the guidance slice.
+    guidance: usize,
 }
 
 /// A running simulation.
@@ -152,10 +167,14 @@ pub struct Simulation {
     target: TargetMotionModel,
     follower: KinematicFollower,
     command: FormationCommand,
-    guidance: VelocityGuidance,
+    guidance: GuidanceLaw,
     excitation: Excitation,
     measurement: Measurement,
+    noisy: Option<NoisySensor>,
     camera: Option<CameraSensor>,
+    layout: StateLayout,
+    /// What the stages' set-up had to say (estimator gain, observer-gain fallback).
+    notes: Vec<String>,
     /// Wall time spent integrating (guidance, follower), s.
     integrate_time: Duration,
     rk4: Rk4,
@@ -172,49 +191,64 @@ impl Simulation {
     /// Builds every stage from a validated scenario.
     pub fn new(scenario: &Scenario) -> Result<Self, SimError> {
         let target = TargetMotionModel::from_section(&scenario.target);
-        let g = &scenario.guidance;
-        let estimator = if g.estimator {
-            Some(
-                VelocityEstimator::new(g.k, Mat3::identity() * g.estimator_gain)
-                    .map_err(|e| SimError::Setup(format!("velocity estimator: {e}")))?,
-            )
-        } else {
-            None
-        };
-        let guidance = VelocityGuidance::new(g, estimator);
+        let (guidance, notes) =
+            GuidanceLaw::from_scenario(scenario).map_err(|e| SimError::Setup(e.to_string()))?;
         let excitation = Excitation::new(&scenario.excitation, scenario.run.dt_s);
         let follower = KinematicFollower {
             attitude_lag_s: scenario.follower.attitude_lag_s,
+            realises: match scenario.guidance.law {
+                GuidanceLawKind::Velocity => Realises::Velocity,
+                GuidanceLawKind::Acceleration => Realises::Acceleration,
+            },
         };
         let follower0 = Vec3::from(scenario.follower.initial_position_ft);
         let [phi, theta, psi] = scenario.follower.initial_attitude_deg.map(f64::to_radians);
         let attitude0 = EulerAngles::new(phi, theta, psi);
-        let r0 = (target.position_ned_ft(0.0) - follower0) / scenario.target.size_ft;
+        let velocity0 = Vec3::from(scenario.follower.initial_velocity_fps);
+        let relative0 = target.position_ned_ft(0.0) - follower0;
+        let r0 = relative0 / scenario.target.size_ft;
         let camera = match scenario.sensor.mode {
-            SensorMode::Perfect => None,
+            SensorMode::Perfect | SensorMode::Noisy => None,
             SensorMode::Camera => {
                 Some(CameraSensor::new(scenario).map_err(|e| SimError::Setup(e.to_string()))?)
             }
         };
+        let mut noisy =
+            (scenario.sensor.mode == SensorMode::Noisy).then(|| NoisySensor::new(scenario));
         let measurement = match camera {
             None => Measurement::Continuous,
             Some(_) => Measurement::AwaitingFirst,
         };
-        let mut state =
-            KinematicFollower::initial_state(&follower0, &attitude0, &Vec3::zeros()).to_vec();
+        // The filters start at the first measurement, r*(0) with a noisy sensor.
+        let r_first = match noisy.as_mut() {
+            Some(sensor) => {
+                let body_from_ned = attitude0.body_from_ned();
+                sensor.draw(&relative0, &body_from_ned);
+                sensor.measure(&relative0, &body_from_ned).unwrap_or(r0)
+            }
+            None => r0,
+        };
+        let mut state = follower.initial_state(&follower0, &attitude0, &velocity0);
+        let layout = StateLayout {
+            command: state.len(),
+            guidance: state.len() + command::STATE_LEN,
+        };
         state.extend(FormationCommand::initial_state(&attitude0));
-        state.extend(guidance.initial_state(&r0));
+        state.extend(guidance.initial_state(&r_first));
         let mut sim = Self {
             rk4: Rk4::new(state.len()),
             scratch: vec![0.0; state.len()],
             scenario: scenario.clone(),
             target,
             follower,
-            command: FormationCommand::new(g),
+            command: FormationCommand::new(&scenario.guidance),
             guidance,
             excitation,
             measurement,
+            noisy,
             camera,
+            layout,
+            notes,
             integrate_time: Duration::ZERO,
             state,
             tick: 0,
@@ -222,8 +256,13 @@ impl Simulation {
             min_range_ft: r0.norm() * scenario.target.size_ft,
             intercept_time_s: None,
         };
-        let v0 = sim.evaluate().velocity_cmd_ned_fps;
-        KinematicFollower::set_heading_velocity(&mut sim.state[..COMMAND], &v0);
+        if sim.follower.realises == Realises::Velocity {
+            // The attitude starts following the first commanded velocity.
+            let out = sim.evaluate();
+            let v0 = sim.follower_velocity(&out);
+            let at = sim.layout.command;
+            KinematicFollower::set_heading_velocity(&mut sim.state[..at], &v0);
+        }
         Ok(sim)
     }
 
@@ -267,21 +306,106 @@ impl Simulation {
         self.integrate_time
     }
 
+    /// The noisy sensor, in noisy runs.
+    pub fn noisy_sensor(&self) -> Option<&NoisySensor> {
+        self.noisy.as_ref()
+    }
+
+    /// What the stages' set-up had to say, for the run's log (e.g. a Riccati observer gain
+    /// that fell back to the fixed gain).
+    pub fn notes(&self) -> &[String] {
+        &self.notes
+    }
+
+    // The follower stage as the rest of the tick sees it: its slice of the state, position,
+    // attitude, body rates and velocity. Another follower model plugs in here, in
+    // `derivative` and in `step`'s normalisation.
+
+    /// The follower's slice of a state.
+    fn follower_x<'a>(&self, x: &'a [f64]) -> &'a [f64] {
+        &x[..self.layout.command]
+    }
+
+    /// R_F of a state, NED, ft.
+    fn follower_position_ned_ft(&self, x: &[f64]) -> Vec3 {
+        KinematicFollower::position_ned_ft(self.follower_x(x))
+    }
+
+    /// The follower's attitude in a state (camera = body).
+    fn follower_attitude(&self, x: &[f64]) -> EulerAngles {
+        KinematicFollower::attitude(self.follower_x(x))
+    }
+
+    /// The follower's body rates [p, q, r] in a state, rad/s.
+    fn follower_body_rates(&self, x: &[f64]) -> Vec3 {
+        let euler_rates = self.follower.attitude_rates(self.follower_x(x));
+        KinematicFollower::body_rates(&self.follower_attitude(x), &euler_rates)
+    }
+
+    /// R = R_T - R_F at time `t_s` for a state, NED, ft.
+    fn relative_ned_ft(&self, t_s: f64, x: &[f64]) -> Vec3 {
+        self.target.position_ned_ft(t_s) - self.follower_position_ned_ft(x)
+    }
+
+    /// V_F of the follower at the current state for the guidance output `out`.
+    fn follower_velocity(&self, out: &GuidanceOutput) -> Vec3 {
+        self.follower
+            .velocity_ned_fps(self.follower_x(&self.state), &out.command)
+    }
+
+    /// The continuous measurement at (t, x): r = R/b (perfect) or r* (noisy, with the held
+    /// noise).
+    fn continuous_measurement(&self, t_s: f64, x: &[f64]) -> Option<Vec3> {
+        let relative = self.relative_ned_ft(t_s, x);
+        match &self.noisy {
+            None => Some(relative / self.scenario.target.size_ft),
+            Some(sensor) => {
+                let body_from_ned = self.follower_attitude(x).body_from_ned();
+                sensor.measure(&relative, &body_from_ned)
+            }
+        }
+    }
+
+    /// Draws the noisy sensor's next noise sample if one is due at this tick (the first was
+    /// drawn at set-up).
+    fn draw_noise(&mut self) {
+        let tick = self.tick;
+        if tick == 0 {
+            return;
+        }
+        let relative = self.relative_ned_ft(self.time_s(), &self.state);
+        let body_from_ned = self.follower_attitude(&self.state).body_from_ned();
+        if let Some(sensor) = self.noisy.as_mut().filter(|s| s.is_sample_tick(tick)) {
+            sensor.draw(&relative, &body_from_ned);
+        }
+    }
+
+    /// A held camera measurement brought forward to (t, x) (see [`HeldMeasurement::at`]).
+    fn bring_forward(&self, m: &HeldMeasurement, t_s: f64, x: &[f64]) -> Vec3 {
+        let guidance_x = &x[self.layout.guidance..];
+        m.at(
+            t_s,
+            &self.follower_position_ned_ft(x),
+            self.guidance.b_hat_ft(guidance_x),
+            self.guidance.scaled_target_velocity(guidance_x),
+            self.scenario.camera.compensate_delay,
+        )
+    }
+
     /// Where follower and target are now, as a camera frame would see them.
     pub fn capture_geometry(&self) -> CaptureGeometry {
         let t_s = self.time_s();
-        let follower_x = &self.state[..GUIDANCE];
         CaptureGeometry {
-            relative_ned_ft: self.target.position_ned_ft(t_s)
-                - KinematicFollower::position_ned_ft(follower_x),
-            follower_position_ned_ft: KinematicFollower::position_ned_ft(follower_x),
-            follower_attitude: KinematicFollower::attitude(follower_x),
+            relative_ned_ft: self.relative_ned_ft(t_s, &self.state),
+            follower_position_ned_ft: self.follower_position_ned_ft(&self.state),
+            follower_attitude: self.follower_attitude(&self.state),
             target_attitude: self.target.state(t_s).attitude,
         }
     }
 
     /// Takes a camera frame at this tick if one is due and holds its (delayed) measurement.
     fn sense(&mut self) -> Result<(), SimError> {
+        self.draw_noise();
         let tick = self.tick;
         let t_s = self.time_s();
         if !self.camera.as_ref().is_some_and(|c| c.is_frame_tick(tick)) {
@@ -307,15 +431,9 @@ impl Simulation {
         });
         if let (Measurement::AwaitingFirst, Some(first)) = (self.measurement, r) {
             // The guidance starts on its first measurement, brought forward to now.
-            let guidance_x = &self.state[GUIDANCE..];
-            let r0 = first.at(
-                t_s,
-                &KinematicFollower::position_ned_ft(&self.state[..COMMAND]),
-                VelocityGuidance::b_hat_ft(guidance_x),
-                &VelocityGuidance::d_hat(guidance_x),
-                self.scenario.camera.compensate_delay,
-            );
-            self.guidance.start_at(&mut self.state[GUIDANCE..], &r0);
+            let r0 = self.bring_forward(&first, t_s, &self.state);
+            let at = self.layout.guidance;
+            self.guidance.start_at(&mut self.state[at..], &r0);
         }
         if r.is_some() || self.measurement != Measurement::AwaitingFirst {
             self.measurement = Measurement::Held(r);
@@ -326,47 +444,17 @@ impl Simulation {
     /// The user's command R_c and Ṙ_c (NED, ft and ft/s) for the follower and command
     /// slices of a state (see [`FormationCommand`]).
     fn command(&self, x: &[f64]) -> (Vec3, Vec3) {
-        let follower_x = &x[..COMMAND];
-        let attitude = KinematicFollower::attitude(follower_x);
-        let euler_rates = self.follower.attitude_rates(follower_x);
-        let omega = KinematicFollower::body_rates(&attitude, &euler_rates);
-        self.command
-            .command(&x[COMMAND..GUIDANCE], &attitude, &omega)
+        let attitude = self.follower_attitude(x);
+        let omega = self.follower_body_rates(x);
+        self.command.command(
+            &x[self.layout.command..self.layout.guidance],
+            &attitude,
+            &omega,
+        )
     }
 
-    /// ẋ of the whole state and the guidance output at (t, x).
-    fn derivative(&self, t_s: f64, x: &[f64], dx: &mut [f64]) -> VelocityGuidanceOutput {
-        let (command_and_follower_x, guidance_x) = x.split_at(GUIDANCE);
-        let (follower_x, command_x) = command_and_follower_x.split_at(COMMAND);
-        let (command_and_follower_dx, guidance_dx) = dx.split_at_mut(GUIDANCE);
-        let (follower_dx, command_dx) = command_and_follower_dx.split_at_mut(COMMAND);
-        self.command.derivative(
-            command_x,
-            &KinematicFollower::attitude(follower_x),
-            command_dx,
-        );
-        let r_measured = match self.measurement {
-            Measurement::Continuous => {
-                let relative = self.target.position_ned_ft(t_s)
-                    - KinematicFollower::position_ned_ft(follower_x);
-                Some(relative / self.scenario.target.size_ft)
-            }
-            Measurement::Held(held) => held.map(|m| {
-                m.at(
-                    t_s,
-                    &KinematicFollower::position_ned_ft(follower_x),
-                    VelocityGuidance::b_hat_ft(guidance_x),
-                    &VelocityGuidance::d_hat(guidance_x),
-                    self.scenario.camera.compensate_delay,
-                )
-            }),
-            Measurement::AwaitingFirst => {
-                let out = self.guidance.idle(guidance_x, guidance_dx);
-                self.follower
-                    .derivative(follower_x, &out.velocity_cmd_ned_fps, follower_dx);
-                return out;
-            }
-        };
+    /// The guidance input at (t, x) for a measurement: command, its rate and the excitation.
+    fn guidance_input(&self, t_s: f64, x: &[f64], r_measured: Option<Vec3>) -> GuidanceInput {
         let (command_ned_ft, command_rate_ned_fps) = self.command(x);
         let (offset, offset_rate) = self.excitation.offset(t_s);
         let zero = Vec3::zeros();
@@ -377,7 +465,7 @@ impl Simulation {
             ExcitationUnits::Ft => ((offset, offset_rate), (zero, zero)),
             ExcitationUnits::Scaled => ((zero, zero), (offset, offset_rate)),
         };
-        let input = VelocityGuidanceInput {
+        GuidanceInput {
             r_measured,
             command_ned_ft,
             command_rate_ned_fps,
@@ -385,15 +473,37 @@ impl Simulation {
             excitation_rate_ned_fps,
             excitation_scaled,
             excitation_scaled_rate,
+        }
+    }
+
+    /// ẋ of the whole state and the guidance output at (t, x).
+    fn derivative(&self, t_s: f64, x: &[f64], dx: &mut [f64]) -> GuidanceOutput {
+        let StateLayout { command, guidance } = self.layout;
+        let (command_and_follower_x, guidance_x) = x.split_at(guidance);
+        let (follower_x, command_x) = command_and_follower_x.split_at(command);
+        let (command_and_follower_dx, guidance_dx) = dx.split_at_mut(guidance);
+        let (follower_dx, command_dx) = command_and_follower_dx.split_at_mut(command);
+        self.command
+            .derivative(command_x, &self.follower_attitude(x), command_dx);
+        let out = match self.measurement {
+            Measurement::Continuous => {
+                let r_measured = self.continuous_measurement(t_s, x);
+                let input = self.guidance_input(t_s, x, r_measured);
+                self.guidance.derivative(guidance_x, &input, guidance_dx)
+            }
+            Measurement::Held(held) => {
+                let r_measured = held.map(|m| self.bring_forward(&m, t_s, x));
+                let input = self.guidance_input(t_s, x, r_measured);
+                self.guidance.derivative(guidance_x, &input, guidance_dx)
+            }
+            Measurement::AwaitingFirst => self.guidance.idle(guidance_x, guidance_dx),
         };
-        let out = self.guidance.derivative(guidance_x, &input, guidance_dx);
-        self.follower
-            .derivative(follower_x, &out.velocity_cmd_ned_fps, follower_dx);
+        self.follower.derivative(follower_x, &out.command, follower_dx);
         out
     }
 
     /// The guidance output at the current state.
-    fn evaluate(&mut self) -> VelocityGuidanceOutput {
+    fn evaluate(&mut self) -> GuidanceOutput {
         let mut scratch = std::mem::take(&mut self.scratch);
         let out = self.derivative(self.time_s(), &self.state, &mut scratch);
         self.scratch = scratch;
@@ -405,11 +515,11 @@ impl Simulation {
         let t_s = self.time_s();
         let mut dx = vec![0.0; self.state.len()];
         let out = self.derivative(t_s, &self.state, &mut dx);
-        let (follower_x, guidance_x) = self.state.split_at(GUIDANCE);
-        let follower = KinematicFollower::position_ned_ft(follower_x);
+        let guidance_x = &self.state[self.layout.guidance..];
+        let follower = self.follower_position_ned_ft(&self.state);
         let target = self.target.state(t_s);
         let (command, _) = self.command(&self.state);
-        let b_hat_ft = VelocityGuidance::b_hat_ft(guidance_x);
+        let b_hat_ft = self.guidance.b_hat_ft(guidance_x);
         let (offset, _) = self.excitation.offset(t_s);
         let excitation_ned_ft = match self.excitation.units() {
             ExcitationUnits::Ft => offset,
@@ -420,19 +530,19 @@ impl Simulation {
             t_s,
             target,
             follower_position_ned_ft: follower,
-            follower_velocity_ned_fps: out.velocity_cmd_ned_fps,
-            follower_attitude: KinematicFollower::attitude(follower_x),
+            follower_velocity_ned_fps: self.follower_velocity(&out),
+            follower_attitude: self.follower_attitude(&self.state),
             relative_ned_ft: relative,
             command_ned_ft: command,
             excited_command_ned_ft: command + excitation_ned_ft,
             excitation_amplitude: self.excitation.amplitude(),
             r_measured: match self.measurement {
-                Measurement::Continuous => Some(relative / self.scenario.target.size_ft),
+                Measurement::Continuous => self.continuous_measurement(t_s, &self.state),
                 Measurement::Held(held) => held.map(|m| m.r),
                 Measurement::AwaitingFirst => None,
             },
             b_hat_ft,
-            d_hat: VelocityGuidance::d_hat(guidance_x),
+            d_hat: self.guidance.d_hat(guidance_x),
             guidance: out,
             frame: self.camera.as_ref().and_then(CameraSensor::last_record),
         }
@@ -453,8 +563,8 @@ impl Simulation {
             self.derivative(t, x, dx);
         });
         self.rk4 = rk4;
-        let (command_and_follower_x, guidance_x) = state.split_at_mut(GUIDANCE);
-        let (follower_x, command_x) = command_and_follower_x.split_at_mut(COMMAND);
+        let (command_and_follower_x, guidance_x) = state.split_at_mut(self.layout.guidance);
+        let (follower_x, command_x) = command_and_follower_x.split_at_mut(self.layout.command);
         KinematicFollower::normalize(follower_x);
         FormationCommand::normalize(command_x);
         self.guidance.enforce_bounds(guidance_x);
@@ -469,8 +579,7 @@ impl Simulation {
                 what: format!("state element {i} is {}", self.state[i]),
             });
         }
-        let follower = KinematicFollower::position_ned_ft(&self.state[..GUIDANCE]);
-        let range_ft = (self.target.position_ned_ft(t_end_s) - follower).norm();
+        let range_ft = self.relative_ned_ft(t_end_s, &self.state).norm();
         self.min_range_ft = self.min_range_ft.min(range_ft);
         if range_ft > 1e6 {
             return Err(SimError::Diverged {
@@ -479,7 +588,11 @@ impl Simulation {
             });
         }
         let out = self.evaluate();
-        self.excitation.record(t_end_s, out.error.norm_squared());
+        let error = match self.scenario.excitation.error {
+            ExcitationError::Measured => out.error,
+            ExcitationError::Estimated => out.estimated_error,
+        };
+        self.excitation.record(t_end_s, error.norm_squared());
 
         if self.scenario.guidance.mission == Mission::Intercept
             && range_ft < self.scenario.guidance.intercept_radius_ft

@@ -100,3 +100,46 @@ fn missing_file() {
         "{stderr}"
     );
 }
+
+/// The Chapter 5-6 keys: the law, the acceleration section's design conditions, the noisy
+/// sensor's sample period and SNR reference, the estimator's covariance weights.
+#[test]
+fn chapter_5_and_6_keys() {
+    assert_rejected("[guidance]\nlaw = \"jerk\"\n", &[], &["law", "jerk"]);
+    assert_rejected(
+        "[guidance]\nlaw = \"acceleration\"\n[acceleration]\nobserver_gain = [1.0, 1.6]\n",
+        &[],
+        &[
+            "acceleration.observer_gain = [1.0, 1.6]",
+            "l1 >= acceleration.lambda_rps = 2",
+        ],
+    );
+    assert_rejected(
+        "[sensor]\nmode = \"noisy\"\nsample_period_s = 0.0015\n",
+        &[],
+        &["sensor.sample_period_s = 0.0015", "run.dt_s = 0.001"],
+    );
+    assert_rejected(
+        "[sensor]\nmode = \"noisy\"\nsnr_reference = \"command\"\n[guidance]\nmission = \"intercept\"\n",
+        &[],
+        &[
+            "sensor.snr_reference",
+            "\"signal\" when the command is zero",
+        ],
+    );
+    assert_rejected(
+        "[sensor]\nmode = \"noisy\"\nnoise_on = \"pixels\"\n[camera]\nhfov_deg = 0.0\n",
+        &[],
+        &["camera.hfov_deg = 0", "(0, 179)"],
+    );
+    assert_rejected(
+        "[guidance]\nestimator_noise_psd = 0.0\n",
+        &[],
+        &["guidance.estimator_noise_psd = 0", "> 0"],
+    );
+    assert_rejected(
+        "",
+        &["--set", "follower.initial_velocity_fps=[50.0, nan, 0.0]"],
+        &["follower.initial_velocity_fps", "three finite numbers"],
+    );
+}

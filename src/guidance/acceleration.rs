@@ -315,6 +315,43 @@ impl AccelerationGuidance {
         x
     }
 
+    /// Restarts the reference model, the observer and the shaping filter at the first
+    /// measurement r(0), keeping b̂, d̂, w and S_f (a camera's first frame arrives after the run
+    /// starts).
+    pub fn start_at(&self, x: &mut [f64], r0: &Vec3) {
+        for i in 0..3 {
+            x[Z_M + 2 * i] = r0[i];
+            x[Z_M + 2 * i + 1] = 0.0;
+            x[Z_HAT + 2 * i] = r0[i];
+            x[Z_HAT + 2 * i + 1] = 0.0;
+        }
+        x[R_CF..R_CF + 3].copy_from_slice(r0.as_slice());
+    }
+
+    /// Before the first measurement: no state moves and a_F = 0 (the follower keeps V_F(0)).
+    pub fn idle(&self, x: &[f64], dx: &mut [f64]) -> AccelerationGuidanceOutput {
+        dx.fill(0.0);
+        let zero = Vec3::zeros();
+        AccelerationGuidanceOutput {
+            accel_cmd_ned_fps2: zero,
+            y_command: vec3_at(x, R_CF),
+            y_command_rate: zero,
+            y_model: Vec3::new(x[Z_M], x[Z_M + 2], x[Z_M + 4]),
+            y_observer: Self::predicted_measurement(x),
+            y_combined: zero,
+            virtual_control_fps: zero,
+            virtual_control_rate_fps2: zero,
+            error: zero,
+            b_hat_rate_fps: 0.0,
+        }
+    }
+
+    /// The observer's output C ẑ: the law's own prediction of y, which it coasts on while the
+    /// target is not measured.
+    pub fn predicted_measurement(x: &[f64]) -> Vec3 {
+        Vec3::new(x[Z_HAT], x[Z_HAT + 2], x[Z_HAT + 4])
+    }
+
     /// b̂ of a state slice, ft.
     pub fn b_hat_ft(x: &[f64]) -> f64 {
         x[B_HAT]

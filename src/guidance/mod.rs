@@ -4,5 +4,6 @@
 pub mod acceleration;
 pub mod command;
 pub mod excitation;
+pub mod law;
 pub mod projection;
 pub mod velocity;

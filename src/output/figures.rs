@@ -1,9 +1,17 @@
-//! Which figures a run draws: the panels of the seed's Figures 4.3-4.7 (relative position vs
-//! command, parameter estimates, follower vs target velocity).
+//! Which figures a run draws: the panels of the seed's figures for the run's law and sensor.
+//!
+//! Every run: `relative_position.png` (R vs R_c, seed Figs 4.3 / 4.6, 5.3, 6.2, 6.5, 6.8),
+//! `parameter_estimates.png` (b̂ and b̂ d̂ vs V_T for the velocity law, Figs 4.4, 6.3, 6.6; b̂
+//! and ‖d̂‖ for the acceleration law, Figs 5.4, 6.9) and `velocity.png` (V_F vs V_T, Figs
+//! 4.5 / 4.7, 6.1, 6.4). Acceleration law: `acceleration.png` (a_F vs a_T, Figs 5.2, 6.7) and
+//! `target_acceleration.png` (Fig 5.1). Noisy sensor: `measurement.png` (r* against the
+//! noise-free r; the seed shows no such figure).
 
-use super::plots::{EXTRA, Panel, PlotError, REFERENCE, Series, TRUTH, draw_figure};
+use super::plots::{
+    EXTRA, HIGHLIGHT, Panel, PlotError, REFERENCE, Series, TRUTH, draw_figure, moving_mean,
+};
 use crate::frames::Vec3;
-use crate::scenario::Scenario;
+use crate::scenario::{GuidanceLawKind, Mission, NoiseOn, Scenario, SensorMode};
 use crate::sim::Snapshot;
 use std::path::Path;
 
@@ -13,6 +21,63 @@ fn component(logged: &[Snapshot], f: impl Fn(&Snapshot) -> Vec3, axis: usize) ->
     logged.iter().map(|s| f(s)[axis]).collect()
 }
 
+/// The seed figure numbers a run's panels reproduce, for the titles.
+struct FigureNumbers {
+    relative: &'static str,
+    estimates: &'static str,
+    velocity: &'static str,
+    acceleration: &'static str,
+}
+
+impl FigureNumbers {
+    fn of(scenario: &Scenario) -> Self {
+        let noisy = scenario.sensor.mode == SensorMode::Noisy;
+        let intercept = scenario.guidance.mission == Mission::Intercept;
+        match (scenario.guidance.law, noisy) {
+            (GuidanceLawKind::Acceleration, _) if intercept => Self {
+                relative: "Remark 6, no seed figure",
+                estimates: "Remark 6",
+                velocity: "no seed figure",
+                acceleration: "Remark 6",
+            },
+            (GuidanceLawKind::Acceleration, false) => Self {
+                relative: "seed Fig 5.3",
+                estimates: "seed Fig 5.4",
+                velocity: "no seed figure",
+                acceleration: "seed Fig 5.2",
+            },
+            (GuidanceLawKind::Acceleration, true) => Self {
+                relative: "seed Fig 6.8",
+                estimates: "seed Fig 6.9",
+                velocity: "no seed figure",
+                acceleration: "seed Fig 6.7",
+            },
+            (GuidanceLawKind::Velocity, true) => Self {
+                relative: "seed Fig 6.5",
+                estimates: "seed Fig 6.6",
+                velocity: "seed Fig 6.4",
+                acceleration: "",
+            },
+            (GuidanceLawKind::Velocity, false)
+                if scenario.guidance.estimator && scenario.sensor.mode == SensorMode::Perfect =>
+            {
+                Self {
+                    relative: "seed Fig 6.2",
+                    estimates: "seed Fig 6.3",
+                    velocity: "seed Fig 6.1",
+                    acceleration: "",
+                }
+            }
+            (GuidanceLawKind::Velocity, false) => Self {
+                relative: "seed Fig 4.3 / 4.6",
+                estimates: "seed Fig 4.4",
+                velocity: "seed Fig 4.5 / 4.7",
+                acceleration: "",
+            },
+        }
+    }
+}
+
 /// Draws every figure that applies to this run into `dir`.
 pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<(), PlotError> {
     std::fs::create_dir_all(dir).map_err(|e| PlotError::Draw {
@@ -20,6 +85,7 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
         reason: e.to_string(),
     })?;
     let t: Vec<f64> = logged.iter().map(|s| s.t_s).collect();
+    let numbers = FigureNumbers::of(scenario);
 
     let relative: Vec<Panel> = (0..3)
         .map(|i| Panel {
@@ -41,12 +107,15 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
         .collect();
     draw_figure(
         &dir.join("relative_position.png"),
-        "Relative position and reference command (seed Fig 4.3 / 4.6)",
+        &format!(
+            "Relative position and reference command ({})",
+            numbers.relative
+        ),
         &t,
         &relative,
     )?;
 
-    let mut estimates = vec![Panel {
+    let b_panel = Panel {
         y_label: "b, ft".to_string(),
         series: vec![
             Series::new(
@@ -60,7 +129,55 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
                 REFERENCE,
             ),
         ],
-    }];
+    };
+    let estimates = match scenario.guidance.law {
+        GuidanceLawKind::Velocity => velocity_law_estimates(b_panel, logged),
+        GuidanceLawKind::Acceleration => vec![
+            b_panel,
+            Panel {
+                y_label: "‖d̂‖, ft/s".to_string(),
+                series: vec![Series::new(
+                    "estimate of ‖d_T‖",
+                    logged.iter().map(|s| s.d_hat.norm()).collect(),
+                    TRUTH,
+                )],
+            },
+        ],
+    };
+    draw_figure(
+        &dir.join("parameter_estimates.png"),
+        &format!("Parameter estimates ({})", numbers.estimates),
+        &t,
+        &estimates,
+    )?;
+
+    let velocity = versus_target(
+        logged,
+        "V",
+        "ft/s",
+        ("V_F (follower)", |s| s.follower_velocity_ned_fps),
+        ("V_T (target)", |s| s.target.velocity_ned_fps),
+    );
+    draw_figure(
+        &dir.join("velocity.png"),
+        &format!("Follower and target velocity ({})", numbers.velocity),
+        &t,
+        &velocity,
+    )?;
+
+    if scenario.guidance.law == GuidanceLawKind::Acceleration {
+        let noisy = scenario.sensor.mode != SensorMode::Perfect;
+        draw_acceleration_figures(dir, &numbers, noisy, &t, logged)?;
+    }
+    if scenario.sensor.mode == SensorMode::Noisy {
+        draw_measurement_figure(dir, scenario, &t, logged)?;
+    }
+    Ok(())
+}
+
+/// Velocity law: b̂ and b̂ d̂ (the estimate of V_T) against V_T.
+fn velocity_law_estimates(b_panel: Panel, logged: &[Snapshot]) -> Vec<Panel> {
+    let mut estimates = vec![b_panel];
     estimates.extend((0..3).map(|i| Panel {
         y_label: format!("V_T{}, ft/s", AXES[i]),
         series: vec![
@@ -76,34 +193,127 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
             ),
         ],
     }));
-    draw_figure(
-        &dir.join("parameter_estimates.png"),
-        "Parameter estimates (seed Fig 4.4)",
-        &t,
-        &estimates,
-    )?;
+    estimates
+}
 
-    let velocity: Vec<Panel> = (0..3)
+/// Three panels of a follower quantity against the target's.
+fn versus_target(
+    logged: &[Snapshot],
+    symbol: &str,
+    unit: &str,
+    follower: (&str, fn(&Snapshot) -> Vec3),
+    target: (&str, fn(&Snapshot) -> Vec3),
+) -> Vec<Panel> {
+    (0..3)
         .map(|i| Panel {
-            y_label: format!("V{}, ft/s", AXES[i]),
+            y_label: format!("{symbol}{}, {unit}", AXES[i]),
+            series: vec![
+                Series::new(follower.0, component(logged, follower.1, i), TRUTH),
+                Series::new(target.0, component(logged, target.1, i), REFERENCE),
+            ],
+        })
+        .collect()
+}
+
+/// Acceleration law: a_F against a_T (with noise, also a_F's 1 s moving mean, which shows
+/// whether it follows a_T under the noise), and a_T alone.
+fn draw_acceleration_figures(
+    dir: &Path,
+    numbers: &FigureNumbers,
+    noisy: bool,
+    t: &[f64],
+    logged: &[Snapshot],
+) -> Result<(), PlotError> {
+    let mut accel = versus_target(
+        logged,
+        "a",
+        "ft/s²",
+        ("a_F (guidance law)", |s| {
+            s.follower_accel_ned_fps2()
+                .unwrap_or(Vec3::from_element(f64::NAN))
+        }),
+        ("a_T (target)", |s| s.target.accel_ned_fps2),
+    );
+    if noisy {
+        let step_s = match (t.first(), t.get(1)) {
+            (Some(a), Some(b)) if b > a => b - a,
+            _ => 1.0,
+        };
+        let window = (1.0 / step_s).round().max(1.0) as usize;
+        for panel in &mut accel {
+            let mean = moving_mean(&panel.series[0].values, window);
+            panel
+                .series
+                .push(Series::new("a_F, 1 s moving mean", mean, HIGHLIGHT));
+        }
+    }
+    draw_figure(
+        &dir.join("acceleration.png"),
+        &format!(
+            "Guidance law and target's acceleration ({})",
+            numbers.acceleration
+        ),
+        t,
+        &accel,
+    )?;
+    let target: Vec<Panel> = (0..3)
+        .map(|i| Panel {
+            y_label: format!("a_T{}, ft/s²", AXES[i]),
+            series: vec![Series::new(
+                "a_T",
+                component(logged, |s| s.target.accel_ned_fps2, i),
+                REFERENCE,
+            )],
+        })
+        .collect();
+    draw_figure(
+        &dir.join("target_acceleration.png"),
+        "Target's acceleration profile (seed Fig 5.1)",
+        t,
+        &target,
+    )
+}
+
+/// Noisy sensor: the measured r* against the noise-free r = R/b.
+fn draw_measurement_figure(
+    dir: &Path,
+    scenario: &Scenario,
+    t: &[f64],
+    logged: &[Snapshot],
+) -> Result<(), PlotError> {
+    let size_ft = scenario.target.size_ft;
+    let panels: Vec<Panel> = (0..3)
+        .map(|i| Panel {
+            y_label: format!("r{}", AXES[i]),
             series: vec![
                 Series::new(
-                    "V_F (guidance)",
-                    component(logged, |s| s.follower_velocity_ned_fps, i),
-                    TRUTH,
+                    "r* (measured)",
+                    component(
+                        logged,
+                        |s| s.r_measured.unwrap_or(Vec3::from_element(f64::NAN)),
+                        i,
+                    ),
+                    EXTRA,
                 ),
                 Series::new(
-                    "V_T (target)",
-                    component(logged, |s| s.target.velocity_ned_fps, i),
-                    REFERENCE,
+                    "r = R / b (noise-free)",
+                    logged
+                        .iter()
+                        .map(|s| s.relative_ned_ft[i] / size_ft)
+                        .collect(),
+                    TRUTH,
                 ),
             ],
         })
         .collect();
+    let noise = match scenario.sensor.noise_on {
+        NoiseOn::ScaledPosition => format!("SNR {} dB", scenario.sensor.snr_db),
+        NoiseOn::Pixels => format!("pixel noise {:?} px", scenario.sensor.pixel_noise_px),
+    };
     draw_figure(
-        &dir.join("velocity.png"),
-        "Guidance law and target's velocity (seed Fig 4.5 / 4.7)",
-        &t,
-        &velocity,
+        &dir.join("measurement.png"),
+        &format!("Measured and noise-free scaled relative position ({noise})"),
+        t,
+        &panels,
     )
 }

@@ -58,6 +58,25 @@ pub const TRUTH: RGBColor = RGBColor(20, 60, 200);
 pub const REFERENCE: RGBColor = RGBColor(210, 40, 40);
 /// A third curve (e.g. a command with excitation).
 pub const EXTRA: RGBColor = RGBColor(120, 120, 120);
+/// A curve drawn over a noisy one (e.g. its moving mean).
+pub const HIGHLIGHT: RGBColor = RGBColor(240, 150, 0);
+
+/// The centred moving mean of `values` over `window` samples (shorter at the ends; NaN
+/// samples are skipped).
+pub fn moving_mean(values: &[f64], window: usize) -> Vec<f64> {
+    let half = window / 2;
+    (0..values.len())
+        .map(|i| {
+            let lo = i.saturating_sub(half);
+            let hi = (i + half + 1).min(values.len());
+            let (sum, n) = values[lo..hi]
+                .iter()
+                .filter(|v| v.is_finite())
+                .fold((0.0, 0usize), |(s, n), v| (s + v, n + 1));
+            if n == 0 { f64::NAN } else { sum / n as f64 }
+        })
+        .collect()
+}
 
 const FONT_PATHS: [&str; 4] = [
     "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
@@ -160,4 +179,19 @@ fn value_range(panel: &Panel) -> (f64, f64) {
     }
     let span = (hi - lo).max(1e-3 * hi.abs().max(1.0));
     (lo - 0.05 * span, hi + 0.05 * span)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moving_mean_is_centred() {
+        let m = moving_mean(&[0.0, 3.0, 6.0, f64::NAN, 12.0], 3);
+        assert_eq!(m[0], 1.5);
+        assert_eq!(m[1], 3.0);
+        assert_eq!(m[2], 4.5);
+        assert_eq!(m[3], 9.0);
+        assert_eq!(m[4], 12.0);
+    }
 }

@@ -1,5 +1,6 @@
 //! `summary.json`: the numbers a run is judged by (DESIGN §4).
 
+use crate::scenario::GuidanceLawKind;
 use crate::sim::{SimError, Simulation, Snapshot};
 use serde::Serialize;
 
@@ -38,6 +39,10 @@ pub struct Summary {
     pub b_true_ft: f64,
     /// b̂ at the end, ft.
     pub b_hat_final_ft: f64,
+    /// Guidance law: "velocity" or "acceleration".
+    pub law: GuidanceLawKind,
+    /// ‖d̂‖ at the end, in the law's unit: 1/s (velocity law), ft/s (acceleration law).
+    pub d_hat_norm_final: f64,
     /// Time of interception, s (null if none).
     pub intercept_time_s: Option<f64>,
     /// Smallest ‖R‖ over the run (every tick), ft.
@@ -47,6 +52,12 @@ pub struct Summary {
     pub rms_error_last20s_ft: [f64; 3],
     /// Frames in which the target was not measured.
     pub lost_frames: u64,
+    /// The SNR the noisy sensor realised, 10 log10(Σ‖r‖² / Σ‖r* - r‖²) over its samples, dB
+    /// (noisy runs).
+    pub noise_snr_db: Option<f64>,
+    /// What the set-up had to say (e.g. a Riccati observer gain that fell back to the fixed
+    /// gain, the estimator gain designed from the covariance).
+    pub notes: Vec<String>,
     /// RMS of measured minus true centroid, px (camera runs).
     pub centroid_rms_px: Option<f64>,
     /// RMS of measured minus true maximal length, px (camera runs).
@@ -117,10 +128,14 @@ impl Summary {
             },
             b_true_ft: sim.scenario().target.size_ft,
             b_hat_final_ft: last.map_or(f64::NAN, |s| s.b_hat_ft),
+            law: sim.scenario().guidance.law,
+            d_hat_norm_final: last.map_or(f64::NAN, |s| s.d_hat.norm()),
             intercept_time_s: sim.intercept_time_s(),
             min_range_ft: sim.min_range_ft(),
             rms_error_last20s_ft: rms_error_since(logged, duration_s - 20.0),
             lost_frames: camera.map_or(0, |c| c.lost_frames()),
+            noise_snr_db: sim.noisy_sensor().and_then(|n| n.realised_snr_db()),
+            notes: sim.notes().to_vec(),
             centroid_rms_px: camera.and_then(|c| c.errors().centroid_rms_px()),
             length_rms_px: camera.and_then(|c| c.errors().length_rms_px()),
             adapter: camera.map(|c| c.adapter().to_string()),

@@ -1,8 +1,10 @@
 //! `telemetry.csv`: one row per logged tick, written as the run goes so that a run that stops
 //! early keeps what it logged.
 
+use crate::guidance::acceleration::AccelerationGuidanceOutput;
 use crate::sim::Snapshot;
 use crate::vision::BlobStatus;
+use crate::world::kinematic::FollowerCommand;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
@@ -18,6 +20,12 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
     let [cn, ce, cd] = v(&s.command_ned_ft);
     let [xn, xe, xd] = v(&s.excited_command_ned_ft);
     let [dx, dy, dz] = v(&s.d_hat);
+    // d̂ is a scaled velocity (1/s) in the velocity law, a filtered acceleration bound (ft/s)
+    // in the acceleration law: the column names carry the law's unit.
+    let d_names = match s.guidance.command {
+        FollowerCommand::Velocity(_) => ["d_hat_x_per_s", "d_hat_y_per_s", "d_hat_z_per_s"],
+        FollowerCommand::Acceleration(_) => ["d_hat_x_fps", "d_hat_y_fps", "d_hat_z_fps"],
+    };
     let [rx, ry, rz] = s.r_measured.map_or([f64::NAN; 3], |r| v(&r));
     let [rcx, rcy, rcz] = v(&s.guidance.r_command);
     let image = |m: Option<crate::sensing::ImageMeasurement>| {
@@ -58,9 +66,9 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
         ("cmd_exc_d_ft", xd),
         ("excitation_amp", s.excitation_amplitude),
         ("b_hat_ft", s.b_hat_ft),
-        ("d_hat_x_per_s", dx),
-        ("d_hat_y_per_s", dy),
-        ("d_hat_z_per_s", dz),
+        (d_names[0], dx),
+        (d_names[1], dy),
+        (d_names[2], dz),
         ("r_meas_x", rx),
         ("r_meas_y", ry),
         ("r_meas_z", rz),
@@ -78,7 +86,45 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
         ("z_i_true_px", zt),
         ("b_i_true_px", bt),
     ]);
+    if let FollowerCommand::Acceleration(_) = s.guidance.command {
+        row.extend(acceleration_columns(s.guidance.acceleration.as_ref()));
+    }
     row
+}
+
+/// The acceleration law's signals (appended to its runs' rows, empty cells when the law gave
+/// none): a_F (5.38), the reference model's and the observer's outputs y_m and C ẑ, the
+/// combined output y_a, the virtual control w_f and b̂'.
+fn acceleration_columns(a: Option<&AccelerationGuidanceOutput>) -> Vec<(&'static str, f64)> {
+    let v = |f: fn(&AccelerationGuidanceOutput) -> crate::frames::Vec3| {
+        a.map_or([f64::NAN; 3], |a| {
+            let x = f(a);
+            [x.x, x.y, x.z]
+        })
+    };
+    let [an, ae, ad] = v(|a| a.accel_cmd_ned_fps2);
+    let [mx, my, mz] = v(|a| a.y_model);
+    let [ox, oy, oz] = v(|a| a.y_observer);
+    let [yx, yy, yz] = v(|a| a.y_combined);
+    let [wx, wy, wz] = v(|a| a.virtual_control_fps);
+    vec![
+        ("fol_an_fps2", an),
+        ("fol_ae_fps2", ae),
+        ("fol_ad_fps2", ad),
+        ("y_model_x", mx),
+        ("y_model_y", my),
+        ("y_model_z", mz),
+        ("y_observer_x", ox),
+        ("y_observer_y", oy),
+        ("y_observer_z", oz),
+        ("y_a_x", yx),
+        ("y_a_y", yy),
+        ("y_a_z", yz),
+        ("w_f_x_fps", wx),
+        ("w_f_y_fps", wy),
+        ("w_f_z_fps", wz),
+        ("b_hat_rate_fps", a.map_or(f64::NAN, |a| a.b_hat_rate_fps)),
+    ]
 }
 
 /// `meas_status` codes: 0 ok, 1 not found, 2 truncated (touches the border), 3 too small.

@@ -99,10 +99,8 @@ impl Default for CameraSection {
 impl CameraSection {
     /// Checks every value; `dt_s` is the simulation step the frame period must divide.
     pub fn validate(&self, dt_s: f64) -> Check {
-        check::int_in("camera.width_px", i64::from(self.width_px), 8, 8192)?;
+        self.validate_focal_length()?;
         check::int_in("camera.height_px", i64::from(self.height_px), 8, 8192)?;
-        check::in_open("camera.hfov_deg", self.hfov_deg, 0.0, 179.0, "(0, 179)")?;
-        check::in_closed("camera.focal_px", self.focal_px, 0.0, 1e6)?;
         check::in_closed("camera.rate_hz", self.rate_hz, 0.01, 10_000.0)?;
         let ticks = 1.0 / (self.rate_hz * dt_s);
         check::require(
@@ -149,6 +147,14 @@ impl CameraSection {
             1.0 + 1e-12,
             "(0, 1]",
         )
+    }
+
+    /// Checks the keys [`Self::focal_length_px`] reads (also used by the noisy sensor's
+    /// noise on pixels, which needs no other camera key).
+    pub fn validate_focal_length(&self) -> Check {
+        check::int_in("camera.width_px", i64::from(self.width_px), 8, 8192)?;
+        check::in_open("camera.hfov_deg", self.hfov_deg, 0.0, 179.0, "(0, 179)")?;
+        check::in_closed("camera.focal_px", self.focal_px, 0.0, 1e6)
     }
 
     /// Focal length, px: `focal_px`, or from `hfov_deg` when that is 0.

@@ -6,11 +6,13 @@ mod camera;
 pub mod check;
 mod control;
 mod sections;
+mod sensor;
 
 pub use acceleration::*;
 pub use camera::*;
 pub use control::*;
 pub use sections::*;
+pub use sensor::*;
 
 use std::path::{Path, PathBuf};
 

@@ -113,6 +113,10 @@ pub struct FollowerSection {
     /// Kinematic follower: time constant with which the attitude turns to the velocity
     /// direction (θ → γ, ψ → χ, φ → coordinated-turn bank), s.
     pub attitude_lag_s: f64,
+    /// V_F(0) in NED, ft/s, for a follower that integrates a commanded acceleration
+    /// (`guidance.law = "acceleration"`); the velocity law commands V_F directly and ignores
+    /// it. Default: the seed target's initial velocity.
+    pub initial_velocity_fps: [f64; 3],
 }
 
 impl Default for FollowerSection {
@@ -122,6 +126,7 @@ impl Default for FollowerSection {
             initial_position_ft: [0.0; 3],
             initial_attitude_deg: [0.0; 3],
             attitude_lag_s: 0.2,
+            initial_velocity_fps: [50.0, 0.0, 0.0],
         }
     }
 }
@@ -136,33 +141,8 @@ impl FollowerSection {
             -89.0,
             89.0,
         )?;
-        check::in_closed("follower.attitude_lag_s", self.attitude_lag_s, 1e-3, 10.0)
-    }
-}
-
-/// What the guidance measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SensorMode {
-    /// r = R / b exactly, continuously (seed Chapters 4-5).
-    Perfect,
-    /// Rendered frames measured by the image pipeline (`[camera]`).
-    Camera,
-}
-
-/// `[sensor]`: the measurement model.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct SensorSection {
-    /// Measurement model.
-    pub mode: SensorMode,
-}
-
-impl Default for SensorSection {
-    fn default() -> Self {
-        Self {
-            mode: SensorMode::Perfect,
-        }
+        check::in_closed("follower.attitude_lag_s", self.attitude_lag_s, 1e-3, 10.0)?;
+        check::finite_vec("follower.initial_velocity_fps", &self.initial_velocity_fps)
     }
 }
 
@@ -170,8 +150,23 @@ impl Default for SensorSection {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum GuidanceLawKind {
-    /// Velocity command, (4.3)-(4.5).
+    /// Velocity command, (4.3)-(4.5); with `estimator`, (6.10)-(6.17).
     Velocity,
+    /// Acceleration command, (5.2)-(5.41) and Remark 6; with noise, (6.39)-(6.42). Gains in
+    /// `[acceleration]`.
+    Acceleration,
+}
+
+/// Where the velocity law's estimator gain L_v comes from (Section 6.2.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EstimatorGainMode {
+    /// L_v = `estimator_gain` I (the seed's 1.7 I).
+    Fixed,
+    /// L_v from the steady-state error covariance (6.33)-(6.36), with the noise intensity
+    /// `estimator_noise_psd` and the disturbance intensity `estimator_process_psd` (see
+    /// `guidance::velocity::steady_state_estimator_gain`).
+    Covariance,
 }
 
 /// Formation (hold R_c) or interception (R_c = 0, stop inside a radius).
@@ -219,8 +214,19 @@ pub struct GuidanceSection {
     pub command_heading_lag_s: f64,
     /// Drive the law with the Chapter 6 state estimator (6.10)-(6.17).
     pub estimator: bool,
-    /// Estimator gain L_v = estimator_gain I, 1/s.
+    /// Fixed estimator gain L_v = estimator_gain I, 1/s (seed: 1.7).
     pub estimator_gain: f64,
+    /// Fixed L_v, or L_v from the steady-state covariance (6.36).
+    pub estimator_gain_mode: EstimatorGainMode,
+    /// Covariance design: intensity q (1/s) of the disturbance δ(t) = V_T/b - d of
+    /// ṙ = d + δ - V_F/b (4.1), treated as white noise, per axis.
+    pub estimator_process_psd: f64,
+    /// Covariance design: intensity K_nr (s, scaled units² · s) of the measurement noise n_r
+    /// of r* = r + n_r (6.9), per axis; for noise of variance σ² held over T_s it is σ² T_s.
+    pub estimator_noise_psd: f64,
+    /// q_v of Q_v = q_v I in the Lyapunov equation (6.17) whose P_v weighs the adaptive laws
+    /// (6.16): the seed leaves it free; 2k makes them weigh e as (4.5) does.
+    pub estimator_lyapunov_weight: f64,
     /// Tracking gain k, (4.3).
     pub k: f64,
     /// Adaptation gain σ of b̂, (4.5).
@@ -260,6 +266,10 @@ impl Default for GuidanceSection {
             command_heading_lag_s: 3.0,
             estimator: false,
             estimator_gain: 1.7,
+            estimator_gain_mode: EstimatorGainMode::Fixed,
+            estimator_process_psd: 0.01,
+            estimator_noise_psd: 1.8e-5,
+            estimator_lyapunov_weight: 1.0,
             k: 3.5,
             sigma: 39.0,
             gamma_d: 40.0,
@@ -293,6 +303,12 @@ impl GuidanceSection {
             89.0,
         )?;
         check::positive("guidance.estimator_gain", self.estimator_gain)?;
+        check::positive("guidance.estimator_process_psd", self.estimator_process_psd)?;
+        check::positive("guidance.estimator_noise_psd", self.estimator_noise_psd)?;
+        check::positive(
+            "guidance.estimator_lyapunov_weight",
+            self.estimator_lyapunov_weight,
+        )?;
         check::in_closed(
             "guidance.command_heading_lag_s",
             self.command_heading_lag_s,
@@ -363,6 +379,19 @@ pub enum ExcitationUnits {
     Scaled,
 }
 
+/// Which tracking error's energy sets the excitation amplitude.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExcitationError {
+    /// The measured error: e = r* - r_c (velocity law, (4.31)), the combined output
+    /// y*_a = 2y* - y_m - C ẑ (acceleration law, (5.27)).
+    Measured,
+    /// The law's estimate of it from its filtered states: r̂ - r_c (velocity law with the
+    /// estimator (6.10)), C (ẑ - z_m) (acceleration law). With noisy measurements the
+    /// measured error never falls below the noise, and the amplitude never decays.
+    Estimated,
+}
+
 /// `[excitation]`: intelligent excitation R*_c = R_c + a(t) sin(ωt) E, (4.31).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -381,6 +410,8 @@ pub struct ExcitationSection {
     pub k3: f64,
     /// Direction E in NED (normalised on use).
     pub direction: [f64; 3],
+    /// The error whose energy ∫ eᵀe the amplitude follows.
+    pub error: ExcitationError,
 }
 
 impl Default for ExcitationSection {
@@ -393,6 +424,7 @@ impl Default for ExcitationSection {
             k2: 100.0,
             k3: 0.0002,
             direction: [1.0, 0.0, 0.0],
+            error: ExcitationError::Measured,
         }
     }
 }
@@ -440,9 +472,11 @@ pub struct Scenario {
     /// Follower.
     pub follower: FollowerSection,
     /// Sensor.
-    pub sensor: SensorSection,
+    pub sensor: super::SensorSection,
     /// Guidance.
     pub guidance: GuidanceSection,
+    /// Acceleration guidance gains (`guidance.law = "acceleration"`).
+    pub acceleration: super::AccelerationSection,
     /// Excitation.
     pub excitation: ExcitationSection,
     /// Camera (sensor `camera`).
@@ -452,14 +486,33 @@ pub struct Scenario {
 }
 
 impl Scenario {
+    /// Whether the run commands a nonzero relative position (a formation with R_c ≠ 0).
+    pub fn has_formation_command(&self) -> bool {
+        let g = &self.guidance;
+        g.mission == Mission::Formation
+            && match g.command_frame {
+                CommandFrame::Inertial => g.command_ft.iter().any(|v| *v != 0.0),
+                CommandFrame::Body | CommandFrame::Heading => g.command_range_ft > 0.0,
+            }
+    }
+
     /// Checks every value and every cross-key condition.
     pub fn validate(&self) -> Check {
         self.run.validate()?;
         self.target.validate()?;
         self.follower.validate()?;
         self.guidance.validate()?;
+        self.acceleration.validate()?;
         self.excitation.validate()?;
-        if self.sensor.mode == SensorMode::Camera {
+        self.sensor
+            .validate(self.run.dt_s, self.has_formation_command())?;
+        // The camera's focal length also serves the noisy sensor's noise on pixels.
+        if self.sensor.mode == super::SensorMode::Noisy
+            && self.sensor.noise_on == super::NoiseOn::Pixels
+        {
+            self.camera.validate_focal_length()?;
+        }
+        if self.sensor.mode == super::SensorMode::Camera {
             self.camera.validate(self.run.dt_s)?;
         }
         Ok(())
