@@ -139,10 +139,17 @@ impl HeldMeasurement {
     /// The measurement brought forward to time `t_s` (when `compensate` is set): the frame is
     /// a frame period plus the latency old, and in that time r has moved by the follower's own
     /// displacement, known from its navigation, over b̂, and by the target's drift d̂ (t - t_k)
-    /// when the law estimates it (velocity law): r ≈ r*(t_k) - (R_F(t) - R_F(t_k))/b̂
-    /// + d̂ (t - t_k). The seed assumed continuous, instantaneous measurements; without this
-    /// the stale r* biases the adaptation every frame.
-    fn at(&self, t_s: f64, follower_position_ned_ft: &Vec3, b_hat_ft: f64, drift: Option<Vec3>, compensate: bool) -> Vec3 {
+    /// when the law estimates it (velocity law): r ≈ r*(t_k) - (R_F(t) - R_F(t_k))/b̂ plus
+    /// d̂ (t - t_k). The seed assumed continuous, instantaneous measurements; without this the
+    /// stale r* biases the adaptation every frame.
+    fn at(
+        &self,
+        t_s: f64,
+        follower_position_ned_ft: &Vec3,
+        b_hat_ft: f64,
+        drift: Option<Vec3>,
+        compensate: bool,
+    ) -> Vec3 {
         if !compensate {
             return self.r;
         }
@@ -498,7 +505,8 @@ impl Simulation {
             }
             Measurement::AwaitingFirst => self.guidance.idle(guidance_x, guidance_dx),
         };
-        self.follower.derivative(follower_x, &out.command, follower_dx);
+        self.follower
+            .derivative(follower_x, &out.command, follower_dx);
         out
     }
 

@@ -13,7 +13,8 @@
 //! from r(0) to 0 with the filter's pole instead of jumping to 0.
 //!
 //! With noisy measurements (6.39)-(6.42) nothing changes but the input: pass y* = r* as
-//! `y_measured`; y*_a = 2y* - y_m - C ẑ follows. The observer gain can come from the Riccati
+//! `r_measured`; y*_a = 2y* - y_m - C ẑ follows. While the target is lost (`r_measured` is
+//! `None`) the law coasts on its observer's prediction C ẑ. The observer gain can come from the Riccati
 //! equation (6.62), see [`ObserverGainDesign`].
 //!
 //! Units: w, w_f, d̂ in ft/s (filtered accelerations); y, y_c, y_m, y_a scaled (multiples of b);
@@ -24,6 +25,7 @@
 //! 25 values; z_m and ẑ are stored per axis as `[z_x1, z_x2, z_y1, z_y2, z_z1, z_z2]`
 //! (z_i1 ~ r_i, z_i2 ~ ṙ_i).
 
+use super::law::GuidanceInput;
 use super::projection::{BallBound, IntervalBound};
 use crate::frames::Vec3;
 use crate::linalg::solve_continuous_are;
@@ -181,26 +183,6 @@ pub fn riccati_observer_gain(
             l[0], l[1], axis.lambda_rps
         ))
     }
-}
-
-/// What the acceleration law needs at one instant besides its own state.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AccelerationGuidanceInput {
-    /// Measured scaled relative position y = r (or y* = r* with noise), NED.
-    pub y_measured: Vec3,
-    /// R_c, the user's relative-position command, NED, ft (zero for interception).
-    pub command_ned_ft: Vec3,
-    /// Ṙ_c, ft/s.
-    pub command_rate_ned_fps: Vec3,
-    /// Excitation offset k(t) sin(ωt) E in ft, added to R_c after the shaping filter: it
-    /// enters y_c divided by b̂ (Section 5.5).
-    pub excitation_ned_ft: Vec3,
-    /// Its time derivative, ft/s.
-    pub excitation_rate_ned_fps: Vec3,
-    /// Excitation offset in scaled units, added to y_c as it is.
-    pub excitation_scaled: Vec3,
-    /// Its time derivative, 1/s.
-    pub excitation_scaled_rate: Vec3,
 }
 
 /// The law's output at one instant.
@@ -373,7 +355,7 @@ impl AccelerationGuidance {
     }
 
     /// The scaled command and the rates of its parts (everything but b̂').
-    fn command(&self, x: &[f64], input: &AccelerationGuidanceInput) -> Command {
+    fn command(&self, x: &[f64], input: &GuidanceInput) -> Command {
         let b_hat = x[B_HAT];
         let r_cf = vec3_at(x, R_CF);
         if self.shaping_pole_rps > 0.0 {
@@ -407,14 +389,16 @@ impl AccelerationGuidance {
     pub fn derivative(
         &self,
         x: &[f64],
-        input: &AccelerationGuidanceInput,
+        input: &GuidanceInput,
         dx: &mut [f64],
     ) -> AccelerationGuidanceOutput {
         let b_hat = x[B_HAT];
         let d_hat = vec3_at(x, D_HAT);
         let s_f = vec3_at(x, S_F);
         let w = vec3_at(x, W);
-        let y = input.y_measured;
+        let y = input
+            .r_measured
+            .unwrap_or_else(|| Self::predicted_measurement(x));
         let cmd = self.command(x, input);
 
         let mut y_model = Vec3::zeros();
@@ -511,9 +495,9 @@ mod tests {
         AccelerationGuidance::new(section, &guidance)
     }
 
-    fn input(y: Vec3) -> AccelerationGuidanceInput {
-        AccelerationGuidanceInput {
-            y_measured: y,
+    fn input(y: Vec3) -> GuidanceInput {
+        GuidanceInput {
+            r_measured: Some(y),
             command_ned_ft: Vec3::new(32.0, 8.0, 0.0),
             command_rate_ned_fps: Vec3::zeros(),
             excitation_ned_ft: Vec3::zeros(),

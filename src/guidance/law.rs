@@ -4,12 +4,8 @@
 //! maps the common input onto the law's own, and reports the law's command as a
 //! [`FollowerCommand`] for the follower stage.
 
-use super::acceleration::{
-    AccelerationGuidance, AccelerationGuidanceInput, AccelerationGuidanceOutput,
-};
-use super::velocity::{
-    VelocityEstimator, VelocityGuidance, VelocityGuidanceInput, steady_state_estimator_gain,
-};
+use super::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
+use super::velocity::{VelocityEstimator, VelocityGuidance, steady_state_estimator_gain};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{EstimatorGainMode, GuidanceLawKind, Scenario};
 use crate::world::kinematic::FollowerCommand;
@@ -175,19 +171,7 @@ impl GuidanceLaw {
     pub fn derivative(&self, x: &[f64], input: &GuidanceInput, dx: &mut [f64]) -> GuidanceOutput {
         match self {
             Self::Velocity(law) => {
-                let out = law.derivative(
-                    x,
-                    &VelocityGuidanceInput {
-                        r_measured: input.r_measured,
-                        command_ned_ft: input.command_ned_ft,
-                        command_rate_ned_fps: input.command_rate_ned_fps,
-                        excitation_ned_ft: input.excitation_ned_ft,
-                        excitation_rate_ned_fps: input.excitation_rate_ned_fps,
-                        excitation_scaled: input.excitation_scaled,
-                        excitation_scaled_rate: input.excitation_scaled_rate,
-                    },
-                    dx,
-                );
+                let out = law.derivative(x, input, dx);
                 GuidanceOutput {
                     command: FollowerCommand::Velocity(out.velocity_cmd_ned_fps),
                     r_command: out.r_command,
@@ -197,22 +181,7 @@ impl GuidanceLaw {
                 }
             }
             Self::Acceleration(law) => {
-                let y_measured = input
-                    .r_measured
-                    .unwrap_or_else(|| AccelerationGuidance::predicted_measurement(x));
-                let out = law.derivative(
-                    x,
-                    &AccelerationGuidanceInput {
-                        y_measured,
-                        command_ned_ft: input.command_ned_ft,
-                        command_rate_ned_fps: input.command_rate_ned_fps,
-                        excitation_ned_ft: input.excitation_ned_ft,
-                        excitation_rate_ned_fps: input.excitation_rate_ned_fps,
-                        excitation_scaled: input.excitation_scaled,
-                        excitation_scaled_rate: input.excitation_scaled_rate,
-                    },
-                    dx,
-                );
+                let out = law.derivative(x, input, dx);
                 GuidanceOutput {
                     command: FollowerCommand::Acceleration(out.accel_cmd_ned_fps2),
                     r_command: out.y_command,
