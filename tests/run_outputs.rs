@@ -16,6 +16,24 @@ fn wingman(args: &[&str]) -> (i32, String) {
     )
 }
 
+/// Runs the resolved `scenario.toml` of the run in `first` into `second` and checks that it
+/// writes `telemetry` again, byte for byte.
+fn assert_rerun_is_identical(first: &std::path::Path, second: &std::path::Path, telemetry: &str) {
+    let (code, stderr) = wingman(&[
+        "run",
+        first.join("scenario.toml").to_str().expect("utf-8"),
+        "--out",
+        second.to_str().expect("utf-8"),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let again = std::fs::read_to_string(second.join("telemetry.csv")).expect("telemetry");
+    assert!(
+        again == telemetry,
+        "telemetry differs between identical runs"
+    );
+}
+
 #[test]
 fn outputs_are_complete_and_rerunnable() {
     let dir = tempfile::tempdir().expect("temp dir");
@@ -87,20 +105,7 @@ fn outputs_are_complete_and_rerunnable() {
     assert_eq!(telemetry.lines().count(), 1 + 2501);
 
     // The resolved scenario runs as is and gives identical telemetry (determinism).
-    let second = dir.path().join("second");
-    let (code, stderr) = wingman(&[
-        "run",
-        first.join("scenario.toml").to_str().expect("utf-8"),
-        "--out",
-        second.to_str().expect("utf-8"),
-        "--quiet",
-    ]);
-    assert_eq!(code, 0, "{stderr}");
-    let again = std::fs::read_to_string(second.join("telemetry.csv")).expect("telemetry");
-    assert!(
-        again == telemetry,
-        "telemetry differs between identical runs"
-    );
+    assert_rerun_is_identical(&first, &dir.path().join("second"), &telemetry);
 }
 
 #[test]
@@ -168,18 +173,5 @@ fn noisy_acceleration_run_outputs_are_complete_and_deterministic() {
     for column in ["fol_an_fps2", "d_hat_x_fps", "y_a_x", "b_hat_rate_fps"] {
         assert!(header.split(',').any(|c| c == column), "no column {column}");
     }
-    let second = dir.path().join("second");
-    let (code, stderr) = wingman(&[
-        "run",
-        first.join("scenario.toml").to_str().expect("utf-8"),
-        "--out",
-        second.to_str().expect("utf-8"),
-        "--quiet",
-    ]);
-    assert_eq!(code, 0, "{stderr}");
-    let again = std::fs::read_to_string(second.join("telemetry.csv")).expect("telemetry");
-    assert!(
-        again == telemetry,
-        "telemetry differs between identical runs"
-    );
+    assert_rerun_is_identical(&first, &dir.path().join("second"), &telemetry);
 }
