@@ -64,7 +64,7 @@ impl ClosedLoop {
         command_ned_ft: Vec3,
     ) -> Self {
         Self {
-            law: AccelerationGuidance::new(section, guidance),
+            law: AccelerationGuidance::new(section, guidance, false),
             target: TargetMotionModel::from_section(target),
             command_ned_ft,
             excitation: Excitation::Off,
@@ -103,6 +103,7 @@ impl ClosedLoop {
             excitation_rate_ned_fps: e * ft_rate,
             excitation_scaled: e * scaled,
             excitation_scaled_rate: e * scaled_rate,
+            velocity_shortfall_ned_fps: None,
         }
     }
 
