@@ -209,7 +209,10 @@ mod tests {
         let att = KinematicFollower::attitude(&x);
         assert!((att.psi_rad - 40f64.atan2(30.0)).abs() < 1e-6);
         assert!((att.theta_rad - (5.0 / v.norm()).asin()).abs() < 1e-6);
-        assert!(att.phi_rad.abs() < 1e-6, "bank decays once the turn is over");
+        assert!(
+            att.phi_rad.abs() < 1e-6,
+            "bank decays once the turn is over"
+        );
     }
 
     /// Realising accelerations, V_F integrates a_F and the position integrates V_F.
