@@ -134,13 +134,12 @@ pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Resu
     )?;
 
     let deg = 180.0 / std::f64::consts::PI;
-    let surface = |label: &str, f: fn(&AircraftActuation) -> f64, scale: f64| Panel {
+    let single = |label: &str, name: &str, f: fn(&AircraftActuation) -> f64, scale: f64| Panel {
         y_label: label.to_string(),
-        series: vec![Series::new(
-            "position",
-            series(logged, |a| f(a) * scale),
-            TRUTH,
-        )],
+        series: vec![Series::new(name, series(logged, |a| f(a) * scale), TRUTH)],
+    };
+    let surface = |label: &str, f: fn(&AircraftActuation) -> f64, scale: f64| {
+        single(label, "position", f, scale)
     };
     let surfaces = vec![
         surface("δe, deg (limit ±30)", |a| a.actuators.elevator_rad, deg),
@@ -163,8 +162,8 @@ pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Resu
             |a| a.autopilot.airspeed_cmd_fps,
             false,
         ),
-        surface("α, deg", |a| a.air_data.alpha_rad, deg),
-        surface("β, deg", |a| a.air_data.beta_rad, deg),
+        single("α, deg", "aircraft", |a| a.air_data.alpha_rad, deg),
+        single("β, deg", "aircraft", |a| a.air_data.beta_rad, deg),
     ];
     draw_figure(
         &dir.join("air_data.png"),
