@@ -10,10 +10,12 @@
 //! or through a flight controller on a 6-DOF aircraft); the recorder logs every stage.
 //!
 //! Modules, in the order data flows: [`frames`], [`scenario`], [`world`], [`sensing`],
-//! [`noisy_sensor`], [`sensor`], [`guidance`], [`control`], [`integrate`], [`sim`], [`output`].
+//! [`noisy_sensor`], [`sensor`], [`guidance`], [`control`], [`follower`], [`integrate`], [`sim`],
+//! [`output`].
 #![warn(missing_docs)]
 
 pub mod control;
+pub mod follower;
 pub mod frames;
 pub mod guidance;
 pub mod integrate;

@@ -1,31 +1,35 @@
 //! The simulation: owns every stage and wires one tick in a fixed order (DESIGN §1).
 //!
 //! Continuous state, integrated as one vector by RK4:
-//! `[follower (R_F, φ, θ, ψ[, V_F]) | command frame (ψ_c) | guidance law]`.
+//! `[follower | command frame (ψ_c) | guidance law]`, the follower's slice being the
+//! kinematic follower's `(R_F, φ, θ, ψ, v)` or the 6-DOF aircraft's
+//! `[plant | autopilot | V_F (acceleration law)]` (see [`Follower`]).
 //! The stages are swappable: the guidance law (`velocity` | `acceleration`, see
 //! [`GuidanceLaw`]) commands the follower with a [`FollowerCommand`] that the follower stage
-//! realises (the kinematic follower integrates V_F itself when it is given accelerations).
+//! realises (the kinematic follower exactly; the aircraft through its flight controller).
 //! The target's motion is closed-form. With the `perfect` and `noisy` sensors r = R/b is
 //! evaluated at every RK4 stage (the seed's continuous-time loop), the noisy sensor adding
 //! the noise it drew at the start of the tick; a camera's measurement is held over the step.
 //!
 //! One tick: (1) the sensor may draw noise or deliver a camera measurement (taken from the
-//! truth at the start of the tick); (2) RK4 advances follower and guidance together;
-//! (3) projection bounds and angle wrapping are enforced; (4) the excitation records the
-//! tracking error; (5) divergence and interception are checked.
+//! truth at the start of the tick); the aircraft's turbulence advances and is held over the
+//! step; (2) RK4 advances follower and guidance together, each stage evaluating guidance,
+//! control and plant in that order (timed apart); (3) projection bounds, angle wrapping and
+//! quaternion norm are enforced; (4) the excitation records the tracking error and the
+//! aircraft's flight envelope the instant; (5) divergence and interception are checked.
 
+use crate::follower::{Actuation, AircraftActuation, FlightEnvelope, Follower};
 use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::command::{self, FormationCommand};
 use crate::guidance::excitation::Excitation;
 use crate::guidance::law::{GuidanceInput, GuidanceLaw, GuidanceOutput};
 use crate::integrate::Rk4;
 use crate::noisy_sensor::NoisySensor;
-use crate::scenario::{
-    ExcitationError, ExcitationUnits, GuidanceLawKind, Mission, Scenario, SensorMode,
-};
+use crate::scenario::{ExcitationError, ExcitationUnits, Mission, Scenario, SensorMode};
 use crate::sensor::{CameraSensor, CaptureGeometry, FrameRecord};
-use crate::world::kinematic::{FollowerCommand, KinematicFollower, Realises};
+use crate::world::kinematic::FollowerCommand;
 use crate::world::target::{TargetMotionModel, TargetState};
+use std::cell::Cell;
 use std::time::{Duration, Instant};
 
 /// Why a simulation could not start or go on.
@@ -98,6 +102,8 @@ pub struct Snapshot {
     pub guidance: GuidanceOutput,
     /// The last camera frame's measurement and truth (camera runs).
     pub frame: Option<FrameRecord>,
+    /// The 6-DOF follower's air data, actuators and flight controller (aircraft runs).
+    pub aircraft: Option<AircraftActuation>,
 }
 
 impl Snapshot {
@@ -139,9 +145,10 @@ impl HeldMeasurement {
     /// The measurement brought forward to time `t_s` (when `compensate` is set): the frame is
     /// a frame period plus the latency old, and in that time r has moved by the follower's own
     /// displacement, known from its navigation, over b̂, and by the target's drift d̂ (t - t_k)
-    /// when the law estimates it (velocity law): r ≈ r*(t_k) - (R_F(t) - R_F(t_k))/b̂ plus
-    /// d̂ (t - t_k). The seed assumed continuous, instantaneous measurements; without this the
-    /// stale r* biases the adaptation every frame.
+    /// when the law estimates it (velocity law):
+    /// r ≈ r*(t_k) - (R_F(t) - R_F(t_k))/b̂ + d̂ (t - t_k). The seed assumed continuous,
+    /// instantaneous measurements; without this the stale r* biases the adaptation every
+    /// frame.
     fn at(
         &self,
         t_s: f64,
@@ -158,6 +165,27 @@ impl HeldMeasurement {
     }
 }
 
+/// Wall time spent in each stage of the continuous loop, summed over the run.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StageTimes {
+    /// Measurement hold, formation command, excitation and guidance law.
+    pub guidance: Duration,
+    /// Flight controller (nothing for the kinematic follower).
+    pub control: Duration,
+    /// Follower's equations of motion.
+    pub plant: Duration,
+    /// Everything of the steps but the sensors: RK4 with the three stages above, the bounds,
+    /// the excitation's record and the checks.
+    pub integration: Duration,
+}
+
+/// One evaluation of the loop's continuous part at (t, x).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Evaluation {
+    guidance: GuidanceOutput,
+    actuation: Actuation,
+}
+
 /// Offsets of the stages' slices in the state vector.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct StateLayout {
@@ -172,7 +200,9 @@ struct StateLayout {
 pub struct Simulation {
     scenario: Scenario,
     target: TargetMotionModel,
-    follower: KinematicFollower,
+    follower: Follower,
+    /// The 6-DOF follower's extremes and limit hits (aircraft runs).
+    envelope: Option<FlightEnvelope>,
     command: FormationCommand,
     guidance: GuidanceLaw,
     excitation: Excitation,
@@ -182,8 +212,8 @@ pub struct Simulation {
     layout: StateLayout,
     /// What the stages' set-up had to say (estimator gain, observer-gain fallback).
     notes: Vec<String>,
-    /// Wall time spent integrating (guidance, follower), s.
-    integrate_time: Duration,
+    /// Wall time per stage (a `Cell`: the stages are timed inside `derivative(&self)`).
+    stage_times: Cell<StageTimes>,
     rk4: Rk4,
     state: Vec<f64>,
     /// Scratch for derivative evaluations outside the integrator.
@@ -201,17 +231,10 @@ impl Simulation {
         let (guidance, notes) =
             GuidanceLaw::from_scenario(scenario).map_err(|e| SimError::Setup(e.to_string()))?;
         let excitation = Excitation::new(&scenario.excitation, scenario.run.dt_s);
-        let follower = KinematicFollower {
-            attitude_lag_s: scenario.follower.attitude_lag_s,
-            realises: match scenario.guidance.law {
-                GuidanceLawKind::Velocity => Realises::Velocity,
-                GuidanceLawKind::Acceleration => Realises::Acceleration,
-            },
-        };
-        let follower0 = Vec3::from(scenario.follower.initial_position_ft);
-        let [phi, theta, psi] = scenario.follower.initial_attitude_deg.map(f64::to_radians);
-        let attitude0 = EulerAngles::new(phi, theta, psi);
-        let velocity0 = Vec3::from(scenario.follower.initial_velocity_fps);
+        let (follower, mut state) =
+            Follower::new(scenario).map_err(|e| SimError::Setup(e.to_string()))?;
+        let follower0 = follower.position_ned_ft(&state);
+        let attitude0 = follower.attitude(&state);
         let relative0 = target.position_ned_ft(0.0) - follower0;
         let r0 = relative0 / scenario.target.size_ft;
         let camera = match scenario.sensor.mode {
@@ -235,7 +258,6 @@ impl Simulation {
             }
             None => r0,
         };
-        let mut state = follower.initial_state(&follower0, &attitude0, &velocity0);
         let layout = StateLayout {
             command: state.len(),
             guidance: state.len() + command::STATE_LEN,
@@ -247,6 +269,7 @@ impl Simulation {
             scratch: vec![0.0; state.len()],
             scenario: scenario.clone(),
             target,
+            envelope: follower.aircraft().map(|_| FlightEnvelope::default()),
             follower,
             command: FormationCommand::new(&scenario.guidance),
             guidance,
@@ -256,20 +279,17 @@ impl Simulation {
             camera,
             layout,
             notes,
-            integrate_time: Duration::ZERO,
+            stage_times: Cell::new(StageTimes::default()),
             state,
             tick: 0,
             total_ticks: scenario.run.total_ticks(),
             min_range_ft: r0.norm() * scenario.target.size_ft,
             intercept_time_s: None,
         };
-        if sim.follower.realises == Realises::Velocity {
-            // The attitude starts following the first commanded velocity.
-            let out = sim.evaluate();
-            let v0 = sim.follower_velocity(&out);
-            let at = sim.layout.command;
-            KinematicFollower::set_heading_velocity(&mut sim.state[..at], &v0);
-        }
+        let first = sim.evaluate().guidance.command;
+        let at = sim.layout.command;
+        sim.follower
+            .align_with_first_command(&mut sim.state[..at], &first);
         Ok(sim)
     }
 
@@ -308,9 +328,19 @@ impl Simulation {
         self.camera.as_ref()
     }
 
-    /// Wall time spent integrating follower and guidance so far.
-    pub fn integrate_time(&self) -> Duration {
-        self.integrate_time
+    /// Wall time spent per stage of the continuous loop so far.
+    pub fn stage_times(&self) -> StageTimes {
+        self.stage_times.get()
+    }
+
+    /// The 6-DOF follower's flight envelope so far (aircraft runs).
+    pub fn flight_envelope(&self) -> Option<&FlightEnvelope> {
+        self.envelope.as_ref()
+    }
+
+    /// The follower stage.
+    pub fn follower(&self) -> &Follower {
+        &self.follower
     }
 
     /// The noisy sensor, in noisy runs.
@@ -325,8 +355,7 @@ impl Simulation {
     }
 
     // The follower stage as the rest of the tick sees it: its slice of the state, position,
-    // attitude, body rates and velocity. Another follower model plugs in here, in
-    // `derivative` and in `step`'s normalisation.
+    // attitude, body rates and velocity (see [`Follower`]).
 
     /// The follower's slice of a state.
     fn follower_x<'a>(&self, x: &'a [f64]) -> &'a [f64] {
@@ -335,18 +364,17 @@ impl Simulation {
 
     /// R_F of a state, NED, ft.
     fn follower_position_ned_ft(&self, x: &[f64]) -> Vec3 {
-        KinematicFollower::position_ned_ft(self.follower_x(x))
+        self.follower.position_ned_ft(self.follower_x(x))
     }
 
     /// The follower's attitude in a state (camera = body).
     fn follower_attitude(&self, x: &[f64]) -> EulerAngles {
-        KinematicFollower::attitude(self.follower_x(x))
+        self.follower.attitude(self.follower_x(x))
     }
 
     /// The follower's body rates [p, q, r] in a state, rad/s.
     fn follower_body_rates(&self, x: &[f64]) -> Vec3 {
-        let euler_rates = self.follower.attitude_rates(self.follower_x(x));
-        KinematicFollower::body_rates(&self.follower_attitude(x), &euler_rates)
+        self.follower.body_rates(self.follower_x(x))
     }
 
     /// R = R_T - R_F at time `t_s` for a state, NED, ft.
@@ -480,11 +508,17 @@ impl Simulation {
             excitation_rate_ned_fps,
             excitation_scaled,
             excitation_scaled_rate,
+            follower_velocity_ned_fps: self.follower.realised_velocity_ned_fps(self.follower_x(x)),
+            follower_velocity_shortfall_ned_fps: self
+                .follower
+                .velocity_shortfall_ned_fps(self.follower_x(x)),
         }
     }
 
-    /// ẋ of the whole state and the guidance output at (t, x).
-    fn derivative(&self, t_s: f64, x: &[f64], dx: &mut [f64]) -> GuidanceOutput {
+    /// ẋ of the whole state at (t, x), with what guidance and control decided there. The
+    /// three stages are timed apart (see [`StageTimes`]).
+    fn derivative(&self, t_s: f64, x: &[f64], dx: &mut [f64]) -> Evaluation {
+        let started = Instant::now();
         let StateLayout { command, guidance } = self.layout;
         let (command_and_follower_x, guidance_x) = x.split_at(guidance);
         let (follower_x, command_x) = command_and_follower_x.split_at(command);
@@ -505,13 +539,23 @@ impl Simulation {
             }
             Measurement::AwaitingFirst => self.guidance.idle(guidance_x, guidance_dx),
         };
-        self.follower
-            .derivative(follower_x, &out.command, follower_dx);
-        out
+        let guided = Instant::now();
+        let actuation = self.follower.control(follower_x, &out.command, follower_dx);
+        let controlled = Instant::now();
+        self.follower.plant(follower_x, &actuation, follower_dx);
+        let mut times = self.stage_times.get();
+        times.guidance += guided - started;
+        times.control += controlled - guided;
+        times.plant += controlled.elapsed();
+        self.stage_times.set(times);
+        Evaluation {
+            guidance: out,
+            actuation,
+        }
     }
 
-    /// The guidance output at the current state.
-    fn evaluate(&mut self) -> GuidanceOutput {
+    /// Guidance and control at the current state.
+    fn evaluate(&mut self) -> Evaluation {
         let mut scratch = std::mem::take(&mut self.scratch);
         let out = self.derivative(self.time_s(), &self.state, &mut scratch);
         self.scratch = scratch;
@@ -522,7 +566,10 @@ impl Simulation {
     pub fn snapshot(&self) -> Snapshot {
         let t_s = self.time_s();
         let mut dx = vec![0.0; self.state.len()];
-        let out = self.derivative(t_s, &self.state, &mut dx);
+        let Evaluation {
+            guidance: out,
+            actuation,
+        } = self.derivative(t_s, &self.state, &mut dx);
         let guidance_x = &self.state[self.layout.guidance..];
         let follower = self.follower_position_ned_ft(&self.state);
         let target = self.target.state(t_s);
@@ -553,6 +600,7 @@ impl Simulation {
             d_hat: self.guidance.d_hat(guidance_x),
             guidance: out,
             frame: self.camera.as_ref().and_then(CameraSensor::last_record),
+            aircraft: actuation.aircraft().copied(),
         }
     }
 
@@ -565,6 +613,8 @@ impl Simulation {
         let integrate_started = Instant::now();
         let t_s = self.time_s();
         let dt_s = self.scenario.run.dt_s;
+        let at = self.layout.command;
+        self.follower.begin_step(&self.state[..at], dt_s);
         let mut state = std::mem::take(&mut self.state);
         let mut rk4 = std::mem::replace(&mut self.rk4, Rk4::new(0));
         rk4.step(t_s, dt_s, &mut state, |t, x, dx| {
@@ -573,12 +623,21 @@ impl Simulation {
         self.rk4 = rk4;
         let (command_and_follower_x, guidance_x) = state.split_at_mut(self.layout.guidance);
         let (follower_x, command_x) = command_and_follower_x.split_at_mut(self.layout.command);
-        KinematicFollower::normalize(follower_x);
+        self.follower.normalize(follower_x);
         FormationCommand::normalize(command_x);
         self.guidance.enforce_bounds(guidance_x);
         self.state = state;
         self.tick += 1;
-        self.integrate_time += integrate_started.elapsed();
+        let outcome = self.after_step();
+        let mut times = self.stage_times.get();
+        times.integration += integrate_started.elapsed();
+        self.stage_times.set(times);
+        outcome
+    }
+
+    /// Checks, records and decides after a step: divergence, range, the excitation's error
+    /// energy, the flight envelope, interception and the end of the run.
+    fn after_step(&mut self) -> Result<StepOutcome, SimError> {
         let t_end_s = self.time_s();
 
         if let Some(i) = self.state.iter().position(|v| !v.is_finite()) {
@@ -595,7 +654,13 @@ impl Simulation {
                 what: format!("range {range_ft:.3e} ft exceeds 1e6 ft"),
             });
         }
-        let out = self.evaluate();
+        let Evaluation {
+            guidance: out,
+            actuation,
+        } = self.evaluate();
+        if let (Some(envelope), Some(aircraft)) = (self.envelope.as_mut(), actuation.aircraft()) {
+            envelope.record(t_end_s, aircraft);
+        }
         let error = match self.scenario.excitation.error {
             ExcitationError::Measured => out.error,
             ExcitationError::Estimated => out.estimated_error,

@@ -143,3 +143,60 @@ fn chapter_5_and_6_keys() {
         &["follower.initial_velocity_fps", "three finite numbers"],
     );
 }
+
+/// The 6-DOF follower's keys: its step (the roll mode and servos are 10-25 ms fast), its
+/// trimmed start, the air it flies in and its controller are checked like every other key.
+#[test]
+fn aircraft_follower_values_are_checked() {
+    assert_rejected(
+        "[follower]\nmodel = \"aircraft\"\n[run]\ndt_s = 0.01\n",
+        &[],
+        &[
+            "run.dt_s = 0.01",
+            "<= 0.005",
+            "follower.model = \"aircraft\"",
+        ],
+    );
+    assert_rejected(
+        "[follower]\nmodel = \"aircraft\"\ninitial_velocity_fps = [50.0, 0.0, 5.0]\n",
+        &[],
+        &[
+            "follower.initial_velocity_fps",
+            "[n, e, 0]",
+            "[35, 100] ft/s",
+        ],
+    );
+    assert_rejected(
+        "[follower]\nmodel = \"aircraft\"\ninitial_velocity_fps = [20.0, 0.0, 0.0]\n",
+        &[],
+        &["follower.initial_velocity_fps", "[35, 100] ft/s"],
+    );
+    assert_rejected(
+        "[atmosphere]\nturbulence = \"hurricane\"\n",
+        &[],
+        &["hurricane"],
+    );
+    assert_rejected(
+        "[atmosphere.disturbances]\ndrag_factor = 20.0\n",
+        &[],
+        &["atmosphere.disturbances.drag_factor = 20", "[0, 10]"],
+    );
+    assert_rejected(
+        "[autopilot]\nmax_airspeed_cmd_fps = 30.0\n",
+        &[],
+        &[
+            "autopilot.max_airspeed_cmd_fps = 30",
+            "autopilot.min_airspeed_cmd_fps = 35",
+        ],
+    );
+    assert_rejected(
+        "[acceleration]\nshortfall_time_constant_s = 0.0\n",
+        &[],
+        &["acceleration.shortfall_time_constant_s = 0", "[0.01, 1000]"],
+    );
+    assert_rejected(
+        "[guidance]\nk_aircraft = 0.0\n",
+        &[],
+        &["guidance.k_aircraft = 0", "[0.001, 100]"],
+    );
+}

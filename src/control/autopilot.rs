@@ -4,18 +4,27 @@
 //!
 //! One call of [`Autopilot::derivative`], in the order the data flows:
 //! 1. V_F → V_c, γ_c, χ_c (7.1)-(7.3); γ_c is kept between the steepest descent and climb
-//!    the thrust range allows (speed first; [`super::reference::limit_flight_path`]).
+//!    the thrust range allows at steady speed ([`super::reference::limit_flight_path`]; a
+//!    commanded speed change does not bend the path: with the speed reference's rate V̇_m in
+//!    the limits, a follower slowing at idle was held level or climbing while told to descend,
+//!    and the camera lost the target below the frame (measured); now the slowing waits).
 //!    With `wind_compensation`, (7.1)-(7.3) are applied to the air-relative command V_F - ŵ,
 //!    ŵ a low-passed measurement of the wind (inertial minus air-relative velocity, from the
 //!    air data and the attitude): the seed's V_c = ‖V_F‖ assumes still air, and in wind (or
 //!    slow turbulence) it would fly the right airspeed and heading but the wrong inertial
-//!    velocity. γ in (7.20) is the air-relative flight path, as in (7.15). V_c is floored at
-//!    `min_airspeed_cmd_fps` (a margin above the stall speed).
+//!    velocity. γ in (7.20) is the air-relative flight path, as in (7.15). V_c is kept within
+//!    [`min_airspeed_cmd_fps`, `max_airspeed_cmd_fps`]: a margin above the stall speed, and a
+//!    top speed the seed's thrust model T ∝ V² lacks (its excess thrust at full throttle grows
+//!    with V², so an unbounded command, e.g. from a guidance law closing a gap, would
+//!    accelerate the aircraft without end).
 //! 2. Raw attitude references (Remark 9): ψ_c = χ_c (unwrapped against the filter state, so
 //!    it never jumps by 2π); θ_c = γ_c + α_ref cos φ, α_ref from the nominal lift curve
 //!    ((7.8)-(7.9) with β = 0; the seed's θ_c = γ_c would leave the aircraft flying its trim α,
 //!    4.5°, below the commanded path, i.e. sinking at 4 ft/s when told to fly level);
-//!    φ_c = atan(ψ̇_m V_m / g) (7.14) from the *filtered* heading rate.
+//!    φ_c = atan(ψ̇_d V_m / g) (7.14) for the heading rate that (7.24) demands,
+//!    ψ̇_d = ψ̇_m - k_ψ e_ψ, e_ψ = ψ - ψ_m, limited to the turn rate of the bank limit (the
+//!    *filtered* heading rate ψ̇_m, not the raw command's; with ψ̇_m alone, as in (7.14), a
+//!    heading error the reference has run ahead of is flown on the rudder, skidding).
 //! 3. Prefilters (Remark 10): V_c goes through the seed's (7.33), φ_c, θ_c, ψ_c through (7.33)
 //!    with one more integrator ([`SmoothIntegralPrefilter`]: the rate it hands to (7.24) is a
 //!    state, continuous even when the command jumps). Each gives the filtered reference and
@@ -126,7 +135,7 @@ pub struct AutopilotOutput {
     /// Which commands were clamped.
     pub saturation: Saturation,
     /// V_c (7.1) of the air-relative command V_F - ŵ (V_F in still air or without wind
-    /// compensation), floored at `min_airspeed_cmd_fps`, ft/s.
+    /// compensation), kept within [`min_airspeed_cmd_fps`, `max_airspeed_cmd_fps`], ft/s.
     pub airspeed_cmd_fps: f64,
     /// V_m, the prefiltered airspeed command (7.33), ft/s.
     pub airspeed_ref_fps: f64,
@@ -376,7 +385,7 @@ impl Autopilot {
         let reference = VelocityReference::from_velocity_ned(&air_velocity_cmd);
         let airspeed_cmd = reference
             .map_or(x[AIRSPEED_FILTER + 1], |r| r.airspeed_fps)
-            .max(g.min_airspeed_cmd_fps);
+            .clamp(g.min_airspeed_cmd_fps, g.max_airspeed_cmd_fps);
         let v_ref = self.airspeed_filter.derivative(
             &x[AIRSPEED_FILTER..],
             airspeed_cmd,
@@ -389,7 +398,7 @@ impl Autopilot {
             air,
             effectiveness.thrust_per_throttle_lbf,
             nominal_drag_lbf,
-            drag_correction + v_ref.rate,
+            drag_correction,
         );
 
         // 2-3. Attitude references and their prefilters.
@@ -402,8 +411,19 @@ impl Autopilot {
             heading_cmd,
             &mut dx[HEADING_FILTER..],
         );
-        let bank_cmd =
-            coordinated_turn_bank_rad(psi_ref.rate, v_ref.value, g.max_bank_deg.to_radians());
+        // Bank for the heading rate (7.24) asks for, ψ̇_m - k_ψ e_ψ, limited to the turn rate
+        // of the bank limit: with the seed's φ_c from ψ̇_m alone a heading error the reference
+        // has run ahead of (a large turn) is flown on the rudder, skidding with it at its limit.
+        let max_turn_rate = GRAVITY_FPS2 * g.max_bank_deg.to_radians().tan()
+            / air.airspeed_fps.max(g.min_control_airspeed_fps);
+        let heading_rate_demand = (psi_ref.rate
+            - g.yaw_gain_per_s * wrap_angle_rad(air.euler.psi_rad - psi_ref.value))
+        .clamp(-max_turn_rate, max_turn_rate);
+        let bank_cmd = coordinated_turn_bank_rad(
+            heading_rate_demand,
+            v_ref.value,
+            g.max_bank_deg.to_radians(),
+        );
         let phi_ref =
             self.roll_filter
                 .derivative(&x[ROLL_FILTER..], bank_cmd, &mut dx[ROLL_FILTER..]);
@@ -432,8 +452,6 @@ impl Autopilot {
         let mut euler_rate_demand = -gains_euler.component_mul(&euler_error) + euler_rate_cmd;
         // Turn no faster than a coordinated turn at the bank limit can: beyond it the yaw
         // channel would skid the aircraft round with the rudder.
-        let max_turn_rate = GRAVITY_FPS2 * g.max_bank_deg.to_radians().tan()
-            / air.airspeed_fps.max(g.min_control_airspeed_fps);
         euler_rate_demand.z = euler_rate_demand.z.clamp(-max_turn_rate, max_turn_rate);
         let rate_cmd = euler_to_body_rates(&euler) * euler_rate_demand;
 
@@ -528,7 +546,8 @@ impl Autopilot {
 
     /// γ_c kept between the steepest descent and climb that (7.20) can hold with the
     /// throttle inside its range less the margins ([`limit_flight_path`]); unchanged with
-    /// `flight_path_limits` off. `specific_force_fps2` is Ŵ_DᵀΦ + V̇_m.
+    /// `flight_path_limits` off. `specific_force_fps2` is Ŵ_DᵀΦ: the limits are those of
+    /// steady speed (module docs).
     fn limited_flight_path(
         &self,
         raw_rad: f64,

@@ -122,7 +122,8 @@ pub fn alpha_reference_rad(input: &AlphaReferenceInput) -> Option<f64> {
 /// sin γ = (T cos α cos β - D_n - m Ŵ_DᵀΦ - m V̇_c) / (m g), as an angle (rad, in
 /// [-π/2, π/2]). With T near full thrust it is the steepest climb, with T near idle the steepest
 /// descent: beyond them the throttle would saturate and the speed run away, so the flight-path
-/// command is held between them (speed has priority over the path; see [`limit_flight_path`]).
+/// command is held between them (see [`limit_flight_path`]; the autopilot passes V̇_c = 0, the
+/// limits of steady speed).
 pub fn flight_path_for_thrust_rad(
     thrust_lbf: f64,
     alpha_rad: f64,

@@ -13,8 +13,7 @@
 //! from r(0) to 0 with the filter's pole instead of jumping to 0.
 //!
 //! With noisy measurements (6.39)-(6.42) nothing changes but the input: pass y* = r* as
-//! `r_measured`; y*_a = 2y* - y_m - C ẑ follows. While the target is lost (`r_measured` is
-//! `None`) the law coasts on its observer's prediction C ẑ. The observer gain can come from the Riccati
+//! `y_measured`; y*_a = 2y* - y_m - C ẑ follows. The observer gain can come from the Riccati
 //! equation (6.62), see [`ObserverGainDesign`].
 //!
 //! Units: w, w_f, d̂ in ft/s (filtered accelerations); y, y_c, y_m, y_a scaled (multiples of b);
@@ -22,10 +21,21 @@
 //! coefficient (ft/s² per scaled unit); that is kept.
 //!
 //! State slice layout (see [`layout`]): `[w (3), z_m (6), ẑ (6), S_f (3), b̂, d̂ (3), r_cf (3)]`,
-//! 25 values; z_m and ẑ are stored per axis as `[z_x1, z_x2, z_y1, z_y2, z_z1, z_z2]`
-//! (z_i1 ~ r_i, z_i2 ~ ṙ_i).
+//! 25 values, and χ (3) with compensation; z_m and ẑ are stored per axis as
+//! `[z_x1, z_x2, z_y1, z_y2, z_z1, z_z2]` (z_i1 ~ r_i, z_i2 ~ ṙ_i).
+//!
+//! Compensation for a follower that does not realise a_F (the 6-DOF aircraft; beyond the
+//! seed). The law's design assumes the follower flies V_F = V_F(0) + ∫ a_F; an aircraft's
+//! velocity V_a lags V_F by a second or two and is bounded. Left alone, the lag enters y
+//! as if the target had manoeuvred, the observer, d̂ and b̂ chase it and a_F grows until the
+//! follower loses the target (measured). The follower's own navigation gives the shortfall
+//! s = V_F - V_a; its leaky integral χ' = s - χ/τ (ft) is how far the follower is behind
+//! where a_F would have put it, recently. The law runs on y - χ/b̂, the measurement as if the
+//! follower had realised its commands over the last τ (as the velocity law's compensation
+//! of command-filtered backstepping does, [`super::velocity`]); a shortfall that lasts
+//! longer than τ (a climb the thrust cannot hold) shows in y and is corrected. With V_a = V_F
+//! χ stays 0 and this is the seed's law.
 
-use super::law::GuidanceInput;
 use super::projection::{BallBound, IntervalBound};
 use crate::frames::Vec3;
 use crate::linalg::solve_continuous_are;
@@ -48,8 +58,10 @@ pub mod layout {
     pub const D_HAT: usize = 19;
     /// r_cf (3): command-shaping filter ṙ_cf = -p (r_cf - R_c / b̂) (Chapter 4).
     pub const R_CF: usize = 22;
-    /// Length of the slice.
+    /// Length of the slice without compensation.
     pub const LEN: usize = 25;
+    /// χ (3), with compensation: leaky integral of the follower's velocity shortfall, ft.
+    pub const CHI: usize = 25;
 }
 
 use layout::*;
@@ -185,6 +197,29 @@ pub fn riccati_observer_gain(
     }
 }
 
+/// What the acceleration law needs at one instant besides its own state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AccelerationGuidanceInput {
+    /// Measured scaled relative position y = r (or y* = r* with noise), NED.
+    pub y_measured: Vec3,
+    /// R_c, the user's relative-position command, NED, ft (zero for interception).
+    pub command_ned_ft: Vec3,
+    /// Ṙ_c, ft/s.
+    pub command_rate_ned_fps: Vec3,
+    /// Excitation offset k(t) sin(ωt) E in ft, added to R_c after the shaping filter: it
+    /// enters y_c divided by b̂ (Section 5.5).
+    pub excitation_ned_ft: Vec3,
+    /// Its time derivative, ft/s.
+    pub excitation_rate_ned_fps: Vec3,
+    /// Excitation offset in scaled units, added to y_c as it is.
+    pub excitation_scaled: Vec3,
+    /// Its time derivative, 1/s.
+    pub excitation_scaled_rate: Vec3,
+    /// The follower's velocity shortfall V_F - V_a, NED, ft/s, for a law built with
+    /// compensation (module docs); ignored otherwise.
+    pub velocity_shortfall_ned_fps: Option<Vec3>,
+}
+
 /// The law's output at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AccelerationGuidanceOutput {
@@ -232,14 +267,21 @@ pub struct AccelerationGuidance {
     shaping_pole_rps: f64,
     b0_ft: f64,
     observer: ObserverGainDesign,
+    /// τ of the shortfall's leaky integral, when the law compensates (module docs).
+    compensation_time_constant_s: Option<f64>,
 }
 
 impl AccelerationGuidance {
     /// The law an `[acceleration]` section describes, with b̂(0), the projection bounds and the
     /// shaping filter's pole from `[guidance]` (d̂(0) = 0 as (5.41), not `guidance.d0_per_s`;
     /// `guidance.d_max_per_s` bounds ‖d̂‖ in ft/s here). The observer gain is designed here;
-    /// see [`Self::observer_design`] for where it came from.
-    pub fn new(section: &AccelerationSection, guidance: &GuidanceSection) -> Self {
+    /// see [`Self::observer_design`] for where it came from. `compensated`: for a follower
+    /// that does not realise a_F (module docs).
+    pub fn new(
+        section: &AccelerationSection,
+        guidance: &GuidanceSection,
+        compensated: bool,
+    ) -> Self {
         let observer = ObserverGainDesign::from_section(section);
         let axes = observer.gains.map(|l| AxisGains {
             lambda_rps: section.lambda_rps,
@@ -264,6 +306,7 @@ impl AccelerationGuidance {
             shaping_pole_rps: guidance.shaping_pole_rps,
             b0_ft: guidance.b0_ft,
             observer,
+            compensation_time_constant_s: compensated.then_some(section.shortfall_time_constant_s),
         }
     }
 
@@ -279,7 +322,19 @@ impl AccelerationGuidance {
 
     /// Length of this law's state slice.
     pub fn state_len(&self) -> usize {
-        LEN
+        LEN + if self.compensation_time_constant_s.is_some() {
+            3
+        } else {
+            0
+        }
+    }
+
+    /// The measurement the law runs on: y - χ/b̂ with compensation (module docs), y without.
+    pub fn compensated_measurement(&self, x: &[f64], y: &Vec3) -> Vec3 {
+        match self.compensation_time_constant_s {
+            Some(_) => y - vec3_at(x, CHI) / x[B_HAT],
+            None => *y,
+        }
     }
 
     /// Initial state: w = 0, S_f = 0, d̂ = 0 ((5.3), (5.34), (5.41)), b̂ = b0, and z_m, ẑ and the
@@ -287,7 +342,7 @@ impl AccelerationGuidance {
     /// (it needs b), so z_i2 starts at 0 (exact when the follower starts at the target's
     /// velocity, as in the seed).
     pub fn initial_state(&self, r0: &Vec3) -> Vec<f64> {
-        let mut x = vec![0.0; LEN];
+        let mut x = vec![0.0; self.state_len()];
         for i in 0..3 {
             x[Z_M + 2 * i] = r0[i];
             x[Z_HAT + 2 * i] = r0[i];
@@ -355,7 +410,7 @@ impl AccelerationGuidance {
     }
 
     /// The scaled command and the rates of its parts (everything but b̂').
-    fn command(&self, x: &[f64], input: &GuidanceInput) -> Command {
+    fn command(&self, x: &[f64], input: &AccelerationGuidanceInput) -> Command {
         let b_hat = x[B_HAT];
         let r_cf = vec3_at(x, R_CF);
         if self.shaping_pole_rps > 0.0 {
@@ -389,16 +444,14 @@ impl AccelerationGuidance {
     pub fn derivative(
         &self,
         x: &[f64],
-        input: &GuidanceInput,
+        input: &AccelerationGuidanceInput,
         dx: &mut [f64],
     ) -> AccelerationGuidanceOutput {
         let b_hat = x[B_HAT];
         let d_hat = vec3_at(x, D_HAT);
         let s_f = vec3_at(x, S_F);
         let w = vec3_at(x, W);
-        let y = input
-            .r_measured
-            .unwrap_or_else(|| Self::predicted_measurement(x));
+        let y = input.y_measured;
         let cmd = self.command(x, input);
 
         let mut y_model = Vec3::zeros();
@@ -445,6 +498,11 @@ impl AccelerationGuidance {
         dx[B_HAT] = b_hat_rate;
         dx[D_HAT..D_HAT + 3].copy_from_slice(d_rate.as_slice());
         dx[R_CF..R_CF + 3].copy_from_slice(cmd.filter_rate.as_slice());
+        if let Some(tau) = self.compensation_time_constant_s {
+            let shortfall = input.velocity_shortfall_ned_fps.unwrap_or_else(Vec3::zeros);
+            let chi_rate = shortfall - vec3_at(x, CHI) / tau;
+            dx[CHI..CHI + 3].copy_from_slice(chi_rate.as_slice());
+        }
 
         AccelerationGuidanceOutput {
             accel_cmd_ned_fps2: a_f,
@@ -492,18 +550,19 @@ mod tests {
             b0_ft: 8.0,
             ..GuidanceSection::default()
         };
-        AccelerationGuidance::new(section, &guidance)
+        AccelerationGuidance::new(section, &guidance, false)
     }
 
-    fn input(y: Vec3) -> GuidanceInput {
-        GuidanceInput {
-            r_measured: Some(y),
+    fn input(y: Vec3) -> AccelerationGuidanceInput {
+        AccelerationGuidanceInput {
+            y_measured: y,
             command_ned_ft: Vec3::new(32.0, 8.0, 0.0),
             command_rate_ned_fps: Vec3::zeros(),
             excitation_ned_ft: Vec3::zeros(),
             excitation_rate_ned_fps: Vec3::zeros(),
             excitation_scaled: Vec3::zeros(),
             excitation_scaled_rate: Vec3::zeros(),
+            velocity_shortfall_ned_fps: None,
         }
     }
 

@@ -4,10 +4,14 @@
 //! maps the common input onto the law's own, and reports the law's command as a
 //! [`FollowerCommand`] for the follower stage.
 
-use super::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
-use super::velocity::{VelocityEstimator, VelocityGuidance, steady_state_estimator_gain};
+use super::acceleration::{
+    AccelerationGuidance, AccelerationGuidanceInput, AccelerationGuidanceOutput,
+};
+use super::velocity::{
+    VelocityEstimator, VelocityGuidance, VelocityGuidanceInput, steady_state_estimator_gain,
+};
 use crate::frames::{Mat3, Vec3};
-use crate::scenario::{EstimatorGainMode, GuidanceLawKind, Scenario};
+use crate::scenario::{EstimatorGainMode, FollowerModel, GuidanceLawKind, Scenario};
 use crate::world::kinematic::FollowerCommand;
 
 /// What a guidance law needs at one instant besides its own state.
@@ -29,6 +33,14 @@ pub struct GuidanceInput {
     pub excitation_scaled: Vec3,
     /// Its time derivative, 1/s.
     pub excitation_scaled_rate: Vec3,
+    /// The follower's realised inertial velocity, NED, ft/s, when it does not realise the
+    /// command exactly (6-DOF follower): the laws then compensate for the difference (see
+    /// [`super::velocity`]); `None` for the kinematic follower.
+    pub follower_velocity_ned_fps: Option<Vec3>,
+    /// The shortfall V_F - V_a of a follower that integrates V_F = V_F(0) + ∫ a_F and flies it
+    /// through its own dynamics (6-DOF follower, acceleration law: see
+    /// [`super::acceleration`]); `None` otherwise.
+    pub follower_velocity_shortfall_ned_fps: Option<Vec3>,
 }
 
 /// A law's output at one instant.
@@ -106,10 +118,16 @@ impl GuidanceLaw {
                 } else {
                     None
                 };
-                Ok((Self::Velocity(VelocityGuidance::new(g, estimator)), notes))
+                // A follower that does not realise V_F exactly gets the compensated law.
+                let compensated = scenario.follower.model == FollowerModel::Aircraft;
+                Ok((
+                    Self::Velocity(VelocityGuidance::new(g, estimator, compensated)),
+                    notes,
+                ))
             }
             GuidanceLawKind::Acceleration => {
-                let law = AccelerationGuidance::new(&scenario.acceleration, g);
+                let compensated = scenario.follower.model == FollowerModel::Aircraft;
+                let law = AccelerationGuidance::new(&scenario.acceleration, g, compensated);
                 notes.extend(law.observer_design().fallback_message());
                 Ok((Self::Acceleration(law), notes))
             }
@@ -171,7 +189,20 @@ impl GuidanceLaw {
     pub fn derivative(&self, x: &[f64], input: &GuidanceInput, dx: &mut [f64]) -> GuidanceOutput {
         match self {
             Self::Velocity(law) => {
-                let out = law.derivative(x, input, dx);
+                let out = law.derivative(
+                    x,
+                    &VelocityGuidanceInput {
+                        r_measured: input.r_measured,
+                        command_ned_ft: input.command_ned_ft,
+                        command_rate_ned_fps: input.command_rate_ned_fps,
+                        excitation_ned_ft: input.excitation_ned_ft,
+                        excitation_rate_ned_fps: input.excitation_rate_ned_fps,
+                        excitation_scaled: input.excitation_scaled,
+                        excitation_scaled_rate: input.excitation_scaled_rate,
+                        follower_velocity_ned_fps: input.follower_velocity_ned_fps,
+                    },
+                    dx,
+                );
                 GuidanceOutput {
                     command: FollowerCommand::Velocity(out.velocity_cmd_ned_fps),
                     r_command: out.r_command,
@@ -181,7 +212,25 @@ impl GuidanceLaw {
                 }
             }
             Self::Acceleration(law) => {
-                let out = law.derivative(x, input, dx);
+                // The observer's prediction is already in the law's (compensated) coordinates.
+                let y_measured = input.r_measured.map_or_else(
+                    || AccelerationGuidance::predicted_measurement(x),
+                    |r| law.compensated_measurement(x, &r),
+                );
+                let out = law.derivative(
+                    x,
+                    &AccelerationGuidanceInput {
+                        y_measured,
+                        command_ned_ft: input.command_ned_ft,
+                        command_rate_ned_fps: input.command_rate_ned_fps,
+                        excitation_ned_ft: input.excitation_ned_ft,
+                        excitation_rate_ned_fps: input.excitation_rate_ned_fps,
+                        excitation_scaled: input.excitation_scaled,
+                        excitation_scaled_rate: input.excitation_scaled_rate,
+                        velocity_shortfall_ned_fps: input.follower_velocity_shortfall_ned_fps,
+                    },
+                    dx,
+                );
                 GuidanceOutput {
                     command: FollowerCommand::Acceleration(out.accel_cmd_ned_fps2),
                     r_command: out.y_command,
@@ -295,6 +344,8 @@ mod tests {
             excitation_rate_ned_fps: Vec3::zeros(),
             excitation_scaled: Vec3::zeros(),
             excitation_scaled_rate: Vec3::zeros(),
+            follower_velocity_ned_fps: None,
+            follower_velocity_shortfall_ned_fps: None,
         };
         let mut dx = vec![0.0; law.state_len()];
         let measured = law.derivative(&x, &input, &mut dx);

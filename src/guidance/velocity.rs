@@ -2,7 +2,32 @@
 //! size b̂ and scaled velocity d̂, a command-shaping filter, and optionally the state estimator
 //! of Chapter 6 ((6.10)-(6.17)) for noisy measurements.
 //!
-//! State slice layout: `[b̂, d̂ (3), r_cf (3), r̂ (3, with the estimator)]`.
+//! State slice layout: `[b̂, d̂ (3), r_cf (3), r̂ (3, with the estimator), χ (3, with
+//! compensation)]`.
+//!
+//! Compensation for a follower that does not realise V_F (the 6-DOF aircraft; beyond the
+//! seed, whose Chapters 4-6 follower flies V_F exactly). The adaptive laws (4.5) and the
+//! estimator (6.10) rest on ṙ = d - V_F/b. An aircraft flies V_a ≠ V_F (its velocity lags the
+//! command by a second or two, its speed and turn rate are bounded). Then the seed's gain
+//! k = 3.5 on the error makes the loop through the aircraft oscillate (measured: stable up to
+//! k ≈ 0.5 with b̂ = b), and the shortfall g - g_a, g_a = V_a/b̂ the realised scaled velocity,
+//! drives e: the adaptation reads it as a wrong b̂ and d̂ and winds up (measured: b̂ runs to
+//! its bound within seconds and the follower loses the target). The law therefore flies
+//! V_F = b̂ (k_F e + d̂ - ṙ_c) with a gentler k_F (`guidance.k_aircraft`) and, with the
+//! follower's realised velocity V_a (its own navigation, as the delay compensation uses R_F),
+//! runs its adaptation on a compensated error, as command-filtered backstepping does
+//! (Farrell, Polycarpou, Sharma and Dong, "Command filtered backstepping", IEEE TAC 54(6),
+//! 2009):
+//! ```text
+//! χ' = -k χ + (k - k_F) e + (g - g_a),   ē = e - χ   ⇒   ē' = -k ē + d̃ - (b̃/b) g_a
+//! ```
+//! (e the error the law feeds back: r̂ - r_c with the estimator, whose k r̃ term then also
+//! follows (6.15)). ē has exactly the error dynamics, with the seed's k, that (4.5) and
+//! (6.16) were derived for, so the adaptation runs on ē with g_a in place of g
+//! (b̂' = σ Proj(g_aᵀ ē), d̂' = G Proj(ē), ξ*'s first block r* - r_c - χ) and the estimator
+//! (6.10) on the realised velocity (r̂' = d̂ - g_a + L_v (r* - r̂)); the excitation's error
+//! energy is read from ē too (the error the law answers for). With V_a = V_F and k_F = k
+//! (kinematic follower) χ stays 0 and this is the seed's law.
 //!
 //! Command shaping: ṙ_cf = -p (r_cf - R_c/b̂) + Ṙ_c/b̂ from r_cf(0) = r(0). For the seed's
 //! constant inertial R_c this is the seed's filter; a body-frame command (3.13) rotates with
@@ -11,7 +36,6 @@
 //! -b̂' R_c/b̂² of (4.15) into g, and with σ = 39 the loop b̂' → g → b̂' is singular once
 //! eᵀR_c reaches b̂²/σ, an error of about 0.01.)
 
-use super::law::GuidanceInput;
 use super::projection::{BallBound, IntervalBound};
 use crate::frames::{Mat3, Vec3};
 use crate::linalg::{LinalgError, solve_continuous_lyapunov};
@@ -23,6 +47,8 @@ const B_HAT: usize = 0;
 const D_HAT: usize = 1;
 const R_CF: usize = 4;
 const R_HAT: usize = 7;
+/// Length of the law's state without estimator and compensation.
+const BASE_LEN: usize = 7;
 
 /// The Chapter 6 state estimator: gain L_v and the 3x6 matrix B_vᵀ P_v of (6.16)-(6.17).
 #[derive(Debug, Clone, PartialEq)]
@@ -135,6 +161,32 @@ pub fn steady_state_estimator_gain(
     )))
 }
 
+/// What the velocity law needs at one instant besides its own state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VelocityGuidanceInput {
+    /// Measured scaled relative position r (or r*), NED; `None` while the target is lost:
+    /// the law then coasts (with the estimator: on r̂ predicted by (6.10) without its
+    /// correction term; without it: on the command itself) and adaptation stops.
+    pub r_measured: Option<Vec3>,
+    /// R_c, the user's relative-position command, NED, ft (zero for interception).
+    pub command_ned_ft: Vec3,
+    /// Ṙ_c, ft/s.
+    pub command_rate_ned_fps: Vec3,
+    /// Excitation offset a sin(ωt) E in ft, added to R_c after the shaping filter (4.31):
+    /// it enters the scaled command divided by b̂.
+    pub excitation_ned_ft: Vec3,
+    /// Its time derivative, ft/s.
+    pub excitation_rate_ned_fps: Vec3,
+    /// Excitation offset in scaled units (multiples of the target's size), added to the
+    /// scaled command after the shaping filter as it is.
+    pub excitation_scaled: Vec3,
+    /// Its time derivative, 1/s.
+    pub excitation_scaled_rate: Vec3,
+    /// The follower's realised inertial velocity V_a, NED, ft/s, for a law built with
+    /// compensation (module docs); ignored otherwise.
+    pub follower_velocity_ned_fps: Option<Vec3>,
+}
+
 /// The law's output at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VelocityGuidanceOutput {
@@ -147,6 +199,9 @@ pub struct VelocityGuidanceOutput {
     /// The law's estimate of its tracking error: r̂ - r_command with the estimator (6.10),
     /// the measured error without it (zero while the target is lost).
     pub estimated_error: Vec3,
+    /// χ, the part of the error due to the follower not realising V_F (zero without
+    /// compensation).
+    pub compensation: Vec3,
 }
 
 /// Velocity guidance (4.3)-(4.5), (4.14)-(4.15), (4.40), with optional estimator (6.10)-(6.17).
@@ -161,12 +216,28 @@ pub struct VelocityGuidance {
     b0_ft: f64,
     d0: Vec3,
     estimator: Option<VelocityEstimator>,
+    /// Offset of χ when the law compensates for a follower that does not realise V_F.
+    compensation_at: Option<usize>,
+    /// k_F, the gain on the error in V_F: k, or `k_aircraft` with compensation.
+    feedback_gain: f64,
 }
 
 impl VelocityGuidance {
-    /// The law a `[guidance]` section describes, with the estimator when given.
-    pub fn new(section: &GuidanceSection, estimator: Option<VelocityEstimator>) -> Self {
+    /// The law a `[guidance]` section describes, with the estimator when given, and with the
+    /// compensation for a follower that does not realise V_F when `compensated` (module docs).
+    pub fn new(
+        section: &GuidanceSection,
+        estimator: Option<VelocityEstimator>,
+        compensated: bool,
+    ) -> Self {
+        let estimator_len = if estimator.is_some() { 3 } else { 0 };
         Self {
+            compensation_at: compensated.then_some(BASE_LEN + estimator_len),
+            feedback_gain: if compensated {
+                section.k_aircraft
+            } else {
+                section.k
+            },
             k: section.k,
             sigma: section.sigma,
             gamma_d: section.gamma_d,
@@ -188,7 +259,9 @@ impl VelocityGuidance {
 
     /// Length of this law's state slice.
     pub fn state_len(&self) -> usize {
-        if self.estimator.is_some() { 10 } else { 7 }
+        BASE_LEN
+            + if self.estimator.is_some() { 3 } else { 0 }
+            + if self.compensation_at.is_some() { 3 } else { 0 }
     }
 
     /// Initial state: b̂(0), d̂(0); the shaping filter and the estimator start at the first
@@ -221,7 +294,14 @@ impl VelocityGuidance {
             r_command: vec3_at(x, R_CF),
             error: Vec3::zeros(),
             estimated_error: Vec3::zeros(),
+            compensation: self.compensation(x),
         }
+    }
+
+    /// χ of a state slice (zero without compensation).
+    fn compensation(&self, x: &[f64]) -> Vec3 {
+        self.compensation_at
+            .map_or(Vec3::zeros(), |at| vec3_at(x, at))
     }
 
     /// b̂ of a state slice, ft.
@@ -239,7 +319,7 @@ impl VelocityGuidance {
     pub fn derivative(
         &self,
         x: &[f64],
-        input: &GuidanceInput,
+        input: &VelocityGuidanceInput,
         dx: &mut [f64],
     ) -> VelocityGuidanceOutput {
         let b_hat = x[B_HAT];
@@ -276,46 +356,61 @@ impl VelocityGuidance {
             (None, None) => r_cmd,
         };
         let e_used = r_used - r_cmd;
+        // Compensation (module docs): the adaptation reads ē = e - χ.
+        let chi = self.compensation(x);
         let adaptation_signal = match (&self.estimator, input.r_measured) {
             (_, None) => Vec3::zeros(),
             (Some(est), Some(r_star)) => {
                 let mut xi = SMatrix::<f64, 6, 1>::zeros();
-                xi.fixed_rows_mut::<3>(0).copy_from(&(r_star - r_cmd));
+                xi.fixed_rows_mut::<3>(0).copy_from(&(r_star - r_cmd - chi));
                 xi.fixed_rows_mut::<3>(3).copy_from(&(r_star - r_used));
                 est.bt_p * xi
             }
-            (None, Some(_)) => e_used,
+            (None, Some(_)) => e_used - chi,
         };
+        // g_a = V_a / b̂, the realised scaled velocity, when compensating.
+        let realised = self
+            .compensation_at
+            .and(input.follower_velocity_ned_fps)
+            .map(|v| v / b_hat);
         // ṙ_cmd contains -b̂' extra / b̂² (4.15) and b̂' depends on g: the algebraic loop is
         // closed by one fixed-point pass starting from b̂' = 0.
         let guidance = |b_hat_rate: f64| -> Vec3 {
             let r_cmd_rate =
                 base_rate + extra_rate / b_hat - extra * (b_hat_rate / (b_hat * b_hat));
-            e_used * self.k + d_hat - r_cmd_rate
+            e_used * self.feedback_gain + d_hat - r_cmd_rate
         };
-        let b_rate_of =
-            |g: &Vec3| self.sigma * self.b_bound.project(b_hat, g.dot(&adaptation_signal));
+        let b_rate_of = |g: &Vec3| {
+            let g_a = realised.unwrap_or(*g);
+            self.sigma * self.b_bound.project(b_hat, g_a.dot(&adaptation_signal))
+        };
         let b_hat_rate = b_rate_of(&guidance(0.0));
         let g = guidance(b_hat_rate);
         let b_hat_rate = b_rate_of(&g);
+        let g_a = realised.unwrap_or(g);
+        if let Some(at) = self.compensation_at {
+            let chi_rate = -chi * self.k + e_used * (self.k - self.feedback_gain) + (g - g_a);
+            dx[at..at + 3].copy_from_slice(chi_rate.as_slice());
+        }
 
         dx[B_HAT] = b_hat_rate;
         let d_rate = self.d_bound.project(&d_hat, &adaptation_signal) * self.gamma_d;
         dx[D_HAT..D_HAT + 3].copy_from_slice(d_rate.as_slice());
         dx[R_CF..R_CF + 3].copy_from_slice(filter_rate.as_slice());
         if let Some(est) = &self.estimator {
-            // (6.10): r̂' = d̂ - g + L_v (r* - r̂).
+            // (6.10): r̂' = d̂ - g + L_v (r* - r̂), with g_a when compensating.
             let innovation = input
                 .r_measured
                 .map_or(Vec3::zeros(), |r_star| r_star - r_used);
-            let r_hat_rate = d_hat - g + est.gain * innovation;
+            let r_hat_rate = d_hat - g_a + est.gain * innovation;
             dx[R_HAT..R_HAT + 3].copy_from_slice(r_hat_rate.as_slice());
         }
         VelocityGuidanceOutput {
             velocity_cmd_ned_fps: g * b_hat,
             r_command: r_cmd,
-            error: input.r_measured.unwrap_or(r_used) - r_cmd,
-            estimated_error: e_used,
+            error: input.r_measured.unwrap_or(r_used) - r_cmd - chi,
+            estimated_error: e_used - chi,
+            compensation: chi,
         }
     }
 
@@ -336,8 +431,8 @@ pub(crate) fn vec3_at(x: &[f64], at: usize) -> Vec3 {
 mod tests {
     use super::*;
 
-    fn input(r: Vec3) -> GuidanceInput {
-        GuidanceInput {
+    fn input(r: Vec3) -> VelocityGuidanceInput {
+        VelocityGuidanceInput {
             r_measured: Some(r),
             command_ned_ft: Vec3::new(32.0, 8.0, 0.0),
             command_rate_ned_fps: Vec3::zeros(),
@@ -345,6 +440,7 @@ mod tests {
             excitation_rate_ned_fps: Vec3::zeros(),
             excitation_scaled: Vec3::zeros(),
             excitation_scaled_rate: Vec3::zeros(),
+            follower_velocity_ned_fps: None,
         }
     }
 
@@ -358,7 +454,7 @@ mod tests {
             d0_per_s: [6.25, 0.0, 0.0],
             ..GuidanceSection::default()
         };
-        let law = VelocityGuidance::new(&section, None);
+        let law = VelocityGuidance::new(&section, None, false);
         let r_c = Vec3::new(32.0, 8.0, 0.0) / 8.0;
         let x = law.initial_state(&r_c);
         let mut dx = vec![0.0; law.state_len()];
@@ -374,7 +470,7 @@ mod tests {
             d0_per_s: [0.0; 3],
             ..GuidanceSection::default()
         };
-        let law = VelocityGuidance::new(&section, None);
+        let law = VelocityGuidance::new(&section, None, false);
         let r = Vec3::new(10.0, 2.0, 0.0);
         let mut x = law.initial_state(&r);
         x[R_CF..R_CF + 3].copy_from_slice(Vec3::new(8.0, 2.0, 0.0).as_slice());

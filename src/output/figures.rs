@@ -5,13 +5,14 @@
 //! and ‖d̂‖ for the acceleration law, Figs 5.4, 6.9) and `velocity.png` (V_F vs V_T, Figs
 //! 4.5 / 4.7, 6.1, 6.4). Acceleration law: `acceleration.png` (a_F vs a_T, Figs 5.2, 6.7) and
 //! `target_acceleration.png` (Fig 5.1). Noisy sensor: `measurement.png` (r* against the
-//! noise-free r; the seed shows no such figure).
+//! noise-free r; the seed shows no such figure). 6-DOF follower: the Chapter 7 figures of
+//! [`super::aircraft_figures`].
 
 use super::plots::{
     EXTRA, HIGHLIGHT, Panel, PlotError, REFERENCE, Series, TRUTH, draw_figure, moving_mean,
 };
 use crate::frames::Vec3;
-use crate::scenario::{GuidanceLawKind, Mission, NoiseOn, Scenario, SensorMode};
+use crate::scenario::{FollowerModel, GuidanceLawKind, Mission, NoiseOn, Scenario, SensorMode};
 use crate::sim::Snapshot;
 use std::path::Path;
 
@@ -31,6 +32,14 @@ struct FigureNumbers {
 
 impl FigureNumbers {
     fn of(scenario: &Scenario) -> Self {
+        if scenario.follower.model == FollowerModel::Aircraft {
+            return Self {
+                relative: "seed Ch 7, Figs 7.1-7.13",
+                estimates: "seed Ch 7",
+                velocity: "seed Ch 7",
+                acceleration: "seed Ch 7",
+            };
+        }
         let noisy = scenario.sensor.mode == SensorMode::Noisy;
         let intercept = scenario.guidance.mission == Mission::Intercept;
         match (scenario.guidance.law, noisy) {
@@ -172,7 +181,7 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
     if scenario.sensor.mode == SensorMode::Noisy {
         draw_measurement_figure(dir, scenario, &t, logged)?;
     }
-    Ok(())
+    super::aircraft_figures::draw_aircraft_figures(dir, &t, logged)
 }
 
 /// Velocity law: b̂ and b̂ d̂ (the estimate of V_T) against V_T.

@@ -1,6 +1,7 @@
 //! A run's outputs (DESIGN §4): the resolved scenario, telemetry, summary and plots, and the
 //! driver that steps a simulation while writing them.
 
+pub mod aircraft_figures;
 pub mod figures;
 pub mod frames;
 pub mod plots;

@@ -1,7 +1,8 @@
 //! `summary.json`: the numbers a run is judged by (DESIGN §4).
 
+use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::GuidanceLawKind;
-use crate::sim::{SimError, Simulation, Snapshot};
+use crate::sim::{SimError, Simulation, Snapshot, StageTimes};
 use serde::Serialize;
 
 /// How the run ended.
@@ -66,8 +67,79 @@ pub struct Summary {
     pub adapter: Option<String>,
     /// Mean wall time per camera frame of each stage, ms (camera runs): render (command
     /// submission), readback (GPU wait and copy), vision, truth (ground truth and sensing),
-    /// and guidance + follower integration per frame period.
+    /// and, per frame period, guidance, flight control and plant.
     pub per_frame_ms: Option<PerFrameCost>,
+    /// Wall time of the continuous loop's stages over the whole run, s.
+    pub stage_wall_s: StageWall,
+    /// The 6-DOF follower's flight envelope (aircraft runs).
+    pub aircraft: Option<AircraftSummary>,
+}
+
+/// Wall time of the continuous loop's stages, s (see [`StageTimes`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StageWall {
+    /// Measurement hold, command, excitation and guidance law, at every RK4 stage.
+    pub guidance: f64,
+    /// Flight controller.
+    pub control: f64,
+    /// Follower's equations of motion.
+    pub plant: f64,
+    /// The steps without the sensors: the three stages above plus RK4's own work, bounds and
+    /// checks.
+    pub integration: f64,
+}
+
+impl From<StageTimes> for StageWall {
+    fn from(t: StageTimes) -> Self {
+        Self {
+            guidance: t.guidance.as_secs_f64(),
+            control: t.control.as_secs_f64(),
+            plant: t.plant.as_secs_f64(),
+            integration: t.integration.as_secs_f64(),
+        }
+    }
+}
+
+/// The 6-DOF follower's extremes over the run (seed Figs 7.5-7.6, 7.12-7.13).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct AircraftSummary {
+    /// α and β extremes are taken from this time on, s.
+    pub angles_from_s: f64,
+    /// Largest |α| from `angles_from_s` on, deg.
+    pub max_abs_alpha_deg: f64,
+    /// Largest |β| from `angles_from_s` on, deg.
+    pub max_abs_beta_deg: f64,
+    /// Lowest and highest airspeed, ft/s.
+    pub airspeed_range_fps: [f64; 2],
+    /// Largest |δe|, |δa|, |δr| (actuator positions), deg.
+    pub max_abs_surfaces_deg: [f64; 3],
+    /// Their limits, deg.
+    pub surface_limits_deg: [f64; 3],
+    /// Lowest and highest throttle position.
+    pub throttle_range: [f64; 2],
+    /// Ticks at which a command was clamped to its actuator's limit.
+    pub limit_ticks: LimitTicks,
+    /// Ticks at which the thrust range limited the commanded flight path.
+    pub flight_path_limited_ticks: u64,
+    /// Ticks recorded.
+    pub ticks: u64,
+}
+
+impl AircraftSummary {
+    fn new(e: &FlightEnvelope, surface_limits_rad: [f64; 3]) -> Self {
+        Self {
+            angles_from_s: ANGLES_FROM_S,
+            max_abs_alpha_deg: e.max_abs_alpha_rad.to_degrees(),
+            max_abs_beta_deg: e.max_abs_beta_rad.to_degrees(),
+            airspeed_range_fps: e.airspeed_range_fps,
+            max_abs_surfaces_deg: e.max_abs_surfaces_rad.map(f64::to_degrees),
+            surface_limits_deg: surface_limits_rad.map(f64::to_degrees),
+            throttle_range: e.throttle_range,
+            limit_ticks: e.limit_ticks,
+            flight_path_limited_ticks: e.flight_path_limited_ticks,
+            ticks: e.ticks,
+        }
+    }
 }
 
 /// Mean wall-clock cost per camera frame, ms.
@@ -81,8 +153,15 @@ pub struct PerFrameCost {
     pub vision: f64,
     /// Ground truth and sensing transform.
     pub truth: f64,
-    /// Guidance and follower integration over one frame period.
-    pub guidance_and_plant: f64,
+    /// Measurement hold, command, excitation and guidance law over one frame period.
+    pub guidance: f64,
+    /// Flight controller over one frame period.
+    pub control: f64,
+    /// Follower's equations of motion over one frame period.
+    pub plant: f64,
+    /// All of the above but the camera: the steps over one frame period (the three stages,
+    /// RK4's own work, bounds and checks).
+    pub integration: f64,
 }
 
 impl Summary {
@@ -102,6 +181,7 @@ impl Summary {
         let duration_s = sim.time_s();
         let last = logged.last();
         let camera = sim.camera();
+        let stages = sim.stage_times();
         let per_frame_ms = camera.filter(|c| c.frames() > 0).map(|c| {
             let t = c.timings();
             let per = |d: std::time::Duration| 1e3 * d.as_secs_f64() / c.frames() as f64;
@@ -110,9 +190,23 @@ impl Summary {
                 readback: per(t.readback),
                 vision: per(t.vision),
                 truth: per(t.truth),
-                guidance_and_plant: per(sim.integrate_time()),
+                guidance: per(stages.guidance),
+                control: per(stages.control),
+                plant: per(stages.plant),
+                integration: per(stages.integration),
             }
         });
+        let aircraft = sim
+            .follower()
+            .aircraft()
+            .zip(sim.flight_envelope())
+            .map(|(a, e)| {
+                let limits = &a.params().actuators;
+                AircraftSummary::new(
+                    e,
+                    [limits.elevator.max, limits.aileron.max, limits.rudder.max],
+                )
+            });
         Self {
             scenario: name.to_string(),
             status,
@@ -140,6 +234,8 @@ impl Summary {
             length_rms_px: camera.and_then(|c| c.errors().length_rms_px()),
             adapter: camera.map(|c| c.adapter().to_string()),
             per_frame_ms,
+            stage_wall_s: stages.into(),
+            aircraft,
         }
     }
 

@@ -1,10 +1,11 @@
 //! `telemetry.csv`: one row per logged tick, written as the run goes so that a run that stops
 //! early keeps what it logged.
 
+use crate::follower::AircraftActuation;
 use crate::guidance::acceleration::AccelerationGuidanceOutput;
 use crate::sim::Snapshot;
 use crate::vision::BlobStatus;
-use crate::world::kinematic::FollowerCommand;
+use crate::world::kinematic::{FollowerCommand, wrap_angle_rad};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
@@ -89,7 +90,54 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
     if let FollowerCommand::Acceleration(_) = s.guidance.command {
         row.extend(acceleration_columns(s.guidance.acceleration.as_ref()));
     }
+    if let Some(aircraft) = &s.aircraft {
+        row.extend(aircraft_columns(aircraft));
+    }
     row
+}
+
+/// The 6-DOF follower's columns (appended to its runs' rows): air data, body rates, actuator
+/// positions, the V_F the autopilot flies, its references V_c, V_m, γ_c, φ_c, θ_c, ψ_c, the
+/// filtered rate commands ω_f, the actuator commands and the gust (seed Figs 7.1-7.13).
+fn aircraft_columns(a: &AircraftActuation) -> Vec<(&'static str, f64)> {
+    let air = &a.air_data;
+    let out = &a.autopilot;
+    let p = &a.actuators;
+    let c = &out.controls;
+    let [vcn, vce, vcd] = [0, 1, 2].map(|i| a.velocity_cmd_ned_fps[i]);
+    let [pf, qf, rf] = [0, 1, 2].map(|i| out.rate_cmd_filtered_rps[i]);
+    let [gu, gv, gw] = [0, 1, 2].map(|i| a.gust_body_fps[i]);
+    vec![
+        ("airspeed_fps", air.airspeed_fps),
+        ("alpha_rad", air.alpha_rad),
+        ("beta_rad", air.beta_rad),
+        ("p_rps", air.body_rates_rps.x),
+        ("q_rps", air.body_rates_rps.y),
+        ("r_rps", air.body_rates_rps.z),
+        ("throttle", p.throttle),
+        ("elevator_rad", p.elevator_rad),
+        ("aileron_rad", p.aileron_rad),
+        ("rudder_rad", p.rudder_rad),
+        ("vf_cmd_n_fps", vcn),
+        ("vf_cmd_e_fps", vce),
+        ("vf_cmd_d_fps", vcd),
+        ("airspeed_cmd_fps", out.airspeed_cmd_fps),
+        ("airspeed_ref_fps", out.airspeed_ref_fps),
+        ("flight_path_cmd_rad", out.flight_path_cmd_rad),
+        ("phi_cmd_rad", out.euler_cmd.phi_rad),
+        ("theta_cmd_rad", out.euler_cmd.theta_rad),
+        ("psi_cmd_rad", wrap_angle_rad(out.euler_cmd.psi_rad)),
+        ("p_cmd_rps", pf),
+        ("q_cmd_rps", qf),
+        ("r_cmd_rps", rf),
+        ("throttle_cmd", c.throttle),
+        ("elevator_cmd_rad", c.elevator_rad),
+        ("aileron_cmd_rad", c.aileron_rad),
+        ("rudder_cmd_rad", c.rudder_rad),
+        ("gust_u_fps", gu),
+        ("gust_v_fps", gv),
+        ("gust_w_fps", gw),
+    ]
 }
 
 /// The acceleration law's signals (appended to its runs' rows, empty cells when the law gave

@@ -52,6 +52,13 @@ pub struct AccelerationSection {
     /// a_f < 0, pole of the sign filter Ṡ_f = A_f (S_f - S_χ(y_a)) (5.34), A_f = a_f I,
     /// rad/s. Not in the seed: -10.
     pub sign_filter_pole_rps: f64,
+    /// 6-DOF follower only (beyond the seed): time constant τ of the leaky integral
+    /// χ' = (V_F - V_a) - χ/τ of the follower's velocity shortfall, s. The law reads
+    /// y - χ/b̂, the measurement as if the follower had flown the V_F = ∫ a_F it was given,
+    /// for the aircraft's lag; what persists longer than τ it sees and corrects (see
+    /// `guidance::acceleration`). 2 s: the aircraft's velocity follows V_F within a second or
+    /// two.
+    pub shortfall_time_constant_s: f64,
 }
 
 impl Default for AccelerationSection {
@@ -67,6 +74,7 @@ impl Default for AccelerationSection {
             rho: 1.0,
             gamma_d: 0.2,
             sign_filter_pole_rps: -10.0,
+            shortfall_time_constant_s: 4.0,
         }
     }
 }
@@ -103,6 +111,12 @@ impl AccelerationSection {
         check::positive("acceleration.chi", self.chi)?;
         check::non_negative("acceleration.rho", self.rho)?;
         check::non_negative("acceleration.gamma_d", self.gamma_d)?;
+        check::in_closed(
+            "acceleration.shortfall_time_constant_s",
+            self.shortfall_time_constant_s,
+            0.01,
+            1000.0,
+        )?;
         check::require(
             self.sign_filter_pole_rps.is_finite() && self.sign_filter_pole_rps < 0.0,
             "acceleration.sign_filter_pole_rps",

@@ -63,15 +63,21 @@ pub struct AutopilotSection {
     /// Largest |φ_c| of the coordinated turn (7.14), deg.
     pub max_bank_deg: f64,
     /// Keep γ_c between the steepest descent and the steepest climb that (7.20) can hold
-    /// with the throttle inside its range (speed has priority over the path; beyond the seed,
-    /// whose thrust T ∝ V² cannot hold the target profile's slow climbs).
+    /// at steady speed with the throttle inside its range (beyond the seed, whose thrust
+    /// T ∝ V² cannot hold every climb and descent of the target profile at every speed).
     pub flight_path_limits: bool,
     /// Fraction of the throttle range kept in reserve at each end by the flight-path limits.
+    /// 0.05: with the data file's C_TδT = 0.3 that is the thrust the controller's author kept
+    /// with 0.1 of C_TδT = 0.15 (a steeper descent costs speed control near idle).
     pub thrust_margin_fraction: f64,
     /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
     /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below
     /// the target profile's slowest 35.4 ft/s.
     pub min_airspeed_cmd_fps: f64,
+    /// Highest airspeed command, ft/s: the seed's thrust T = ½ρV²S C_TδT δT grows with V² as
+    /// the drag does, so this airframe has no top speed of its own; 65 ft/s is the target
+    /// profile's fastest 60 ft/s plus a margin to close a gap.
+    pub max_airspeed_cmd_fps: f64,
     /// The inversion of (7.19) uses at least the dynamic pressure of this airspeed, ft/s.
     pub min_control_airspeed_fps: f64,
     /// Fly V_F relative to the air mass: V_F - ŵ, ŵ the measured wind (inertial minus
@@ -128,8 +134,9 @@ impl Default for AutopilotSection {
             min_alpha_deg: -8.0,
             max_bank_deg: 30.0,
             flight_path_limits: true,
-            thrust_margin_fraction: 0.1,
+            thrust_margin_fraction: 0.05,
             min_airspeed_cmd_fps: 35.0,
+            max_airspeed_cmd_fps: 65.0,
             min_control_airspeed_fps: 15.0,
             wind_compensation: true,
             wind_filter_time_constant_s: 1.0,
@@ -232,6 +239,17 @@ impl AutopilotSection {
             self.min_airspeed_cmd_fps,
             0.0,
             500.0,
+        )?;
+        check::require(
+            self.max_airspeed_cmd_fps.is_finite()
+                && self.max_airspeed_cmd_fps > self.min_airspeed_cmd_fps
+                && self.max_airspeed_cmd_fps <= 500.0,
+            "autopilot.max_airspeed_cmd_fps",
+            self.max_airspeed_cmd_fps,
+            format!(
+                "(autopilot.min_airspeed_cmd_fps = {}, 500]",
+                self.min_airspeed_cmd_fps
+            ),
         )?;
         check::in_closed(
             "autopilot.min_control_airspeed_fps",

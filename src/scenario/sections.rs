@@ -98,7 +98,20 @@ impl TargetSection {
 pub enum FollowerModel {
     /// The guidance command is realised exactly (seed Chapters 4-6).
     Kinematic,
+    /// The 6-DOF aircraft (`assets/aircraft/follower.toml`) flown by the Chapter 7 flight
+    /// controller (`[autopilot]`) in the air of `[atmosphere]` (seed Chapter 7).
+    Aircraft,
 }
+
+/// Slowest start of the 6-DOF follower, ft/s: 1.25 times its stall speed (about 28 ft/s at
+/// sea level with the Aerosonde lift curve on the seed's wing).
+pub const AIRCRAFT_MIN_SPEED_FPS: f64 = 35.0;
+/// Fastest start of the 6-DOF follower, ft/s (trimmed with throttle and elevator inside their
+/// limits; the seed flies 35-60 ft/s).
+pub const AIRCRAFT_MAX_SPEED_FPS: f64 = 100.0;
+/// Largest integration step with the 6-DOF follower, s: its roll mode has a time constant
+/// near 10-17 ms and its servos 25 ms (issue 5, SPEC §7).
+pub const AIRCRAFT_MAX_DT_S: f64 = 0.005;
 
 /// `[follower]`: the aircraft carrying the camera.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -115,7 +128,10 @@ pub struct FollowerSection {
     pub attitude_lag_s: f64,
     /// V_F(0) in NED, ft/s, for a follower that integrates a commanded acceleration
     /// (`guidance.law = "acceleration"`); the velocity law commands V_F directly and ignores
-    /// it. Default: the seed target's initial velocity.
+    /// it. Default: the seed target's initial velocity. The aircraft starts trimmed in
+    /// straight and level flight at this speed (air-relative) and on its course, whatever
+    /// the law; its roll, pitch and yaw are then the trim's and `initial_attitude_deg` is not
+    /// used.
     pub initial_velocity_fps: [f64; 3],
 }
 
@@ -142,7 +158,22 @@ impl FollowerSection {
             89.0,
         )?;
         check::in_closed("follower.attitude_lag_s", self.attitude_lag_s, 1e-3, 10.0)?;
-        check::finite_vec("follower.initial_velocity_fps", &self.initial_velocity_fps)
+        check::finite_vec("follower.initial_velocity_fps", &self.initial_velocity_fps)?;
+        if self.model == FollowerModel::Aircraft {
+            let [n, e, d] = self.initial_velocity_fps;
+            let speed = n.hypot(e);
+            check::require(
+                d == 0.0 && (AIRCRAFT_MIN_SPEED_FPS..=AIRCRAFT_MAX_SPEED_FPS).contains(&speed),
+                "follower.initial_velocity_fps",
+                format!("{:?}", self.initial_velocity_fps),
+                format!(
+                    "[n, e, 0] with a speed in [{AIRCRAFT_MIN_SPEED_FPS}, \
+                     {AIRCRAFT_MAX_SPEED_FPS}] ft/s (follower.model = \"aircraft\" starts \
+                     trimmed in straight and level flight)"
+                ),
+            )?;
+        }
+        Ok(())
     }
 }
 
@@ -229,6 +260,11 @@ pub struct GuidanceSection {
     pub estimator_lyapunov_weight: f64,
     /// Tracking gain k, (4.3).
     pub k: f64,
+    /// Velocity law with the 6-DOF follower: the gain k_F on the tracking error in
+    /// V_F = b̂ (k_F e + d̂ - ṙ_c), 1/s; the adaptation and the estimator keep k (compensated
+    /// error, see `guidance::velocity`). The seed's k = 3.5 through the aircraft's second of
+    /// velocity lag oscillates; 0.5 is stable with margin (measured: 0.8 limit-cycles).
+    pub k_aircraft: f64,
     /// Adaptation gain σ of b̂, (4.5).
     pub sigma: f64,
     /// Adaptation gain G of d̂ (G = gamma_d I), (4.5).
@@ -271,6 +307,7 @@ impl Default for GuidanceSection {
             estimator_noise_psd: 1.8e-5,
             estimator_lyapunov_weight: 1.0,
             k: 3.5,
+            k_aircraft: 0.5,
             sigma: 39.0,
             gamma_d: 40.0,
             b0_ft: 4.0,
@@ -316,6 +353,7 @@ impl GuidanceSection {
             1000.0,
         )?;
         check::positive("guidance.k", self.k)?;
+        check::in_closed("guidance.k_aircraft", self.k_aircraft, 1e-3, 100.0)?;
         check::non_negative("guidance.sigma", self.sigma)?;
         check::non_negative("guidance.gamma_d", self.gamma_d)?;
         check::positive("guidance.b_min_ft", self.b_min_ft)?;
@@ -481,6 +519,10 @@ pub struct Scenario {
     pub excitation: ExcitationSection,
     /// Camera (sensor `camera`).
     pub camera: super::CameraSection,
+    /// The air the 6-DOF follower flies in (`follower.model = "aircraft"`).
+    pub atmosphere: crate::world::atmosphere::AtmosphereConfig,
+    /// The 6-DOF follower's flight controller (`follower.model = "aircraft"`).
+    pub autopilot: super::AutopilotSection,
     /// Outputs.
     pub output: OutputSection,
 }
@@ -514,6 +556,19 @@ impl Scenario {
         }
         if self.sensor.mode == super::SensorMode::Camera {
             self.camera.validate(self.run.dt_s)?;
+        }
+        self.atmosphere.validate()?;
+        self.autopilot.validate()?;
+        if self.follower.model == FollowerModel::Aircraft {
+            check::require(
+                self.run.dt_s <= AIRCRAFT_MAX_DT_S,
+                "run.dt_s",
+                self.run.dt_s,
+                format!(
+                    "<= {AIRCRAFT_MAX_DT_S} s with follower.model = \"aircraft\" (its roll \
+                     mode and servos are 10-25 ms fast)"
+                ),
+            )?;
         }
         Ok(())
     }

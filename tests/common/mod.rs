@@ -81,3 +81,70 @@ pub fn largest_difference_of_span(
         largest / (hi - lo).max(1e-9)
     })
 }
+
+/// α of straight and level trim at `airspeed_fps` (sea-level density, calm air), deg: what the
+/// follower's lift curve needs to carry its weight at that speed.
+pub fn trim_alpha_deg(airspeed_fps: f64) -> f64 {
+    use wingman::frames::Vec3;
+    use wingman::world::aircraft::{Aircraft, AircraftParams, TrimRequest, trim_level_flight};
+    use wingman::world::atmosphere::AtmosphereSample;
+    let params = AircraftParams::seed_follower().expect("built-in aircraft");
+    let aircraft = Aircraft::new(params).expect("valid aircraft");
+    trim_level_flight(
+        &aircraft,
+        &TrimRequest {
+            airspeed_fps,
+            position_ned_ft: Vec3::zeros(),
+            heading_rad: 0.0,
+            air: AtmosphereSample::default(),
+        },
+    )
+    .expect("trims")
+    .alpha_rad
+    .to_degrees()
+}
+
+/// The seed's Chapter 7 criteria (issue 5) on a 6-DOF run's summary:
+/// - R - R_c below 3 ft RMS per axis over the last 20 s;
+/// - no surface command ever clamped at its limit (counted at every tick), and every surface's
+///   largest deflection inside its limit;
+/// - airspeed within 30-70 ft/s;
+/// - |β| below 5° after the first 5 s;
+/// - |α| after 5 s below the α that level flight needs at the slowest airspeed the run flew,
+///   plus 2° (a 30° bank's 1/cos φ and the transients), and below the controller's α envelope
+///   (18°, 9° short of the stall blend). The issue's "|α| < 5°" cannot hold: level flight at
+///   the target profile's slowest 35 ft/s needs α ≈ 13° on this airframe (the Aerosonde lift
+///   curve on the seed's 11.5 ft² wing and 0.63 slug).
+pub fn assert_seed_ch7_criteria(report: &RunReport) {
+    let s = &report.summary;
+    let a = s.aircraft.as_ref().expect("6-DOF run");
+    for (axis, rms) in s.rms_error_last20s_ft.iter().enumerate() {
+        assert!(*rms < 3.0, "axis {axis}: RMS {rms} ft");
+    }
+    let l = &a.limit_ticks;
+    assert_eq!(
+        (l.elevator, l.aileron, l.rudder),
+        (0, 0, 0),
+        "surface commands clamped"
+    );
+    for (max, limit) in a.max_abs_surfaces_deg.iter().zip(&a.surface_limits_deg) {
+        assert!(max < limit, "surface at {max}° of ±{limit}°");
+    }
+    let [v_min, v_max] = a.airspeed_range_fps;
+    assert!(
+        v_min > 30.0 && v_max < 70.0,
+        "airspeed {v_min}-{v_max} ft/s"
+    );
+    assert!(
+        a.max_abs_beta_deg < 5.0,
+        "|β| up to {}°",
+        a.max_abs_beta_deg
+    );
+    let alpha_bound = trim_alpha_deg(v_min) + 2.0;
+    println!("α bound: trim α at {v_min:.2} ft/s + 2° = {alpha_bound:.2}°");
+    assert!(
+        a.max_abs_alpha_deg < alpha_bound.min(18.0),
+        "|α| up to {}° (bound {alpha_bound}°)",
+        a.max_abs_alpha_deg
+    );
+}

@@ -1,0 +1,252 @@
+//! The 6-DOF follower (seed Chapter 7): the plant of [`crate::world::aircraft`] flown by the
+//! flight controller of [`crate::control`] in the air of [`crate::world::atmosphere`].
+//!
+//! State slice: `[plant (STATE_LEN) | autopilot (AUTOPILOT_STATE_LEN) | V_F (3, acceleration
+//! law only)]`. The velocity law commands V_F itself (4.3); for the acceleration law the slice
+//! integrates V_F = V_F(0) + ∫ a_F (SPEC §7), V_F(0) the trimmed aircraft's inertial velocity.
+//! In both cases the autopilot flies V_F (7.1)-(7.33).
+//!
+//! The aircraft starts trimmed in straight and level flight (`trim_level_flight`) at the
+//! airspeed ‖`follower.initial_velocity_fps`‖ on its course, trimmed in the steady air without
+//! the Δ perturbations (the controller's nominal model does not know them); the controller's
+//! filters start at rest on that flight condition. Once per tick [`AircraftFollower::begin_step`]
+//! advances the Dryden turbulence and holds the air sample over the RK4 step; Δ perturbations
+//! act on the plant only.
+
+use crate::control::{AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput};
+use crate::frames::{EulerAngles, Vec3};
+use crate::scenario::check::InvalidValue;
+use crate::scenario::{GuidanceLawKind, Scenario};
+use crate::world::aircraft::{
+    AirData, Aircraft, AircraftFileError, AircraftParams, AircraftState, Controls, STATE_LEN,
+    TrimError, TrimRequest, trim_level_flight,
+};
+use crate::world::atmosphere::{Atmosphere, AtmosphereSample};
+use crate::world::kinematic::FollowerCommand;
+
+/// Offset of the autopilot's state in the follower's slice.
+const AUTOPILOT: usize = STATE_LEN;
+/// Offset of the integrated V_F (acceleration law) in the follower's slice.
+const VELOCITY_CMD: usize = AUTOPILOT + AUTOPILOT_STATE_LEN;
+/// Offset of the body rates p, q, r in the plant's state.
+const BODY_RATES: usize = crate::world::aircraft::state::BODY_RATES_RPS;
+
+/// Mixed into `[run] seed` for the Dryden turbulence's own random stream, so that it is not
+/// the noisy sensor's or the camera noise's stream ("dryden" in ASCII).
+pub const DRYDEN_SEED_SALT: u64 = 0x0000_6472_7964_656e;
+
+/// Why the 6-DOF follower could not be set up.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum AircraftSetupError {
+    /// The built-in aircraft data file is invalid.
+    #[error("{0}")]
+    AircraftData(String),
+    /// A value the plant, the controller or the atmosphere rejected.
+    #[error("{0}")]
+    Invalid(InvalidValue),
+    /// No straight and level trim at the scenario's speed.
+    #[error("follower.initial_velocity_fps: {0}")]
+    Trim(TrimError),
+    /// The trimmed state has no air data (cannot happen with a valid trim).
+    #[error("the trimmed state has no valid attitude")]
+    TrimState,
+}
+
+impl From<AircraftFileError> for AircraftSetupError {
+    fn from(e: AircraftFileError) -> Self {
+        Self::AircraftData(e.to_string())
+    }
+}
+
+impl From<InvalidValue> for AircraftSetupError {
+    fn from(e: InvalidValue) -> Self {
+        Self::Invalid(e)
+    }
+}
+
+/// What the flight controller decided at one instant, with what it saw.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AircraftActuation {
+    /// V_F the autopilot flies, NED, ft/s.
+    pub velocity_cmd_ned_fps: Vec3,
+    /// Air data of the plant (true values, turbulence included).
+    pub air_data: AirData,
+    /// Actuator positions.
+    pub actuators: Controls,
+    /// Turbulent gust velocity held over the step, body axes, ft/s.
+    pub gust_body_fps: Vec3,
+    /// The controller's commands and signals.
+    pub autopilot: AutopilotOutput,
+}
+
+/// The 6-DOF aircraft and its flight controller.
+#[derive(Debug, Clone)]
+pub struct AircraftFollower {
+    aircraft: Aircraft,
+    autopilot: Autopilot,
+    atmosphere: Atmosphere,
+    /// The air held over the current step.
+    air: AtmosphereSample,
+    /// V_F is integrated from a_F (acceleration law).
+    integrates_acceleration: bool,
+}
+
+impl AircraftFollower {
+    /// The follower of a scenario and its initial state (trimmed, controller at rest).
+    pub fn new(scenario: &Scenario) -> Result<(Self, Vec<f64>), AircraftSetupError> {
+        let params = AircraftParams::seed_follower()?;
+        let aircraft = Aircraft::new(params.clone())?;
+        let autopilot = Autopilot::new(&params, &scenario.autopilot)?;
+        let atmosphere =
+            Atmosphere::new(&scenario.atmosphere, scenario.run.seed ^ DRYDEN_SEED_SALT)?;
+        let start = Vec3::from(scenario.follower.initial_position_ft);
+        let [north, east, _] = scenario.follower.initial_velocity_fps;
+        let steady = atmosphere.steady_sample(&start);
+        let trim = trim_level_flight(
+            &aircraft,
+            &TrimRequest {
+                airspeed_fps: north.hypot(east),
+                position_ned_ft: start,
+                heading_rad: east.atan2(north),
+                air: AtmosphereSample {
+                    drag_factor: 1.0,
+                    moment_bias_body_lbf_ft: Vec3::zeros(),
+                    ..steady
+                },
+            },
+        )
+        .map_err(AircraftSetupError::Trim)?;
+        let mut x = trim.state.pack().to_vec();
+        let data = aircraft
+            .air_data(&x, &steady)
+            .ok_or(AircraftSetupError::TrimState)?;
+        x.extend(autopilot.initial_state(&data));
+        let integrates_acceleration = scenario.guidance.law == GuidanceLawKind::Acceleration;
+        if integrates_acceleration {
+            x.extend(data.velocity_ned_fps.iter());
+        }
+        Ok((
+            Self {
+                aircraft,
+                autopilot,
+                atmosphere,
+                air: steady,
+                integrates_acceleration,
+            },
+            x,
+        ))
+    }
+
+    /// R_F of a follower slice, NED, ft.
+    pub fn position_ned_ft(x: &[f64]) -> Vec3 {
+        Vec3::new(x[0], x[1], x[2])
+    }
+
+    /// The aircraft's attitude (level when the quaternion is not usable: the simulation's
+    /// divergence check reports that state).
+    pub fn attitude(x: &[f64]) -> EulerAngles {
+        AircraftState::unpack(x).map_or_else(EulerAngles::default, |s| s.euler())
+    }
+
+    /// Body rates p, q, r, rad/s.
+    pub fn body_rates(x: &[f64]) -> Vec3 {
+        Vec3::new(x[BODY_RATES], x[BODY_RATES + 1], x[BODY_RATES + 2])
+    }
+
+    /// The aircraft's inertial velocity, NED, ft/s.
+    pub fn velocity_ned_fps(x: &[f64]) -> Vec3 {
+        AircraftState::unpack(x).map_or_else(Vec3::zeros, |s| s.velocity_ned_fps())
+    }
+
+    /// V_F - V_a, the integrated velocity command (acceleration law) minus the aircraft's
+    /// velocity, NED, ft/s; `None` when V_F is not integrated here.
+    pub fn velocity_shortfall_ned_fps(&self, x: &[f64]) -> Option<Vec3> {
+        self.integrates_acceleration.then(|| {
+            Vec3::new(x[VELOCITY_CMD], x[VELOCITY_CMD + 1], x[VELOCITY_CMD + 2])
+                - Self::velocity_ned_fps(x)
+        })
+    }
+
+    /// Advances the turbulence by one tick at the aircraft's position and airspeed and holds
+    /// the air sample over the coming step.
+    pub fn begin_step(&mut self, x: &[f64], dt_s: f64) {
+        let position = Self::position_ned_ft(x);
+        let airspeed_fps = self
+            .aircraft
+            .air_data(x, &self.atmosphere.steady_sample(&position))
+            .map_or(0.0, |d| d.airspeed_fps);
+        self.air = self.atmosphere.sample(dt_s, &position, airspeed_fps);
+    }
+
+    /// The flight controller at (x, command): writes the autopilot's (and the V_F
+    /// integrator's) ẋ and returns its decision; `None` (and zero rates) when the plant's
+    /// state is not usable.
+    pub fn control(
+        &self,
+        x: &[f64],
+        command: &FollowerCommand,
+        dx: &mut [f64],
+    ) -> Option<AircraftActuation> {
+        let plant = &x[..STATE_LEN];
+        let (Some(state), Some(air_data)) = (
+            AircraftState::unpack(plant),
+            self.aircraft.air_data(plant, &self.air),
+        ) else {
+            dx[AUTOPILOT..].fill(0.0);
+            return None;
+        };
+        let velocity_cmd_ned_fps = match command {
+            FollowerCommand::Velocity(v) => *v,
+            FollowerCommand::Acceleration(a) if self.integrates_acceleration => {
+                dx[VELOCITY_CMD..VELOCITY_CMD + 3].copy_from_slice(a.as_slice());
+                Vec3::new(x[VELOCITY_CMD], x[VELOCITY_CMD + 1], x[VELOCITY_CMD + 2])
+            }
+            // A law that commands accelerations without the integrator is a wiring error:
+            // keep flying the present velocity.
+            FollowerCommand::Acceleration(_) => air_data.velocity_ned_fps,
+        };
+        let input = AutopilotInput {
+            velocity_cmd_ned_fps,
+            air_data,
+            actuators: state.actuators,
+        };
+        let autopilot = self.autopilot.derivative(
+            &x[AUTOPILOT..VELOCITY_CMD],
+            &input,
+            &mut dx[AUTOPILOT..VELOCITY_CMD],
+        );
+        Some(AircraftActuation {
+            velocity_cmd_ned_fps,
+            air_data,
+            actuators: state.actuators,
+            gust_body_fps: self.air.gust_body_fps,
+            autopilot,
+        })
+    }
+
+    /// The plant's ẋ under the controller's commands (zero without a decision).
+    pub fn plant(&self, x: &[f64], actuation: Option<&AircraftActuation>, dx: &mut [f64]) {
+        match actuation {
+            Some(a) => self.aircraft.derivative(
+                &x[..STATE_LEN],
+                &a.autopilot.controls,
+                &self.air,
+                &mut dx[..STATE_LEN],
+            ),
+            None => dx[..STATE_LEN].fill(0.0),
+        }
+    }
+
+    /// After a step: renormalises the quaternion, clamps the actuators and pulls the RBF
+    /// weights back into their projection bounds.
+    pub fn normalize(&self, x: &mut [f64]) {
+        self.aircraft.normalize(&mut x[..STATE_LEN]);
+        self.autopilot
+            .enforce_bounds(&mut x[AUTOPILOT..VELOCITY_CMD]);
+    }
+
+    /// The aircraft's data (actuator limits for the summary).
+    pub fn params(&self) -> &AircraftParams {
+        self.aircraft.params()
+    }
+}

@@ -1,0 +1,189 @@
+//! The follower stage as the simulation sees it (DESIGN §1, `[follower] model`): the
+//! kinematic follower of the seed's Chapters 4-6 ([`KinematicFollower`]), or the 6-DOF
+//! aircraft flown by the Chapter 7 flight controller ([`AircraftFollower`]).
+//!
+//! Both own a slice of the simulation's state and answer the same questions: where the
+//! follower is, how it is oriented (camera = body), how it turns, how fast it goes. Each RK4
+//! stage runs two steps, timed apart by the simulation: [`Follower::control`] (the flight
+//! controller's decision: nothing for the kinematic follower) and [`Follower::plant`] (the
+//! equations of motion under that decision).
+
+pub mod aircraft;
+pub mod envelope;
+
+pub use aircraft::{AircraftActuation, AircraftFollower, AircraftSetupError};
+pub use envelope::{FlightEnvelope, LimitTicks};
+
+use crate::frames::{EulerAngles, Vec3};
+use crate::scenario::{FollowerModel, GuidanceLawKind, Scenario};
+use crate::world::kinematic::{FollowerCommand, KinematicFollower, Realises};
+
+/// The follower of a run.
+#[derive(Debug, Clone)]
+pub enum Follower {
+    /// Realises the guidance command exactly (seed Chapters 4-6).
+    Kinematic(KinematicFollower),
+    /// 6-DOF aircraft and flight controller (seed Chapter 7).
+    Aircraft(Box<AircraftFollower>),
+}
+
+/// What the follower's control step decided at one instant.
+///
+/// Returned by value from every RK4 stage; boxing the aircraft's decision would allocate four
+/// times a tick, so the size difference between the variants is kept.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[allow(clippy::large_enum_variant)]
+pub enum Actuation {
+    /// The kinematic follower realises the guidance command itself.
+    Kinematic(FollowerCommand),
+    /// The flight controller's decision (`None` when the plant's state is not usable).
+    Aircraft(Option<AircraftActuation>),
+}
+
+impl Actuation {
+    /// The flight controller's decision, when there is one.
+    pub fn aircraft(&self) -> Option<&AircraftActuation> {
+        match self {
+            Self::Aircraft(a) => a.as_ref(),
+            Self::Kinematic(_) => None,
+        }
+    }
+}
+
+impl Follower {
+    /// The follower a scenario describes and its initial state slice.
+    pub fn new(scenario: &Scenario) -> Result<(Self, Vec<f64>), AircraftSetupError> {
+        let f = &scenario.follower;
+        match f.model {
+            FollowerModel::Kinematic => {
+                let follower = KinematicFollower {
+                    attitude_lag_s: f.attitude_lag_s,
+                    realises: match scenario.guidance.law {
+                        GuidanceLawKind::Velocity => Realises::Velocity,
+                        GuidanceLawKind::Acceleration => Realises::Acceleration,
+                    },
+                };
+                let [phi, theta, psi] = f.initial_attitude_deg.map(f64::to_radians);
+                let x = follower.initial_state(
+                    &Vec3::from(f.initial_position_ft),
+                    &EulerAngles::new(phi, theta, psi),
+                    &Vec3::from(f.initial_velocity_fps),
+                );
+                Ok((Self::Kinematic(follower), x))
+            }
+            FollowerModel::Aircraft => {
+                let (follower, x) = AircraftFollower::new(scenario)?;
+                Ok((Self::Aircraft(Box::new(follower)), x))
+            }
+        }
+    }
+
+    /// R_F, NED, ft.
+    pub fn position_ned_ft(&self, x: &[f64]) -> Vec3 {
+        match self {
+            Self::Kinematic(_) => KinematicFollower::position_ned_ft(x),
+            Self::Aircraft(_) => AircraftFollower::position_ned_ft(x),
+        }
+    }
+
+    /// The follower's attitude (camera = body).
+    pub fn attitude(&self, x: &[f64]) -> EulerAngles {
+        match self {
+            Self::Kinematic(_) => KinematicFollower::attitude(x),
+            Self::Aircraft(_) => AircraftFollower::attitude(x),
+        }
+    }
+
+    /// Body rates [p, q, r], rad/s: from the kinematic follower's attitude rates, or the
+    /// aircraft's own rate states.
+    pub fn body_rates(&self, x: &[f64]) -> Vec3 {
+        match self {
+            Self::Kinematic(k) => {
+                KinematicFollower::body_rates(&KinematicFollower::attitude(x), &k.attitude_rates(x))
+            }
+            Self::Aircraft(_) => AircraftFollower::body_rates(x),
+        }
+    }
+
+    /// V_F, NED, ft/s: what the kinematic follower realises of `command`, or the aircraft's
+    /// inertial velocity.
+    pub fn velocity_ned_fps(&self, x: &[f64], command: &FollowerCommand) -> Vec3 {
+        match self {
+            Self::Kinematic(k) => k.velocity_ned_fps(x, command),
+            Self::Aircraft(_) => AircraftFollower::velocity_ned_fps(x),
+        }
+    }
+
+    /// The velocity the follower flies when it does not simply realise the guidance's
+    /// command (the aircraft's, from its own navigation), NED, ft/s; `None` for the
+    /// kinematic follower, whose velocity is the command.
+    pub fn realised_velocity_ned_fps(&self, x: &[f64]) -> Option<Vec3> {
+        match self {
+            Self::Kinematic(_) => None,
+            Self::Aircraft(_) => Some(AircraftFollower::velocity_ned_fps(x)),
+        }
+    }
+
+    /// V_F - V_a of a follower that integrates V_F = V_F(0) + ∫ a_F and flies it through its
+    /// own dynamics (the aircraft under the acceleration law), NED, ft/s; `None` otherwise.
+    pub fn velocity_shortfall_ned_fps(&self, x: &[f64]) -> Option<Vec3> {
+        match self {
+            Self::Kinematic(_) => None,
+            Self::Aircraft(a) => a.velocity_shortfall_ned_fps(x),
+        }
+    }
+
+    /// At the start: a kinematic follower that realises velocities points its attitude along
+    /// the first commanded V_F; the trimmed aircraft flies as it is.
+    pub fn align_with_first_command(&self, x: &mut [f64], command: &FollowerCommand) {
+        if let (Self::Kinematic(k), FollowerCommand::Velocity(v)) = (self, command)
+            && k.realises == Realises::Velocity
+        {
+            KinematicFollower::set_heading_velocity(x, v);
+        }
+    }
+
+    /// Before each step: the aircraft's air (turbulence) for the step.
+    pub fn begin_step(&mut self, x: &[f64], dt_s: f64) {
+        if let Self::Aircraft(a) = self {
+            a.begin_step(x, dt_s);
+        }
+    }
+
+    /// The control step: the flight controller's ẋ and decision for the guidance `command`.
+    pub fn control(&self, x: &[f64], command: &FollowerCommand, dx: &mut [f64]) -> Actuation {
+        match self {
+            Self::Kinematic(_) => Actuation::Kinematic(*command),
+            Self::Aircraft(a) => Actuation::Aircraft(a.control(x, command, dx)),
+        }
+    }
+
+    /// The plant step: the equations of motion's ẋ under `actuation`.
+    pub fn plant(&self, x: &[f64], actuation: &Actuation, dx: &mut [f64]) {
+        match (self, actuation) {
+            (Self::Kinematic(k), Actuation::Kinematic(command)) => k.derivative(x, command, dx),
+            (Self::Aircraft(a), Actuation::Aircraft(decision)) => {
+                a.plant(x, decision.as_ref(), dx);
+            }
+            // A decision of the other model is a wiring error: nothing moves.
+            _ => dx.fill(0.0),
+        }
+    }
+
+    /// After a step: wraps angles (kinematic), renormalises the quaternion and bounds the
+    /// controller's weights (aircraft).
+    pub fn normalize(&self, x: &mut [f64]) {
+        match self {
+            Self::Kinematic(_) => KinematicFollower::normalize(x),
+            Self::Aircraft(a) => a.normalize(x),
+        }
+    }
+
+    /// The 6-DOF follower, if this is one.
+    pub fn aircraft(&self) -> Option<&AircraftFollower> {
+        match self {
+            Self::Aircraft(a) => Some(a),
+            Self::Kinematic(_) => None,
+        }
+    }
+}

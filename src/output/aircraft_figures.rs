@@ -1,0 +1,174 @@
+//! The 6-DOF follower's figures (seed Chapter 7, Figs 7.1-7.13 beside the relative-position
+//! and estimate panels of [`super::figures`]): `flight_velocity.png` (the follower's velocity
+//! against the V_F the autopilot flies and the target's), `euler_angles.png` (φ, θ, ψ against
+//! the references φ_c, θ_c, ψ_c of (7.24)), `body_rates.png` (p, q, r against the filtered
+//! rate commands of (7.25)), `surfaces.png` (δe, δa, δr and δT) and `air_data.png` (V against
+//! V_c, α and β); seed Figs 7.5-7.6 and 7.12-7.13 show the surfaces well inside their limits
+//! and α and β small (SPEC §7).
+
+use super::plots::{EXTRA, Panel, PlotError, REFERENCE, Series, TRUTH, draw_figure};
+use crate::follower::AircraftActuation;
+use crate::sim::Snapshot;
+use std::path::Path;
+
+const AXES: [&str; 3] = ["x (north)", "y (east)", "z (down)"];
+
+/// A value of each logged row's aircraft record (NaN where a row has none).
+fn series(logged: &[Snapshot], f: impl Fn(&AircraftActuation) -> f64) -> Vec<f64> {
+    logged
+        .iter()
+        .map(|s| s.aircraft.as_ref().map_or(f64::NAN, &f))
+        .collect()
+}
+
+/// One panel of a quantity (converted to degrees when `deg`) against its command.
+fn versus_command(
+    logged: &[Snapshot],
+    label: &str,
+    value: impl Fn(&AircraftActuation) -> f64,
+    command: impl Fn(&AircraftActuation) -> f64,
+    deg: bool,
+) -> Panel {
+    let scale = if deg {
+        180.0 / std::f64::consts::PI
+    } else {
+        1.0
+    };
+    Panel {
+        y_label: label.to_string(),
+        series: vec![
+            Series::new("aircraft", series(logged, |a| value(a) * scale), TRUTH),
+            Series::new("command", series(logged, |a| command(a) * scale), REFERENCE),
+        ],
+    }
+}
+
+/// Draws the 6-DOF figures into `dir` (nothing when no row carries aircraft data).
+pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Result<(), PlotError> {
+    if logged.iter().all(|s| s.aircraft.is_none()) {
+        return Ok(());
+    }
+    let velocity: Vec<Panel> = (0..3)
+        .map(|i| Panel {
+            y_label: format!("V{}, ft/s", AXES[i]),
+            series: vec![
+                Series::new(
+                    "follower",
+                    logged
+                        .iter()
+                        .map(|s| s.follower_velocity_ned_fps[i])
+                        .collect(),
+                    TRUTH,
+                ),
+                Series::new(
+                    "V_F (guidance command)",
+                    series(logged, |a| a.velocity_cmd_ned_fps[i]),
+                    REFERENCE,
+                ),
+                Series::new(
+                    "V_T (target)",
+                    logged
+                        .iter()
+                        .map(|s| s.target.velocity_ned_fps[i])
+                        .collect(),
+                    EXTRA,
+                ),
+            ],
+        })
+        .collect();
+    draw_figure(
+        &dir.join("flight_velocity.png"),
+        "Follower velocity, guidance command and target (seed Ch 7)",
+        t,
+        &velocity,
+    )?;
+
+    let euler = vec![
+        versus_command(
+            logged,
+            "φ, deg",
+            |a| a.air_data.euler.phi_rad,
+            |a| a.autopilot.euler_cmd.phi_rad,
+            true,
+        ),
+        versus_command(
+            logged,
+            "θ, deg",
+            |a| a.air_data.euler.theta_rad,
+            |a| a.autopilot.euler_cmd.theta_rad,
+            true,
+        ),
+        versus_command(
+            logged,
+            "ψ, deg",
+            |a| a.air_data.euler.psi_rad,
+            |a| crate::world::kinematic::wrap_angle_rad(a.autopilot.euler_cmd.psi_rad),
+            true,
+        ),
+    ];
+    draw_figure(
+        &dir.join("euler_angles.png"),
+        "Euler angles and their references (7.24) (seed Ch 7)",
+        t,
+        &euler,
+    )?;
+
+    let rates: Vec<Panel> = ["p", "q", "r"]
+        .iter()
+        .enumerate()
+        .map(|(i, name)| {
+            versus_command(
+                logged,
+                &format!("{name}, deg/s"),
+                |a| a.air_data.body_rates_rps[i],
+                |a| a.autopilot.rate_cmd_filtered_rps[i],
+                true,
+            )
+        })
+        .collect();
+    draw_figure(
+        &dir.join("body_rates.png"),
+        "Body rates and their commands (7.25) (seed Ch 7)",
+        t,
+        &rates,
+    )?;
+
+    let deg = 180.0 / std::f64::consts::PI;
+    let single = |label: &str, name: &str, f: fn(&AircraftActuation) -> f64, scale: f64| Panel {
+        y_label: label.to_string(),
+        series: vec![Series::new(name, series(logged, |a| f(a) * scale), TRUTH)],
+    };
+    let surface = |label: &str, f: fn(&AircraftActuation) -> f64, scale: f64| {
+        single(label, "position", f, scale)
+    };
+    let surfaces = vec![
+        surface("δe, deg (limit ±30)", |a| a.actuators.elevator_rad, deg),
+        surface("δa, deg (limit ±30)", |a| a.actuators.aileron_rad, deg),
+        surface("δr, deg (limit ±20)", |a| a.actuators.rudder_rad, deg),
+        surface("δT (0 to 1)", |a| a.actuators.throttle, 1.0),
+    ];
+    draw_figure(
+        &dir.join("surfaces.png"),
+        "Control surfaces and throttle (seed Figs 7.5-7.6, 7.12-7.13)",
+        t,
+        &surfaces,
+    )?;
+
+    let air = vec![
+        versus_command(
+            logged,
+            "V, ft/s",
+            |a| a.air_data.airspeed_fps,
+            |a| a.autopilot.airspeed_cmd_fps,
+            false,
+        ),
+        single("α, deg", "aircraft", |a| a.air_data.alpha_rad, deg),
+        single("β, deg", "aircraft", |a| a.air_data.beta_rad, deg),
+    ];
+    draw_figure(
+        &dir.join("air_data.png"),
+        "Airspeed, angle of attack and sideslip (seed Figs 7.5-7.6, 7.12-7.13)",
+        t,
+        &air,
+    )
+}
