@@ -16,9 +16,8 @@ use rand_distr::{Distribution, Normal};
 use std::cell::Cell;
 use std::f64::consts::PI;
 use wingman::frames::Vec3;
-use wingman::guidance::acceleration::{
-    AccelerationGuidance, AccelerationGuidanceInput, AccelerationGuidanceOutput, layout,
-};
+use wingman::guidance::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput, layout};
+use wingman::guidance::law::GuidanceInput;
 use wingman::integrate::Rk4;
 use wingman::scenario::{
     AccelerationSection, GuidanceSection, ObserverGainMode, TargetMotion, TargetSection,
@@ -81,7 +80,7 @@ impl ClosedLoop {
         x
     }
 
-    fn input(&self, t_s: f64, x: &[f64]) -> AccelerationGuidanceInput {
+    fn input(&self, t_s: f64, x: &[f64]) -> GuidanceInput {
         let follower = Vec3::new(x[0], x[1], x[2]);
         let e = Vec3::x();
         let (ft, ft_rate, scaled, scaled_rate) = match self.excitation {
@@ -95,15 +94,18 @@ impl ClosedLoop {
                 omega_rps: w,
             } => (0.0, 0.0, a * (w * t_s).sin(), a * w * (w * t_s).cos()),
         };
-        AccelerationGuidanceInput {
-            y_measured: (self.target.position_ned_ft(t_s) - follower) / B_FT + self.noise.get(),
+        GuidanceInput {
+            r_measured: Some(
+                (self.target.position_ned_ft(t_s) - follower) / B_FT + self.noise.get(),
+            ),
             command_ned_ft: self.command_ned_ft,
             command_rate_ned_fps: Vec3::zeros(),
             excitation_ned_ft: e * ft,
             excitation_rate_ned_fps: e * ft_rate,
             excitation_scaled: e * scaled,
             excitation_scaled_rate: e * scaled_rate,
-            velocity_shortfall_ned_fps: None,
+            follower_velocity_ned_fps: None,
+            follower_velocity_shortfall_ned_fps: None,
         }
     }
 

@@ -13,7 +13,7 @@
 //! from r(0) to 0 with the filter's pole instead of jumping to 0.
 //!
 //! With noisy measurements (6.39)-(6.42) nothing changes but the input: pass y* = r* as
-//! `y_measured`; y*_a = 2y* - y_m - C ẑ follows. The observer gain can come from the Riccati
+//! `r_measured`; y*_a = 2y* - y_m - C ẑ follows. The observer gain can come from the Riccati
 //! equation (6.62), see [`ObserverGainDesign`].
 //!
 //! Units: w, w_f, d̂ in ft/s (filtered accelerations); y, y_c, y_m, y_a scaled (multiples of b);
@@ -36,6 +36,7 @@
 //! longer than τ (a climb the thrust cannot hold) shows in y and is corrected. With V_a = V_F
 //! χ stays 0 and this is the seed's law.
 
+use super::law::GuidanceInput;
 use super::projection::{BallBound, IntervalBound};
 use crate::frames::Vec3;
 use crate::linalg::solve_continuous_are;
@@ -195,29 +196,6 @@ pub fn riccati_observer_gain(
             l[0], l[1], axis.lambda_rps
         ))
     }
-}
-
-/// What the acceleration law needs at one instant besides its own state.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AccelerationGuidanceInput {
-    /// Measured scaled relative position y = r (or y* = r* with noise), NED.
-    pub y_measured: Vec3,
-    /// R_c, the user's relative-position command, NED, ft (zero for interception).
-    pub command_ned_ft: Vec3,
-    /// Ṙ_c, ft/s.
-    pub command_rate_ned_fps: Vec3,
-    /// Excitation offset k(t) sin(ωt) E in ft, added to R_c after the shaping filter: it
-    /// enters y_c divided by b̂ (Section 5.5).
-    pub excitation_ned_ft: Vec3,
-    /// Its time derivative, ft/s.
-    pub excitation_rate_ned_fps: Vec3,
-    /// Excitation offset in scaled units, added to y_c as it is.
-    pub excitation_scaled: Vec3,
-    /// Its time derivative, 1/s.
-    pub excitation_scaled_rate: Vec3,
-    /// The follower's velocity shortfall V_F - V_a, NED, ft/s, for a law built with
-    /// compensation (module docs); ignored otherwise.
-    pub velocity_shortfall_ned_fps: Option<Vec3>,
 }
 
 /// The law's output at one instant.
@@ -410,7 +388,7 @@ impl AccelerationGuidance {
     }
 
     /// The scaled command and the rates of its parts (everything but b̂').
-    fn command(&self, x: &[f64], input: &AccelerationGuidanceInput) -> Command {
+    fn command(&self, x: &[f64], input: &GuidanceInput) -> Command {
         let b_hat = x[B_HAT];
         let r_cf = vec3_at(x, R_CF);
         if self.shaping_pole_rps > 0.0 {
@@ -444,14 +422,18 @@ impl AccelerationGuidance {
     pub fn derivative(
         &self,
         x: &[f64],
-        input: &AccelerationGuidanceInput,
+        input: &GuidanceInput,
         dx: &mut [f64],
     ) -> AccelerationGuidanceOutput {
         let b_hat = x[B_HAT];
         let d_hat = vec3_at(x, D_HAT);
         let s_f = vec3_at(x, S_F);
         let w = vec3_at(x, W);
-        let y = input.y_measured;
+        // y (or y* with noise), in the law's compensated coordinates; coasting on the
+        // observer's prediction while the target is lost.
+        let y = input
+            .r_measured
+            .unwrap_or_else(|| Self::predicted_measurement(x));
         let cmd = self.command(x, input);
 
         let mut y_model = Vec3::zeros();
@@ -499,7 +481,9 @@ impl AccelerationGuidance {
         dx[D_HAT..D_HAT + 3].copy_from_slice(d_rate.as_slice());
         dx[R_CF..R_CF + 3].copy_from_slice(cmd.filter_rate.as_slice());
         if let Some(tau) = self.compensation_time_constant_s {
-            let shortfall = input.velocity_shortfall_ned_fps.unwrap_or_else(Vec3::zeros);
+            let shortfall = input
+                .follower_velocity_shortfall_ned_fps
+                .unwrap_or_else(Vec3::zeros);
             let chi_rate = shortfall - vec3_at(x, CHI) / tau;
             dx[CHI..CHI + 3].copy_from_slice(chi_rate.as_slice());
         }
@@ -553,16 +537,17 @@ mod tests {
         AccelerationGuidance::new(section, &guidance, false)
     }
 
-    fn input(y: Vec3) -> AccelerationGuidanceInput {
-        AccelerationGuidanceInput {
-            y_measured: y,
+    fn input(y: Vec3) -> GuidanceInput {
+        GuidanceInput {
+            r_measured: Some(y),
             command_ned_ft: Vec3::new(32.0, 8.0, 0.0),
             command_rate_ned_fps: Vec3::zeros(),
             excitation_ned_ft: Vec3::zeros(),
             excitation_rate_ned_fps: Vec3::zeros(),
             excitation_scaled: Vec3::zeros(),
             excitation_scaled_rate: Vec3::zeros(),
-            velocity_shortfall_ned_fps: None,
+            follower_velocity_ned_fps: None,
+            follower_velocity_shortfall_ned_fps: None,
         }
     }
 

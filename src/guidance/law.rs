@@ -4,12 +4,8 @@
 //! maps the common input onto the law's own, and reports the law's command as a
 //! [`FollowerCommand`] for the follower stage.
 
-use super::acceleration::{
-    AccelerationGuidance, AccelerationGuidanceInput, AccelerationGuidanceOutput,
-};
-use super::velocity::{
-    VelocityEstimator, VelocityGuidance, VelocityGuidanceInput, steady_state_estimator_gain,
-};
+use super::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
+use super::velocity::{VelocityEstimator, VelocityGuidance, steady_state_estimator_gain};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{EstimatorGainMode, FollowerModel, GuidanceLawKind, Scenario};
 use crate::world::kinematic::FollowerCommand;
@@ -189,20 +185,7 @@ impl GuidanceLaw {
     pub fn derivative(&self, x: &[f64], input: &GuidanceInput, dx: &mut [f64]) -> GuidanceOutput {
         match self {
             Self::Velocity(law) => {
-                let out = law.derivative(
-                    x,
-                    &VelocityGuidanceInput {
-                        r_measured: input.r_measured,
-                        command_ned_ft: input.command_ned_ft,
-                        command_rate_ned_fps: input.command_rate_ned_fps,
-                        excitation_ned_ft: input.excitation_ned_ft,
-                        excitation_rate_ned_fps: input.excitation_rate_ned_fps,
-                        excitation_scaled: input.excitation_scaled,
-                        excitation_scaled_rate: input.excitation_scaled_rate,
-                        follower_velocity_ned_fps: input.follower_velocity_ned_fps,
-                    },
-                    dx,
-                );
+                let out = law.derivative(x, input, dx);
                 GuidanceOutput {
                     command: FollowerCommand::Velocity(out.velocity_cmd_ned_fps),
                     r_command: out.r_command,
@@ -217,20 +200,11 @@ impl GuidanceLaw {
                     || AccelerationGuidance::predicted_measurement(x),
                     |r| law.compensated_measurement(x, &r),
                 );
-                let out = law.derivative(
-                    x,
-                    &AccelerationGuidanceInput {
-                        y_measured,
-                        command_ned_ft: input.command_ned_ft,
-                        command_rate_ned_fps: input.command_rate_ned_fps,
-                        excitation_ned_ft: input.excitation_ned_ft,
-                        excitation_rate_ned_fps: input.excitation_rate_ned_fps,
-                        excitation_scaled: input.excitation_scaled,
-                        excitation_scaled_rate: input.excitation_scaled_rate,
-                        velocity_shortfall_ned_fps: input.follower_velocity_shortfall_ned_fps,
-                    },
-                    dx,
-                );
+                let measured = GuidanceInput {
+                    r_measured: Some(y_measured),
+                    ..*input
+                };
+                let out = law.derivative(x, &measured, dx);
                 GuidanceOutput {
                     command: FollowerCommand::Acceleration(out.accel_cmd_ned_fps2),
                     r_command: out.y_command,

@@ -36,6 +36,7 @@
 //! -b̂' R_c/b̂² of (4.15) into g, and with σ = 39 the loop b̂' → g → b̂' is singular once
 //! eᵀR_c reaches b̂²/σ, an error of about 0.01.)
 
+use super::law::GuidanceInput;
 use super::projection::{BallBound, IntervalBound};
 use crate::frames::{Mat3, Vec3};
 use crate::linalg::{LinalgError, solve_continuous_lyapunov};
@@ -159,32 +160,6 @@ pub fn steady_state_estimator_gain(
     Err(LinalgError::Singular(format!(
         "L_v = K_r K_nr⁻¹ did not converge in {MAX_GAIN_ITERATIONS} passes"
     )))
-}
-
-/// What the velocity law needs at one instant besides its own state.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct VelocityGuidanceInput {
-    /// Measured scaled relative position r (or r*), NED; `None` while the target is lost:
-    /// the law then coasts (with the estimator: on r̂ predicted by (6.10) without its
-    /// correction term; without it: on the command itself) and adaptation stops.
-    pub r_measured: Option<Vec3>,
-    /// R_c, the user's relative-position command, NED, ft (zero for interception).
-    pub command_ned_ft: Vec3,
-    /// Ṙ_c, ft/s.
-    pub command_rate_ned_fps: Vec3,
-    /// Excitation offset a sin(ωt) E in ft, added to R_c after the shaping filter (4.31):
-    /// it enters the scaled command divided by b̂.
-    pub excitation_ned_ft: Vec3,
-    /// Its time derivative, ft/s.
-    pub excitation_rate_ned_fps: Vec3,
-    /// Excitation offset in scaled units (multiples of the target's size), added to the
-    /// scaled command after the shaping filter as it is.
-    pub excitation_scaled: Vec3,
-    /// Its time derivative, 1/s.
-    pub excitation_scaled_rate: Vec3,
-    /// The follower's realised inertial velocity V_a, NED, ft/s, for a law built with
-    /// compensation (module docs); ignored otherwise.
-    pub follower_velocity_ned_fps: Option<Vec3>,
 }
 
 /// The law's output at one instant.
@@ -319,7 +294,7 @@ impl VelocityGuidance {
     pub fn derivative(
         &self,
         x: &[f64],
-        input: &VelocityGuidanceInput,
+        input: &GuidanceInput,
         dx: &mut [f64],
     ) -> VelocityGuidanceOutput {
         let b_hat = x[B_HAT];
@@ -431,8 +406,8 @@ pub(crate) fn vec3_at(x: &[f64], at: usize) -> Vec3 {
 mod tests {
     use super::*;
 
-    fn input(r: Vec3) -> VelocityGuidanceInput {
-        VelocityGuidanceInput {
+    fn input(r: Vec3) -> GuidanceInput {
+        GuidanceInput {
             r_measured: Some(r),
             command_ned_ft: Vec3::new(32.0, 8.0, 0.0),
             command_rate_ned_fps: Vec3::zeros(),
@@ -441,6 +416,7 @@ mod tests {
             excitation_scaled: Vec3::zeros(),
             excitation_scaled_rate: Vec3::zeros(),
             follower_velocity_ned_fps: None,
+            follower_velocity_shortfall_ned_fps: None,
         }
     }
 
