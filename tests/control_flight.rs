@@ -8,6 +8,8 @@
 //! speed command saturates the throttle without the RBF weights winding up, and the aircraft
 //! recovers when the command comes back.
 
+mod common;
+
 use wingman::control::{Autopilot, AutopilotInput, AutopilotOutput};
 use wingman::frames::{SEA_LEVEL_DENSITY_SLUG_FT3, Vec3};
 use wingman::integrate::Rk4;
@@ -238,24 +240,6 @@ fn vertical_rms_unlimited(flight: &Flight, from_s: f64) -> f64 {
     (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt()
 }
 
-/// α of level trim at `airspeed_fps` (sea-level density, the flight's air).
-fn trim_alpha_deg(airspeed_fps: f64) -> f64 {
-    let params = AircraftParams::seed_follower().expect("built-in aircraft");
-    let aircraft = Aircraft::new(params).expect("valid aircraft");
-    trim_level_flight(
-        &aircraft,
-        &TrimRequest {
-            airspeed_fps,
-            position_ned_ft: Vec3::zeros(),
-            heading_rad: 0.0,
-            air: AtmosphereSample::default(),
-        },
-    )
-    .expect("trims")
-    .alpha_rad
-    .to_degrees()
-}
-
 /// Lowest speed of the seed's target profile, ft/s (x = 25(1 + cos), y = 25(1 - cos) cross
 /// at 25√2; SPEC §2 "35-60 ft/s").
 const PROFILE_MIN_SPEED_FPS: f64 = 35.355;
@@ -367,7 +351,7 @@ fn seed_target_profile_is_followed() {
     );
     println!("140 s at dt = 5 ms: wall time {:?}", started.elapsed());
     let st = report("seed profile, calm air", &flight, 5.0);
-    let alpha_bound = trim_alpha_deg(PROFILE_MIN_SPEED_FPS) + 2.0;
+    let alpha_bound = common::trim_alpha_deg(PROFILE_MIN_SPEED_FPS) + 2.0;
     println!("α bound: trim α at {PROFILE_MIN_SPEED_FPS} ft/s + 2° = {alpha_bound:.2}°");
     assert!(st.rms_velocity_error_fps.x < 0.6, "{st:?}");
     assert!(st.rms_velocity_error_fps.y < 0.6, "{st:?}");

@@ -5,7 +5,9 @@
 //! [`FollowerCommand`] for the follower stage.
 
 use super::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
-use super::velocity::{VelocityEstimator, VelocityGuidance, steady_state_estimator_gain};
+use super::velocity::{
+    VelocityEstimator, VelocityGuidance, VelocityGuidanceOutput, steady_state_estimator_gain,
+};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{EstimatorGainMode, FollowerModel, GuidanceLawKind, Scenario};
 use crate::world::kinematic::FollowerCommand;
@@ -158,42 +160,15 @@ impl GuidanceLaw {
     /// the acceleration law a_F = 0 (the follower keeps V_F(0)).
     pub fn idle(&self, x: &[f64], dx: &mut [f64]) -> GuidanceOutput {
         match self {
-            Self::Velocity(law) => {
-                let out = law.idle(x, dx);
-                GuidanceOutput {
-                    command: FollowerCommand::Velocity(out.velocity_cmd_ned_fps),
-                    r_command: out.r_command,
-                    error: out.error,
-                    estimated_error: out.estimated_error,
-                    acceleration: None,
-                }
-            }
-            Self::Acceleration(law) => {
-                let out = law.idle(x, dx);
-                GuidanceOutput {
-                    command: FollowerCommand::Acceleration(out.accel_cmd_ned_fps2),
-                    r_command: out.y_command,
-                    error: out.y_combined,
-                    estimated_error: Vec3::zeros(),
-                    acceleration: Some(out),
-                }
-            }
+            Self::Velocity(law) => velocity_output(&law.idle(x, dx)),
+            Self::Acceleration(law) => acceleration_output(law.idle(x, dx), Vec3::zeros()),
         }
     }
 
     /// Writes the law's ẋ into `dx` and returns its command.
     pub fn derivative(&self, x: &[f64], input: &GuidanceInput, dx: &mut [f64]) -> GuidanceOutput {
         match self {
-            Self::Velocity(law) => {
-                let out = law.derivative(x, input, dx);
-                GuidanceOutput {
-                    command: FollowerCommand::Velocity(out.velocity_cmd_ned_fps),
-                    r_command: out.r_command,
-                    error: out.error,
-                    estimated_error: out.estimated_error,
-                    acceleration: None,
-                }
-            }
+            Self::Velocity(law) => velocity_output(&law.derivative(x, input, dx)),
             Self::Acceleration(law) => {
                 // The observer's prediction is already in the law's (compensated) coordinates.
                 let y_measured = input.r_measured.map_or_else(
@@ -205,13 +180,7 @@ impl GuidanceLaw {
                     ..*input
                 };
                 let out = law.derivative(x, &measured, dx);
-                GuidanceOutput {
-                    command: FollowerCommand::Acceleration(out.accel_cmd_ned_fps2),
-                    r_command: out.y_command,
-                    error: out.y_combined,
-                    estimated_error: out.y_observer - out.y_model,
-                    acceleration: Some(out),
-                }
+                acceleration_output(out, out.y_observer - out.y_model)
             }
         }
     }
@@ -248,6 +217,29 @@ impl GuidanceLaw {
             Self::Velocity(_) => VelocityGuidance::d_hat(x),
             Self::Acceleration(_) => AccelerationGuidance::d_hat(x),
         }
+    }
+}
+
+/// The velocity law's output as a [`GuidanceOutput`].
+fn velocity_output(out: &VelocityGuidanceOutput) -> GuidanceOutput {
+    GuidanceOutput {
+        command: FollowerCommand::Velocity(out.velocity_cmd_ned_fps),
+        r_command: out.r_command,
+        error: out.error,
+        estimated_error: out.estimated_error,
+        acceleration: None,
+    }
+}
+
+/// The acceleration law's output as a [`GuidanceOutput`]: its error is the combined output
+/// y_a, its estimated error the one given.
+fn acceleration_output(out: AccelerationGuidanceOutput, estimated_error: Vec3) -> GuidanceOutput {
+    GuidanceOutput {
+        command: FollowerCommand::Acceleration(out.accel_cmd_ned_fps2),
+        r_command: out.y_command,
+        error: out.y_combined,
+        estimated_error,
+        acceleration: Some(out),
     }
 }
 
