@@ -209,7 +209,17 @@ impl TelemetryWriter {
             writeln!(self.out, "{}", header.join(","))?;
             self.columns = row.len();
         }
-        debug_assert_eq!(row.len(), self.columns, "telemetry columns changed mid-run");
+        if row.len() != self.columns {
+            // A row that does not fit the header would corrupt the CSV: refuse it.
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "telemetry row has {} columns, the header {}",
+                    row.len(),
+                    self.columns
+                ),
+            ));
+        }
         let mut line = String::with_capacity(row.len() * 12);
         for (i, (_, value)) in row.iter().enumerate() {
             if i > 0 {
@@ -225,5 +235,24 @@ impl TelemetryWriter {
     /// Flushes buffered rows to disk.
     pub fn flush(&mut self) -> std::io::Result<()> {
         self.out.flush()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A row whose columns do not match the header is refused, in every build, and the
+    /// rows written before it stay intact.
+    #[test]
+    fn mismatched_row_is_refused() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("t.csv");
+        let mut w = TelemetryWriter::create(&path).expect("create");
+        w.write(&[("a", 1.0), ("b", 2.0)]).expect("first row");
+        assert!(w.write(&[("a", 1.0)]).is_err());
+        w.flush().expect("flush");
+        let text = std::fs::read_to_string(&path).expect("read");
+        assert_eq!(text, "a,b\n1,2\n");
     }
 }
