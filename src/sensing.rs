@@ -18,6 +18,21 @@ pub struct ImageMeasurement {
     pub b_i_px: f64,
 }
 
+impl ImageMeasurement {
+    /// aI = sqrt(l² + yI² + zI²) / bI (3.7): the range in units of the target's size.
+    pub fn scaled_range(&self, focal_px: f64) -> f64 {
+        (focal_px * focal_px + self.y_i_px * self.y_i_px + self.z_i_px * self.z_i_px).sqrt()
+            / self.b_i_px
+    }
+
+    /// The target size this measurement implies at a known range: ‖R‖ / aI, ft. (3.7) takes
+    /// the size as the target's maximal dimension b; a real silhouette's depends on the view
+    /// (seed 8.2), and this is what the camera saw.
+    pub fn apparent_size_ft(&self, focal_px: f64, range_ft: f64) -> f64 {
+        range_ft / self.scaled_range(focal_px)
+    }
+}
+
 /// Unit line of sight T_IB in body axes from bearing λ and elevation ϑ, (3.9).
 pub fn line_of_sight_body(bearing_rad: f64, elevation_rad: f64) -> Vec3 {
     let (sl, cl) = bearing_rad.sin_cos();
@@ -40,9 +55,8 @@ pub fn scaled_relative_position(
     body_from_ned: &Mat3,
 ) -> Vec3 {
     let m = measurement;
-    let a_i = (focal_px * focal_px + m.y_i_px * m.y_i_px + m.z_i_px * m.z_i_px).sqrt() / m.b_i_px;
     let (bearing, elevation) = bearing_elevation_rad(m.y_i_px, m.z_i_px, focal_px);
-    body_from_ned.transpose() * line_of_sight_body(bearing, elevation) * a_i
+    body_from_ned.transpose() * line_of_sight_body(bearing, elevation) * m.scaled_range(focal_px)
 }
 
 /// The inverse of [`scaled_relative_position`]: the image coordinates of the relative position

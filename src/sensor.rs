@@ -77,6 +77,8 @@ pub struct FrameRecord {
     pub r_measured: Option<Vec3>,
     /// Where the follower was when the frame was taken, NED, ft.
     pub follower_position_ned_ft: Vec3,
+    /// The true range ‖R‖ when the frame was taken, ft (for the apparent size).
+    pub range_ft: f64,
 }
 
 /// Wall-clock time spent in each stage of the camera, summed over the run.
@@ -309,6 +311,7 @@ impl CameraSensor {
             truth,
             r_measured,
             follower_position_ned_ft: geometry.follower_position_ned_ft,
+            range_ft: geometry.relative_ned_ft.norm(),
         };
         self.last_frame = Some(record);
         self.last_measurement = Some(blob);

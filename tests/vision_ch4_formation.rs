@@ -1,9 +1,11 @@
 //! The camera in the loop (issue 3): the seed's formation run flown on rendered pixels.
 //!
 //! Invariants: (1) the full 140 s run completes without losing the target, writes its frames,
-//! and reports frame counts and measurement errors; (2) with the seed's inertial command the
-//! target leaves the 60° field of view, and the run survives and counts the lost frames;
-//! (3) the same scenario and seed twice give identical telemetry.
+//! reports frame counts, measurement errors and the apparent size, and ends within 2 ft RMS
+//! of the command with b̂ near the size the camera saw; (2) with the seed's inertial command
+//! the target leaves the 60° field of view, and the run survives and counts the lost frames;
+//! (3) the same scenario and seed twice give identical telemetry; (4) why the scenario's
+//! command frame is the heading frame: with the body frame b is not identifiable.
 
 mod common;
 
@@ -28,8 +30,9 @@ fn full_run_keeps_the_target_in_view() {
         .expect("frames")
         .count();
     assert_eq!(saved, 14);
-    // Bearing and elevation hold: over the last 20 s the target sits at the commanded 14°
-    // bearing (yI = l tan 14° = 138 px) within 5 px, at 0° elevation within 5 px.
+    // Bearing holds: over the last 20 s the target sits at the commanded 14° bearing
+    // (yI = l tan 14° = 138 px) within 5 px; vertically the camera pitches with the follower's
+    // climb (the target climbs until 120 s, the excitation moves the follower vertically).
     let last: Vec<_> = report.logged.iter().filter(|r| r.t_s >= 120.0).collect();
     for r in last {
         let m = r.frame.and_then(|f| f.measured).expect("measured");
@@ -39,8 +42,75 @@ fn full_run_keeps_the_target_in_view() {
             m.y_i_px,
             r.t_s
         );
-        assert!(m.z_i_px.abs() < 5.0, "zI {} at {}", m.z_i_px, r.t_s);
+        assert!(m.z_i_px.abs() < 60.0, "zI {} at {}", m.z_i_px, r.t_s);
     }
+    // The issue's criterion: within 2 ft RMS of the command over the last 20 s, per axis.
+    for (axis, rms) in s.rms_error_last20s_ft.iter().enumerate() {
+        assert!(*rms < 2.0, "axis {axis}: RMS {rms} ft");
+    }
+    // b̂ against the true 8 ft and the size the camera saw: the measured silhouette is a
+    // little shorter than the projected mesh's (thin tips cover pixels partly), and b̂ ends
+    // within 0.5 ft of both.
+    let apparent = s.apparent_size_last20s_ft.expect("camera run");
+    assert!(
+        apparent.measured < apparent.projected && apparent.projected - apparent.measured < 0.4,
+        "{apparent:?}"
+    );
+    assert!((apparent.projected - 8.0).abs() < 0.2, "{apparent:?}");
+    assert!(
+        (s.b_hat_final_ft - 8.0).abs() < 0.5,
+        "b̂ {}",
+        s.b_hat_final_ft
+    );
+    assert!(
+        (s.b_hat_final_ft - apparent.measured).abs() < 0.5,
+        "b̂ {} vs {apparent:?}",
+        s.b_hat_final_ft
+    );
+}
+
+/// The command frame decides whether b can be identified at all. With perfect, continuous
+/// measurements (no camera), no estimator and seed_ch4_formation's gains and excitation:
+/// the inertial command identifies b; the body frame, whose command turns with a follower
+/// that points along its own velocity, does not (the command moves against the excitation);
+/// nor does the heading frame with a horizontal excitation; the heading frame with a
+/// vertical excitation does.
+#[test]
+fn body_frame_command_cannot_identify_b() {
+    let b_hat = |frame: &str, direction: &str| {
+        let frame = format!("guidance.command_frame={frame}");
+        let direction = format!("excitation.direction={direction}");
+        let report = common::run(
+            "vision_ch4_formation",
+            &[
+                "sensor.mode=perfect",
+                "guidance.estimator=false",
+                "guidance.sigma=39",
+                "guidance.gamma_d=10",
+                "excitation.k1=0.5",
+                "excitation.error=measured",
+                "output.frames_every=0",
+                &frame,
+                &direction,
+            ],
+        );
+        report.summary.b_hat_final_ft
+    };
+    let x = "[1.0, 0.0, 0.0]";
+    let down = "[0.0, 0.0, 1.0]";
+    let inertial = b_hat("inertial", x);
+    assert!((inertial - 8.0).abs() < 0.3, "inertial: b̂ {inertial}");
+    let body = b_hat("body", x);
+    assert!(body < 5.5, "body: b̂ {body}");
+    let body_down = b_hat("body", down);
+    assert!(body_down < 5.5, "body, vertical: b̂ {body_down}");
+    let heading_x = b_hat("heading", x);
+    assert!(heading_x < 6.0, "heading, x: b̂ {heading_x}");
+    let heading_down = b_hat("heading", down);
+    assert!(
+        (heading_down - 8.0).abs() < 0.6,
+        "heading, vertical: b̂ {heading_down}"
+    );
 }
 
 #[test]

@@ -2,7 +2,9 @@
 
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::GuidanceLawKind;
+use crate::sensing::ImageMeasurement;
 use crate::sim::{SimError, Simulation, Snapshot, StageTimes};
+use crate::vision::BlobStatus;
 use serde::Serialize;
 
 /// How the run ended.
@@ -63,6 +65,9 @@ pub struct Summary {
     pub centroid_rms_px: Option<f64>,
     /// RMS of measured minus true maximal length, px (camera runs).
     pub length_rms_px: Option<f64>,
+    /// The target size the camera saw over the last 20 s (camera runs): see
+    /// [`ApparentSize`].
+    pub apparent_size_last20s_ft: Option<ApparentSize>,
     /// Graphics adapter that rendered the frames (camera runs).
     pub adapter: Option<String>,
     /// Mean wall time per camera frame of each stage, ms (camera runs): render (command
@@ -232,6 +237,9 @@ impl Summary {
             notes: sim.notes().to_vec(),
             centroid_rms_px: camera.and_then(|c| c.errors().centroid_rms_px()),
             length_rms_px: camera.and_then(|c| c.errors().length_rms_px()),
+            apparent_size_last20s_ft: camera.and_then(|c| {
+                ApparentSize::since(logged, c.intrinsics().focal_px, duration_s - 20.0)
+            }),
             adapter: camera.map(|c| c.adapter().to_string()),
             per_frame_ms,
             stage_wall_s: stages.into(),
@@ -242,6 +250,43 @@ impl Summary {
     /// Pretty JSON text.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+    }
+}
+
+/// The target size a camera run's frames imply, ‖R‖ / aI (see
+/// [`crate::sensing::ImageMeasurement::apparent_size_ft`]), averaged over the measured frames:
+/// what the guidance's r* says the target's size is, to set beside b̂ and the true b.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ApparentSize {
+    /// From the measured maximal length, ft.
+    pub measured: f64,
+    /// From the projected mesh's maximal length (the truth), ft.
+    pub projected: f64,
+}
+
+impl ApparentSize {
+    /// Over the distinct frames with status ok taken at t ≥ `from_s` (None without any).
+    fn since(logged: &[Snapshot], focal_px: f64, from_s: f64) -> Option<Self> {
+        let mut frames: Vec<_> = logged
+            .iter()
+            .filter_map(|s| s.frame)
+            .filter(|f| f.t_s >= from_s - 1e-9 && f.status == BlobStatus::Ok)
+            .collect();
+        frames.dedup_by_key(|f| f.index);
+        let pairs: Vec<_> = frames
+            .iter()
+            .filter_map(|f| f.measured.zip(f.truth).map(|m| (m, f.range_ft)))
+            .collect();
+        if pairs.is_empty() {
+            return None;
+        }
+        let mean = |size: &dyn Fn(&(ImageMeasurement, ImageMeasurement), f64) -> f64| {
+            pairs.iter().map(|(m, r)| size(m, *r)).sum::<f64>() / pairs.len() as f64
+        };
+        Some(Self {
+            measured: mean(&|(m, _), r| m.apparent_size_ft(focal_px, r)),
+            projected: mean(&|(_, t), r| t.apparent_size_ft(focal_px, r)),
+        })
     }
 }
 
