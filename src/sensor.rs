@@ -9,7 +9,7 @@ use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use crate::render::frame::Frame;
 use crate::render::gpu::GpuContext;
 use crate::render::mesh::TargetMesh;
-use crate::render::renderer::{RenderTimings, Renderer};
+use crate::render::renderer::{PendingFrame, RenderTimings, Renderer};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
 use crate::scenario::{BlobChoice, CameraSection, Scenario, SkyKind};
 use crate::sensing::{ImageMeasurement, scaled_relative_position};
@@ -81,6 +81,19 @@ pub struct FrameRecord {
     pub range_ft: f64,
 }
 
+/// A frame taken: when, and the geometry it was taken in.
+#[derive(Debug, Clone, Copy)]
+struct Exposure {
+    index: u64,
+    t_s: f64,
+    geometry: CaptureGeometry,
+}
+
+/// Which of the two pixel buffers holds frame `index`.
+fn buffer_of(index: u64) -> usize {
+    (index % 2) as usize
+}
+
 /// Wall-clock time spent in each stage of the camera, summed over the run.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CameraTimings {
@@ -140,6 +153,10 @@ pub struct CameraSensor {
     last_measurement: Option<BlobMeasurement>,
     last_truth: Option<ImageTruth>,
     previous_centroid_px: Option<(f64, f64)>,
+    /// Pixels of the even and the odd frames: one is measured while the other is drawn.
+    pixels: [Frame; 2],
+    /// The frame read back but not measured yet (latency of a frame or more).
+    unmeasured: Option<Exposure>,
     frames: u64,
     lost_frames: u64,
     errors: MeasurementErrors,
@@ -237,6 +254,8 @@ impl CameraSensor {
             last_measurement: None,
             last_truth: None,
             previous_centroid_px: None,
+            pixels: [Frame::default(), Frame::default()],
+            unmeasured: None,
             frames: 0,
             lost_frames: 0,
             errors: MeasurementErrors::default(),
@@ -250,26 +269,85 @@ impl CameraSensor {
         tick.is_multiple_of(self.period_ticks)
     }
 
-    /// Takes, measures and queues a frame; returns the record the guidance holds from now on
-    /// (the frame taken `latency_frames` frames ago; None before the first one arrives).
+    /// Takes a frame and returns the record the guidance holds from now on (the frame taken
+    /// `latency_frames` frames ago; None before the first one arrives).
+    ///
+    /// With a latency of a frame or more the measurement of a frame is not needed before the
+    /// next frame is taken, so the two are overlapped: this frame is submitted, the previous
+    /// one is measured while the renderer draws this one, then this one is read back. The
+    /// records, and when they reach the guidance, are those of measuring each frame at once.
     pub fn capture(
         &mut self,
         t_s: f64,
         geometry: &CaptureGeometry,
     ) -> Result<Option<FrameRecord>, SensorError> {
-        let index = self.frames;
-        let pose = geometry.pose();
+        let exposure = Exposure {
+            index: self.frames,
+            t_s,
+            geometry: *geometry,
+        };
+        self.frames += 1;
+        let pending = self
+            .renderer
+            .begin_frame(&geometry.pose())
+            .map_err(|e| SensorError::Camera(e.to_string()))?;
+        if self.latency_frames == 0 {
+            self.finish(pending, exposure.index)?;
+            self.measure(&exposure)?;
+        } else {
+            if let Some(previous) = self.unmeasured.take() {
+                self.measure(&previous)?;
+            }
+            self.finish(pending, exposure.index)?;
+            self.unmeasured = Some(exposure);
+        }
+        while self
+            .pending
+            .front()
+            .is_some_and(|r| r.index + self.latency_frames <= exposure.index)
+        {
+            self.held = self.pending.pop_front();
+        }
+        Ok(self.held)
+    }
+
+    /// Takes and measures one frame at once, whatever the latency (`wingman render`).
+    pub fn capture_now(
+        &mut self,
+        t_s: f64,
+        geometry: &CaptureGeometry,
+    ) -> Result<FrameRecord, SensorError> {
+        let exposure = Exposure {
+            index: self.frames,
+            t_s,
+            geometry: *geometry,
+        };
+        self.frames += 1;
+        let pending = self
+            .renderer
+            .begin_frame(&geometry.pose())
+            .map_err(|e| SensorError::Camera(e.to_string()))?;
+        self.finish(pending, exposure.index)?;
+        self.measure(&exposure)
+    }
+
+    /// Reads frame `index` back into its buffer.
+    fn finish(&mut self, pending: PendingFrame, index: u64) -> Result<(), SensorError> {
         self.renderer
-            .render(&pose, index)
+            .finish_frame(pending, index, &mut self.pixels[buffer_of(index)])
             .map_err(|e| SensorError::Camera(e.to_string()))?;
         self.timings.add_render(self.renderer.last_timings());
+        Ok(())
+    }
 
+    /// Measures a read-back frame, computes its truth and r*, and queues its record.
+    fn measure(&mut self, exposure: &Exposure) -> Result<FrameRecord, SensorError> {
         let vision_started = Instant::now();
         let selection = match (self.selection, self.previous_centroid_px) {
             (BlobChoice::Nearest, Some((u_px, v_px))) => BlobSelection::NearestTo { u_px, v_px },
             _ => BlobSelection::Largest,
         };
-        let frame = self.renderer.frame();
+        let frame = &self.pixels[buffer_of(exposure.index)];
         let blob = self
             .vision
             .measure(&frame.rgba, frame.width_px, frame.height_px, selection)
@@ -277,6 +355,8 @@ impl CameraSensor {
         self.timings.vision += vision_started.elapsed();
 
         let truth_started = Instant::now();
+        let geometry = &exposure.geometry;
+        let pose = geometry.pose();
         self.last_truth = self
             .truth
             .image_truth(&self.mesh_vertices_ft, &pose, &self.intrinsics);
@@ -304,8 +384,8 @@ impl CameraSensor {
             self.lost_frames += 1;
         }
         let record = FrameRecord {
-            index,
-            t_s,
+            index: exposure.index,
+            t_s: exposure.t_s,
             status: blob.status,
             measured,
             truth,
@@ -315,22 +395,16 @@ impl CameraSensor {
         };
         self.last_frame = Some(record);
         self.last_measurement = Some(blob);
-        self.frames += 1;
         self.pending.push_back(record);
-        while self
-            .pending
-            .front()
-            .is_some_and(|r| r.index + self.latency_frames <= index)
-        {
-            self.held = self.pending.pop_front();
-        }
-        Ok(self.held)
+        Ok(record)
     }
 
     /// The last frame taken and its measurement record.
     pub fn last_frame(&self) -> Option<(&Frame, &FrameRecord, &BlobMeasurement)> {
         match (&self.last_frame, &self.last_measurement) {
-            (Some(record), Some(blob)) => Some((self.renderer.frame(), record, blob)),
+            (Some(record), Some(blob)) => {
+                Some((&self.pixels[buffer_of(record.index)], record, blob))
+            }
             _ => None,
         }
     }

@@ -92,7 +92,7 @@ pub fn render_frame_at(
     }
     let mut camera = CameraSensor::new(scenario)?;
     let geometry = sim.capture_geometry();
-    camera.capture(sim.time_s(), &geometry)?;
+    camera.capture_now(sim.time_s(), &geometry)?;
     let Some((frame, record, blob)) = camera.last_frame() else {
         return Err(RenderFrameError::Write("no frame was taken".to_string()));
     };

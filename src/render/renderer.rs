@@ -46,7 +46,16 @@ pub enum RenderError {
     Readback(String),
 }
 
-/// Wall-clock times of the last [`Renderer::render`] call, s.
+/// A frame submitted by [`Renderer::begin_frame`] and not yet read back.
+#[derive(Debug)]
+pub struct PendingFrame {
+    submission: wgpu::SubmissionIndex,
+    /// Reports the staging buffer's mapping (DESIGN §6: another thread's poll may run the
+    /// callback).
+    mapped: mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
+}
+
+/// Wall-clock times of the last frame, s.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RenderTimings {
     /// Uniform upload, command encoding and submission.
@@ -353,20 +362,40 @@ impl Renderer {
         pose: &TargetPoseInCamera,
         frame_index: u64,
     ) -> Result<&Frame, RenderError> {
+        let pending = self.begin_frame(pose)?;
+        let mut frame = std::mem::take(&mut self.frame);
+        let finished = self.finish_frame(pending, frame_index, &mut frame);
+        self.frame = frame;
+        finished.map(|()| &self.frame)
+    }
+
+    /// Starts drawing the target at `pose` and returns at once: the GPU (or lavapipe's
+    /// threads) draws while the caller works; [`Self::finish_frame`] waits for it. One frame
+    /// may be in flight at a time (it owns the staging buffer).
+    pub fn begin_frame(&mut self, pose: &TargetPoseInCamera) -> Result<PendingFrame, RenderError> {
         let start = Instant::now();
-        let submission = self.submit(pose)?;
-        let submitted = Instant::now();
-        self.read_back(submission)?;
+        let pending = self.submit(pose)?;
+        self.timings.submit_s = start.elapsed().as_secs_f64();
+        Ok(pending)
+    }
+
+    /// Waits for the frame [`Self::begin_frame`] started, reads it back into `frame` (resized
+    /// to the camera) and adds the pixel noise of `frame_index`.
+    pub fn finish_frame(
+        &mut self,
+        pending: PendingFrame,
+        frame_index: u64,
+        frame: &mut Frame,
+    ) -> Result<(), RenderError> {
+        let start = Instant::now();
+        self.read_back(pending, frame)?;
         let read = Instant::now();
         if let Some(noise) = &self.noise {
-            noise.apply(&mut self.frame, frame_index);
+            noise.apply(frame, frame_index);
         }
-        self.timings = RenderTimings {
-            submit_s: (submitted - start).as_secs_f64(),
-            readback_s: (read - submitted).as_secs_f64(),
-            noise_s: read.elapsed().as_secs_f64(),
-        };
-        Ok(&self.frame)
+        self.timings.readback_s = (read - start).as_secs_f64();
+        self.timings.noise_s = read.elapsed().as_secs_f64();
+        Ok(())
     }
 
     /// The last frame rendered (sky-less black before the first call).
@@ -379,16 +408,7 @@ impl Renderer {
         self.timings
     }
 
-    fn submit(
-        &mut self,
-        pose: &TargetPoseInCamera,
-    ) -> Result<
-        (
-            wgpu::SubmissionIndex,
-            mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
-        ),
-        RenderError,
-    > {
+    fn submit(&mut self, pose: &TargetPoseInCamera) -> Result<PendingFrame, RenderError> {
         if !(pose.position_body_ft.iter().all(|x| x.is_finite())
             && pose.body_from_target.iter().all(|x| x.is_finite()))
         {
@@ -479,35 +499,38 @@ impl Renderer {
                 // The receiver lives until the frame is read back; a send error cannot matter.
                 let _ = sender.send(result);
             });
-        Ok((submission, receiver))
+        Ok(PendingFrame {
+            submission,
+            mapped: receiver,
+        })
     }
 
-    fn read_back(
-        &mut self,
-        (submission, receiver): (
-            wgpu::SubmissionIndex,
-            mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
-        ),
-    ) -> Result<(), RenderError> {
+    fn read_back(&mut self, pending: PendingFrame, frame: &mut Frame) -> Result<(), RenderError> {
         self.device
             .poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
+                submission_index: Some(pending.submission),
                 timeout: None,
             })
             .map_err(|e| RenderError::Readback(e.to_string()))?;
-        receiver
+        pending
+            .mapped
             .recv()
             .map_err(|_| RenderError::Readback("map callback was dropped".into()))?
             .map_err(|e| RenderError::Readback(e.to_string()))?;
-        let row_bytes = 4 * self.frame.width_px as usize;
+        let cam = self.settings.intrinsics;
+        frame.width_px = cam.width_px;
+        frame.height_px = cam.height_px;
+        frame
+            .rgba
+            .resize(4 * cam.width_px as usize * cam.height_px as usize, 0);
+        let row_bytes = 4 * cam.width_px as usize;
         {
             let mapped = self
                 .staging
                 .slice(..)
                 .get_mapped_range()
                 .map_err(|e| RenderError::Readback(e.to_string()))?;
-            for (dst, src) in self
-                .frame
+            for (dst, src) in frame
                 .rgba
                 .chunks_exact_mut(row_bytes)
                 .zip(mapped.chunks_exact(self.padded_bytes_per_row as usize))
