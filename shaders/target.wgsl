@@ -14,7 +14,7 @@ struct FrameUniforms {
     // Sky colour at the top and the bottom row (rgb, 0..1); w unused.
     sky_top: vec4<f32>,
     sky_bottom: vec4<f32>,
-    // x: image height (px); yzw unused.
+    // x: image height (px); y: first image row of the framebuffer (px); zw unused.
     image: vec4<f32>,
 };
 
@@ -56,6 +56,6 @@ fn vs_background(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> 
 
 @fragment
 fn fs_background(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    let t = clamp(frag.y / u.image.x, 0.0, 1.0);
+    let t = clamp((frag.y + u.image.y) / u.image.x, 0.0, 1.0);
     return vec4<f32>(mix(u.sky_top.rgb, u.sky_bottom.rgb, t), 1.0);
 }

@@ -32,7 +32,8 @@ fn full_run_keeps_the_target_in_view() {
     assert_eq!(saved, 14);
     // Bearing holds: over the last 20 s the target sits at the commanded 14° bearing
     // (yI = l tan 14° = 138 px) within 5 px; vertically the camera pitches with the follower's
-    // climb (the target climbs until 120 s, the excitation moves the follower vertically).
+    // climb (the target climbs until 120 s, the excitation moves the follower vertically), and
+    // the target stays within half the image's half-height of its centre.
     let last: Vec<_> = report.logged.iter().filter(|r| r.t_s >= 120.0).collect();
     for r in last {
         let m = r.frame.and_then(|f| f.measured).expect("measured");
@@ -42,7 +43,7 @@ fn full_run_keeps_the_target_in_view() {
             m.y_i_px,
             r.t_s
         );
-        assert!(m.z_i_px.abs() < 60.0, "zI {} at {}", m.z_i_px, r.t_s);
+        assert!(m.z_i_px.abs() < 120.0, "zI {} at {}", m.z_i_px, r.t_s);
     }
     // The criterion: within 2 ft RMS of the command over the last 20 s, per axis.
     for (axis, rms) in s.rms_error_last20s_ft.iter().enumerate() {

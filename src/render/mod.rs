@@ -14,6 +14,7 @@ pub mod noise;
 pub mod projection;
 pub mod renderer;
 pub mod settings;
+pub mod window;
 
 pub use frame::Frame;
 pub use gpu::{GpuContext, GpuError};

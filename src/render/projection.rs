@@ -20,16 +20,51 @@ pub const FAR_PLANE_FT: f64 = 10_000.0;
 
 /// The 4x4 matrix taking homogeneous camera/body points (X, Y, Z, 1), ft, to wgpu clip space.
 pub fn clip_from_body(intrinsics: &CameraIntrinsics) -> Matrix4<f64> {
-    let w = f64::from(intrinsics.width_px);
-    let h = f64::from(intrinsics.height_px);
+    clip_from_body_in_window(
+        intrinsics,
+        &PixelWindow {
+            u0_px: 0,
+            v0_px: 0,
+            width_px: intrinsics.width_px,
+            height_px: intrinsics.height_px,
+        },
+    )
+}
+
+/// A rectangle of the image, in whole pixels: columns u0 .. u0 + width, rows v0 .. v0 +
+/// height; it may reach beyond the image.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PixelWindow {
+    /// First column, px.
+    pub u0_px: i64,
+    /// First row, px.
+    pub v0_px: i64,
+    /// Width, px.
+    pub width_px: u32,
+    /// Height, px.
+    pub height_px: u32,
+}
+
+/// [`clip_from_body`] for a framebuffer that covers only `window` of the image: the camera
+/// with its principal point moved to (cx - u0, cy - v0) and the window's size. A point lands
+/// at the framebuffer pixel of its image pixel minus (u0, v0): a whole-pixel shift, so each
+/// sample falls where it falls in the whole image.
+pub fn clip_from_body_in_window(
+    intrinsics: &CameraIntrinsics,
+    window: &PixelWindow,
+) -> Matrix4<f64> {
+    let w = f64::from(window.width_px);
+    let h = f64::from(window.height_px);
+    let cx = intrinsics.cx() - window.u0_px as f64;
+    let cy = intrinsics.cy() - window.v0_px as f64;
     let l = intrinsics.focal_px;
     let (n, f) = (NEAR_PLANE_FT, FAR_PLANE_FT);
     #[rustfmt::skip]
     let m = Matrix4::new(
-        2.0 * intrinsics.cx() / w - 1.0, 2.0 * l / w, 0.0,          0.0,
-        1.0 - 2.0 * intrinsics.cy() / h, 0.0,         -2.0 * l / h, 0.0,
-        -n / (f - n),                    0.0,         0.0,          n * f / (f - n),
-        1.0,                             0.0,         0.0,          0.0,
+        2.0 * cx / w - 1.0, 2.0 * l / w, 0.0,          0.0,
+        1.0 - 2.0 * cy / h, 0.0,         -2.0 * l / h, 0.0,
+        -n / (f - n),       0.0,         0.0,          n * f / (f - n),
+        1.0,                0.0,         0.0,          0.0,
     );
     m
 }

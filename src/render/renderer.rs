@@ -15,13 +15,15 @@ use bytemuck::{Pod, Zeroable};
 use nalgebra::Matrix4;
 use wgpu::util::DeviceExt;
 
+use crate::frames::Vec3;
 use crate::render::camera::TargetPoseInCamera;
 use crate::render::frame::Frame;
 use crate::render::gpu::GpuContext;
 use crate::render::mesh::TargetMesh;
 use crate::render::noise::NoiseGenerator;
-use crate::render::projection::{body_from_target, clip_from_body};
+use crate::render::projection::{body_from_target, clip_from_body, clip_from_body_in_window};
 use crate::render::settings::{RenderSettings, Sky};
+use crate::render::window::{FramePlan, WindowCopy, bounding_corners, plan_frame};
 
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -116,6 +118,16 @@ pub struct Renderer {
     vertex_count: u32,
     uniform_buffer: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    /// The second uniform slot's bind group: the target window's projection.
+    window_bind_group: wgpu::BindGroup,
+    /// Byte offset of the second uniform slot.
+    window_slot_offset: u64,
+    /// The one-sample sky of a windowed frame (gradient sky with multisampling only).
+    sky_pipeline: Option<wgpu::RenderPipeline>,
+    /// Corners of the mesh's bounding box, target axes, ft (plans the window).
+    corners_ft: [Vec3; 8],
+    /// Multisampled window framebuffers by side (index log2 side), made when first needed.
+    windows: Vec<Option<WindowTargets>>,
     uniforms: FrameUniforms,
     clip_from_body: Matrix4<f64>,
     msaa_view: Option<wgpu::TextureView>,
@@ -144,7 +156,12 @@ impl Renderer {
         let device = gpu.device().clone();
         let oom_scope = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation_scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let built = Self::build(gpu, settings, &vertices);
+        let built = Self::build(
+            gpu,
+            settings,
+            &vertices,
+            bounding_corners(&mesh.vertices_ft),
+        );
         let validation = pollster::block_on(validation_scope.pop());
         let oom = pollster::block_on(oom_scope.pop());
         if let Some(e) = validation.or(oom) {
@@ -153,7 +170,12 @@ impl Renderer {
         Ok(built)
     }
 
-    fn build(gpu: &GpuContext, settings: RenderSettings, vertices: &[TargetVertex]) -> Self {
+    fn build(
+        gpu: &GpuContext,
+        settings: RenderSettings,
+        vertices: &[TargetVertex],
+        corners_ft: [Vec3; 8],
+    ) -> Self {
         let device = gpu.device().clone();
         let queue = gpu.queue().clone();
         let cam = settings.intrinsics;
@@ -161,11 +183,17 @@ impl Renderer {
         let shader = device.create_shader_module(wgpu::include_wgsl!("../../shaders/target.wgsl"));
 
         let uniforms = initial_uniforms(&settings);
-        let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        // Two slots: the whole image's projection and the target window's.
+        let uniform_size = std::mem::size_of::<FrameUniforms>() as u64;
+        let window_slot_offset = uniform_size
+            .next_multiple_of(u64::from(gpu.limits().min_uniform_buffer_offset_alignment));
+        let uniform_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("frame uniforms"),
-            contents: bytemuck::bytes_of(&uniforms),
+            size: window_slot_offset + uniform_size,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
         });
+        queue.write_buffer(&uniform_buffer, 0, bytemuck::bytes_of(&uniforms));
         let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("frame uniforms"),
             entries: &[wgpu::BindGroupLayoutEntry {
@@ -181,14 +209,22 @@ impl Renderer {
                 count: None,
             }],
         });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("frame uniforms"),
-            layout: &bind_group_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform_buffer.as_entire_binding(),
-            }],
-        });
+        let slot = |offset: u64| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("frame uniforms"),
+                layout: &bind_group_layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &uniform_buffer,
+                        offset,
+                        size: wgpu::BufferSize::new(uniform_size),
+                    }),
+                }],
+            })
+        };
+        let bind_group = slot(0);
+        let window_bind_group = slot(window_slot_offset);
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("target"),
             bind_group_layouts: &[Some(&bind_group_layout)],
@@ -229,7 +265,9 @@ impl Renderer {
             cache: None,
         });
         let needs_background_pass = matches!(settings.background.sky, Sky::VerticalGradient { .. });
-        let background_pipeline = needs_background_pass.then(|| {
+        // The sky: `samples` per pixel when drawn with the target, one in the sky pass of a
+        // windowed frame (no depth there).
+        let sky_pipeline = |sample_count: u32, depth: bool| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("background"),
                 layout: Some(&layout),
@@ -240,9 +278,9 @@ impl Renderer {
                     buffers: &[],
                 },
                 primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: Some(depth_state(false, wgpu::CompareFunction::Always)),
+                depth_stencil: depth.then(|| depth_state(false, wgpu::CompareFunction::Always)),
                 multisample: wgpu::MultisampleState {
-                    count: samples,
+                    count: sample_count,
                     ..Default::default()
                 },
                 fragment: Some(wgpu::FragmentState {
@@ -254,7 +292,9 @@ impl Renderer {
                 multiview_mask: None,
                 cache: None,
             })
-        });
+        };
+        let background_pipeline = needs_background_pass.then(|| sky_pipeline(samples, true));
+        let one_sample_sky = (needs_background_pass && samples > 1).then(|| sky_pipeline(1, false));
 
         let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("target vertices"),
@@ -283,7 +323,9 @@ impl Renderer {
             "colour",
             1,
             COLOR_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
         );
         let resolve_view = resolve_texture.create_view(&Default::default());
         let msaa_view = (samples > 1).then(|| {
@@ -331,6 +373,11 @@ impl Renderer {
             vertex_count: vertices.len() as u32,
             uniform_buffer,
             bind_group,
+            window_bind_group,
+            window_slot_offset,
+            sky_pipeline: one_sample_sky,
+            corners_ft,
+            windows: Vec::new(),
             uniforms,
             clip_from_body: clip_from_body(&cam),
             msaa_view,
@@ -414,62 +461,77 @@ impl Renderer {
         {
             return Err(RenderError::NonFinitePose(*pose));
         }
-        let clip_from_target = self.clip_from_body * body_from_target(pose);
+        let target_to_body = body_from_target(pose);
+        let clip_from_target = self.clip_from_body * target_to_body;
         self.uniforms.clip_from_target = columns_f32(&clip_from_target);
         let r = &pose.body_from_target;
         self.uniforms.body_from_target =
             std::array::from_fn(|c| [r[(0, c)] as f32, r[(1, c)] as f32, r[(2, c)] as f32, 0.0]);
+        self.uniforms.image[1] = 0.0;
         self.queue
             .write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&self.uniforms));
+        let cam = self.settings.intrinsics;
+        let plan = if self.msaa_view.is_some() && self.settings.multisample_window {
+            plan_frame(&self.corners_ft, pose, &cam)
+        } else {
+            FramePlan::Whole
+        };
+        if let FramePlan::Window(window) = plan {
+            let mut in_window = self.uniforms;
+            in_window.clip_from_target =
+                columns_f32(&(clip_from_body_in_window(&cam, &window) * target_to_body));
+            in_window.image[1] = window.v0_px as f32;
+            self.queue.write_buffer(
+                &self.uniform_buffer,
+                self.window_slot_offset,
+                bytemuck::bytes_of(&in_window),
+            );
+        }
 
         let mut encoder = self
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("target frame"),
             });
-        {
-            let (view, resolve_target) = match &self.msaa_view {
-                Some(msaa) => (msaa, Some(&self.resolve_view)),
-                None => (&self.resolve_view, None),
-            };
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("target frame"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    depth_slice: None,
-                    resolve_target,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(self.clear_color),
-                        store: if resolve_target.is_some() {
-                            wgpu::StoreOp::Discard
-                        } else {
-                            wgpu::StoreOp::Store
-                        },
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.depth_view,
-                    // Reversed depth: 0 is the far plane.
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(0.0),
-                        store: wgpu::StoreOp::Discard,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            if let Some(background) = &self.background_pipeline {
-                pass.set_pipeline(background);
-                pass.draw(0..3, 0..1);
+        match plan {
+            FramePlan::Whole => {
+                let (view, resolve_target) = match &self.msaa_view {
+                    Some(msaa) => (msaa, Some(&self.resolve_view)),
+                    None => (&self.resolve_view, None),
+                };
+                self.draw_target(&mut encoder, view, resolve_target, &self.depth_view, false);
             }
-            pass.set_pipeline(&self.target_pipeline);
-            pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
-            pass.draw(0..self.vertex_count, 0..1);
+            FramePlan::SkyOnly => self.draw_sky(&mut encoder),
+            FramePlan::Window(window) => {
+                self.draw_sky(&mut encoder);
+                if let Some(copy) = WindowCopy::of(&window, &cam) {
+                    let side = window.width_px;
+                    let slot = side.trailing_zeros() as usize;
+                    if self.windows.len() <= slot {
+                        self.windows.resize_with(slot + 1, || None);
+                    }
+                    if self.windows[slot].is_none() {
+                        let samples = self.settings.msaa_samples;
+                        self.windows[slot] = Some(WindowTargets::new(&self.device, side, samples));
+                    }
+                    if let Some(targets) = &self.windows[slot] {
+                        self.draw_target(
+                            &mut encoder,
+                            &targets.msaa_view,
+                            Some(&targets.resolve_view),
+                            &targets.depth_view,
+                            true,
+                        );
+                        copy_window(
+                            &mut encoder,
+                            &targets.resolve_texture,
+                            &self.resolve_texture,
+                            &copy,
+                        );
+                    }
+                }
+            }
         }
-        let cam = self.settings.intrinsics;
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 texture: &self.resolve_texture,
@@ -503,6 +565,84 @@ impl Renderer {
             submission,
             mapped: receiver,
         })
+    }
+
+    /// One pass: sky and target into `view` (multisampled, resolved into `resolve_target`),
+    /// with the whole image's projection or, `in_window`, the window's.
+    fn draw_target(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &wgpu::TextureView,
+        resolve_target: Option<&wgpu::TextureView>,
+        depth_view: &wgpu::TextureView,
+        in_window: bool,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("target frame"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(self.clear_color),
+                    store: if resolve_target.is_some() {
+                        wgpu::StoreOp::Discard
+                    } else {
+                        wgpu::StoreOp::Store
+                    },
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth_view,
+                // Reversed depth: 0 is the far plane.
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        let uniforms = if in_window {
+            &self.window_bind_group
+        } else {
+            &self.bind_group
+        };
+        pass.set_bind_group(0, uniforms, &[]);
+        if let Some(background) = &self.background_pipeline {
+            pass.set_pipeline(background);
+            pass.draw(0..3, 0..1);
+        }
+        pass.set_pipeline(&self.target_pipeline);
+        pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
+        pass.draw(0..self.vertex_count, 0..1);
+    }
+
+    /// The sky alone, one sample per pixel, over the whole image.
+    fn draw_sky(&self, encoder: &mut wgpu::CommandEncoder) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("sky"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &self.resolve_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(self.clear_color),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if let Some(sky) = &self.sky_pipeline {
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            pass.set_pipeline(sky);
+            pass.draw(0..3, 0..1);
+        }
     }
 
     fn read_back(&mut self, pending: PendingFrame, frame: &mut Frame) -> Result<(), RenderError> {
@@ -541,6 +681,75 @@ impl Renderer {
         self.staging.unmap();
         Ok(())
     }
+}
+
+/// Multisampled colour and depth of a square window, and the texture it resolves into.
+#[derive(Debug)]
+struct WindowTargets {
+    msaa_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+    resolve_texture: wgpu::Texture,
+    resolve_view: wgpu::TextureView,
+}
+
+impl WindowTargets {
+    fn new(device: &wgpu::Device, side_px: u32, samples: u32) -> Self {
+        let texture = |label, sample_count, format, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: side_px,
+                    height: side_px,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let resolve_texture = texture(
+            "window colour",
+            1,
+            COLOR_FORMAT,
+            attachment | wgpu::TextureUsages::COPY_SRC,
+        );
+        Self {
+            msaa_view: texture("window colour msaa", samples, COLOR_FORMAT, attachment)
+                .create_view(&Default::default()),
+            depth_view: texture("window depth", samples, DEPTH_FORMAT, attachment)
+                .create_view(&Default::default()),
+            resolve_view: resolve_texture.create_view(&Default::default()),
+            resolve_texture,
+        }
+    }
+}
+
+/// Copies the part of a window inside the image into the image.
+fn copy_window(
+    encoder: &mut wgpu::CommandEncoder,
+    window: &wgpu::Texture,
+    image: &wgpu::Texture,
+    copy: &WindowCopy,
+) {
+    let at = |texture, [x, y]: [u32; 2]| wgpu::TexelCopyTextureInfo {
+        texture,
+        mip_level: 0,
+        origin: wgpu::Origin3d { x, y, z: 0 },
+        aspect: wgpu::TextureAspect::All,
+    };
+    encoder.copy_texture_to_texture(
+        at(window, copy.from_px),
+        at(image, copy.to_px),
+        wgpu::Extent3d {
+            width: copy.size_px[0],
+            height: copy.size_px[1],
+            depth_or_array_layers: 1,
+        },
+    );
 }
 
 fn depth_state(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {

@@ -1,0 +1,221 @@
+//! Multisampling only around the target.
+//!
+//! On a software adapter (lavapipe) a 4x multisampled frame costs its clear and its resolve
+//! over every sample of the image, whatever the target covers: at 640x480 that is most of a
+//! frame's time (measured: 3.6 ms against 1.1 ms with one sample). The target covers a small
+//! window of the image, and the sky needs no multisampling (it is the same at every sample of
+//! a pixel). So a frame is drawn as a one-sample sky over the whole image, and the target,
+//! multisampled, into a square framebuffer that covers its projection
+//! ([`crate::render::projection::clip_from_body_in_window`]), resolved and copied into place.
+//! The window moves by whole pixels, so every sample falls where it would in the whole image.
+
+use crate::frames::Vec3;
+use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use crate::render::projection::{NEAR_PLANE_FT, PixelWindow};
+
+/// Pixels of sky kept around the target's projected bounding box.
+const MARGIN_PX: f64 = 2.0;
+/// The smallest window side, px.
+const MIN_SIDE_PX: u32 = 32;
+
+/// How one frame is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FramePlan {
+    /// Everything multisampled over the whole image: the target is near the camera (part of
+    /// its bounding box is behind the near plane) or its window would cover a quarter of the
+    /// image or more.
+    Whole,
+    /// Only sky: the target's bounding box projects outside the image.
+    SkyOnly,
+    /// Sky over the image, the target multisampled in this square window.
+    Window(PixelWindow),
+}
+
+/// The eight corners of the axis-aligned box around `vertices_ft` (target axes, ft).
+pub fn bounding_corners(vertices_ft: &[Vec3]) -> [Vec3; 8] {
+    let mut lo = Vec3::repeat(f64::INFINITY);
+    let mut hi = Vec3::repeat(f64::NEG_INFINITY);
+    for v in vertices_ft {
+        lo = lo.inf(v);
+        hi = hi.sup(v);
+    }
+    std::array::from_fn(|i| {
+        Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
+}
+
+/// Plans a frame: the window around the projection of the target's bounding box `corners_ft`
+/// at `pose`. The box is convex and in front of the camera, so the hull of its projected
+/// corners contains the projected target.
+pub fn plan_frame(
+    corners_ft: &[Vec3; 8],
+    pose: &TargetPoseInCamera,
+    intrinsics: &CameraIntrinsics,
+) -> FramePlan {
+    let (mut u_min, mut u_max) = (f64::INFINITY, f64::NEG_INFINITY);
+    let (mut v_min, mut v_max) = (f64::INFINITY, f64::NEG_INFINITY);
+    for corner in corners_ft {
+        let p = pose.body_from_target * corner + pose.position_body_ft;
+        // (A NaN depth is not in front either.)
+        if p.x.is_nan() || p.x <= 2.0 * NEAR_PLANE_FT {
+            return FramePlan::Whole;
+        }
+        let u = intrinsics.cx() + intrinsics.focal_px * p.y / p.x;
+        let v = intrinsics.cy() + intrinsics.focal_px * p.z / p.x;
+        u_min = u_min.min(u);
+        u_max = u_max.max(u);
+        v_min = v_min.min(v);
+        v_max = v_max.max(v);
+    }
+    let (width, height) = (
+        f64::from(intrinsics.width_px),
+        f64::from(intrinsics.height_px),
+    );
+    let overlaps = u_max > -MARGIN_PX
+        && v_max > -MARGIN_PX
+        && u_min < width + MARGIN_PX
+        && v_min < height + MARGIN_PX;
+    if !overlaps {
+        return FramePlan::SkyOnly;
+    }
+    let u0 = (u_min - MARGIN_PX).floor();
+    let v0 = (v_min - MARGIN_PX).floor();
+    let extent = ((u_max + MARGIN_PX).ceil() - u0).max((v_max + MARGIN_PX).ceil() - v0);
+    let side = (extent as u32).next_power_of_two().max(MIN_SIDE_PX);
+    if 4 * u64::from(side) * u64::from(side)
+        >= u64::from(intrinsics.width_px) * u64::from(intrinsics.height_px)
+    {
+        return FramePlan::Whole;
+    }
+    FramePlan::Window(PixelWindow {
+        u0_px: u0 as i64,
+        v0_px: v0 as i64,
+        width_px: side,
+        height_px: side,
+    })
+}
+
+/// The part of `window` inside the image: where it starts in the window and in the image,
+/// and its size (None when they do not overlap).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct WindowCopy {
+    /// First column and row in the window, px.
+    pub from_px: [u32; 2],
+    /// First column and row in the image, px.
+    pub to_px: [u32; 2],
+    /// Width and height, px.
+    pub size_px: [u32; 2],
+}
+
+impl WindowCopy {
+    /// The overlap of `window` and an image of `intrinsics`' size.
+    pub fn of(window: &PixelWindow, intrinsics: &CameraIntrinsics) -> Option<Self> {
+        let axis = |start: i64, len: u32, image: u32| {
+            let first = start.max(0);
+            let last = (start + i64::from(len)).min(i64::from(image));
+            (last > first).then(|| ((first - start) as u32, first as u32, (last - first) as u32))
+        };
+        let (fu, tu, w) = axis(window.u0_px, window.width_px, intrinsics.width_px)?;
+        let (fv, tv, h) = axis(window.v0_px, window.height_px, intrinsics.height_px)?;
+        Some(Self {
+            from_px: [fu, fv],
+            to_px: [tu, tv],
+            size_px: [w, h],
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frames::Mat3;
+
+    fn pose(x: f64, y: f64, z: f64) -> TargetPoseInCamera {
+        TargetPoseInCamera {
+            position_body_ft: Vec3::new(x, y, z),
+            body_from_target: Mat3::identity(),
+        }
+    }
+
+    fn wing() -> [Vec3; 8] {
+        bounding_corners(&[Vec3::new(-3.0, -4.0, -0.5), Vec3::new(2.0, 4.0, 1.0)])
+    }
+
+    /// The window contains every projected corner, with the margin, and is a power of two.
+    #[test]
+    fn window_covers_the_projected_box() {
+        let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
+        let corners = wing();
+        let p = pose(100.0, 20.0, -5.0);
+        let FramePlan::Window(w) = plan_frame(&corners, &p, &cam) else {
+            panic!("expected a window");
+        };
+        assert!(w.width_px.is_power_of_two() && w.width_px == w.height_px);
+        for c in &corners {
+            let b = p.body_from_target * c + p.position_body_ft;
+            let u = cam.cx() + cam.focal_px * b.y / b.x;
+            let v = cam.cy() + cam.focal_px * b.z / b.x;
+            assert!(u - MARGIN_PX >= w.u0_px as f64);
+            assert!(u + MARGIN_PX <= (w.u0_px + i64::from(w.width_px)) as f64);
+            assert!(v - MARGIN_PX >= w.v0_px as f64);
+            assert!(v + MARGIN_PX <= (w.v0_px + i64::from(w.height_px)) as f64);
+        }
+    }
+
+    /// Near targets are drawn whole; targets off the image are not drawn; big windows fall
+    /// back to the whole image.
+    #[test]
+    fn plans_fall_back() {
+        let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
+        let corners = wing();
+        assert_eq!(
+            plan_frame(&corners, &pose(2.0, 0.0, 0.0), &cam),
+            FramePlan::Whole
+        );
+        assert_eq!(
+            plan_frame(&corners, &pose(12.0, 0.0, 0.0), &cam),
+            FramePlan::Whole
+        );
+        assert_eq!(
+            plan_frame(&corners, &pose(100.0, 500.0, 0.0), &cam),
+            FramePlan::SkyOnly
+        );
+        assert_eq!(
+            plan_frame(&corners, &pose(-100.0, 0.0, 0.0), &cam),
+            FramePlan::Whole
+        );
+    }
+
+    /// The copy is the overlap of window and image, at both ends.
+    #[test]
+    fn copy_is_clipped_to_the_image() {
+        let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
+        let window = |u0, v0| PixelWindow {
+            u0_px: u0,
+            v0_px: v0,
+            width_px: 64,
+            height_px: 64,
+        };
+        assert_eq!(
+            WindowCopy::of(&window(10, 20), &cam),
+            Some(WindowCopy {
+                from_px: [0, 0],
+                to_px: [10, 20],
+                size_px: [64, 64]
+            })
+        );
+        assert_eq!(
+            WindowCopy::of(&window(-10, 450), &cam),
+            Some(WindowCopy {
+                from_px: [10, 0],
+                to_px: [0, 450],
+                size_px: [54, 30]
+            })
+        );
+        assert_eq!(WindowCopy::of(&window(640, 0), &cam), None);
+    }
+}
