@@ -282,16 +282,7 @@ impl CameraSensor {
         t_s: f64,
         geometry: &CaptureGeometry,
     ) -> Result<Option<FrameRecord>, SensorError> {
-        let exposure = Exposure {
-            index: self.frames,
-            t_s,
-            geometry: *geometry,
-        };
-        self.frames += 1;
-        let pending = self
-            .renderer
-            .begin_frame(&geometry.pose())
-            .map_err(|e| SensorError::Camera(e.to_string()))?;
+        let (exposure, pending) = self.expose(t_s, geometry)?;
         if self.latency_frames == 0 {
             self.finish(pending, exposure.index)?;
             self.measure(&exposure)?;
@@ -318,6 +309,17 @@ impl CameraSensor {
         t_s: f64,
         geometry: &CaptureGeometry,
     ) -> Result<FrameRecord, SensorError> {
+        let (exposure, pending) = self.expose(t_s, geometry)?;
+        self.finish(pending, exposure.index)?;
+        self.measure(&exposure)
+    }
+
+    /// Numbers the next frame and starts drawing it.
+    fn expose(
+        &mut self,
+        t_s: f64,
+        geometry: &CaptureGeometry,
+    ) -> Result<(Exposure, PendingFrame), SensorError> {
         let exposure = Exposure {
             index: self.frames,
             t_s,
@@ -328,8 +330,7 @@ impl CameraSensor {
             .renderer
             .begin_frame(&geometry.pose())
             .map_err(|e| SensorError::Camera(e.to_string()))?;
-        self.finish(pending, exposure.index)?;
-        self.measure(&exposure)
+        Ok((exposure, pending))
     }
 
     /// Reads frame `index` back into its buffer.

@@ -231,67 +231,61 @@ impl Renderer {
             immediate_size: 0,
         });
 
-        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
-        let target_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("target"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_target"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<TargetVertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &attributes,
-                })],
-            },
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleList,
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: Some(depth_state(true, wgpu::CompareFunction::Greater)),
-            multisample: wgpu::MultisampleState {
-                count: samples,
-                ..Default::default()
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_target"),
-                compilation_options: Default::default(),
-                targets: &[Some(COLOR_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        let needs_background_pass = matches!(settings.background.sky, Sky::VerticalGradient { .. });
-        // The sky: `samples` per pixel when drawn with the target, one in the sky pass of a
-        // windowed frame (no depth there).
-        let sky_pipeline = |sample_count: u32, depth: bool| {
+        // One pipeline of the shader's: entry points, vertex buffers, depth state, samples.
+        let pipeline = |name: &str,
+                        buffers: &[Option<wgpu::VertexBufferLayout>],
+                        depth_stencil: Option<wgpu::DepthStencilState>,
+                        sample_count: u32| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("background"),
+                label: Some(name),
                 layout: Some(&layout),
                 vertex: wgpu::VertexState {
                     module: &shader,
-                    entry_point: Some("vs_background"),
+                    entry_point: Some(&format!("vs_{name}")),
                     compilation_options: Default::default(),
-                    buffers: &[],
+                    buffers,
                 },
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: depth.then(|| depth_state(false, wgpu::CompareFunction::Always)),
+                primitive: wgpu::PrimitiveState {
+                    topology: wgpu::PrimitiveTopology::TriangleList,
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil,
                 multisample: wgpu::MultisampleState {
                     count: sample_count,
                     ..Default::default()
                 },
                 fragment: Some(wgpu::FragmentState {
                     module: &shader,
-                    entry_point: Some("fs_background"),
+                    entry_point: Some(&format!("fs_{name}")),
                     compilation_options: Default::default(),
                     targets: &[Some(COLOR_FORMAT.into())],
                 }),
                 multiview_mask: None,
                 cache: None,
             })
+        };
+        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+        let target_pipeline = pipeline(
+            "target",
+            &[Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<TargetVertex>() as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &attributes,
+            })],
+            Some(depth_state(true, wgpu::CompareFunction::Greater)),
+            samples,
+        );
+        let needs_background_pass = matches!(settings.background.sky, Sky::VerticalGradient { .. });
+        // The sky: `samples` per pixel when drawn with the target, one in the sky pass of a
+        // windowed frame (no depth there).
+        let sky_pipeline = |sample_count: u32, depth: bool| {
+            pipeline(
+                "background",
+                &[],
+                depth.then(|| depth_state(false, wgpu::CompareFunction::Always)),
+                sample_count,
+            )
         };
         let background_pipeline = needs_background_pass.then(|| sky_pipeline(samples, true));
         let one_sample_sky = (needs_background_pass && samples > 1).then(|| sky_pipeline(1, false));
