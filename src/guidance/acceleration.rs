@@ -538,17 +538,7 @@ mod tests {
     }
 
     fn input(y: Vec3) -> GuidanceInput {
-        GuidanceInput {
-            r_measured: Some(y),
-            command_ned_ft: Vec3::new(32.0, 8.0, 0.0),
-            command_rate_ned_fps: Vec3::zeros(),
-            excitation_ned_ft: Vec3::zeros(),
-            excitation_rate_ned_fps: Vec3::zeros(),
-            excitation_scaled: Vec3::zeros(),
-            excitation_scaled_rate: Vec3::zeros(),
-            follower_velocity_ned_fps: None,
-            follower_velocity_shortfall_ned_fps: None,
-        }
+        GuidanceInput::steady(y, Vec3::new(32.0, 8.0, 0.0))
     }
 
     /// s_χ is odd, within [-1, 1], and C¹ at ±χ (5.32): value 1 and slope 0 from inside.

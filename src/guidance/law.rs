@@ -41,6 +41,25 @@ pub struct GuidanceInput {
     pub follower_velocity_shortfall_ned_fps: Option<Vec3>,
 }
 
+#[cfg(test)]
+impl GuidanceInput {
+    /// A test input: measurement `r` and command `command_ned_ft`, nothing moving, no
+    /// excitation, a follower that flies its command.
+    pub(crate) fn steady(r: Vec3, command_ned_ft: Vec3) -> Self {
+        Self {
+            r_measured: Some(r),
+            command_ned_ft,
+            command_rate_ned_fps: Vec3::zeros(),
+            excitation_ned_ft: Vec3::zeros(),
+            excitation_rate_ned_fps: Vec3::zeros(),
+            excitation_scaled: Vec3::zeros(),
+            excitation_scaled_rate: Vec3::zeros(),
+            follower_velocity_ned_fps: None,
+            follower_velocity_shortfall_ned_fps: None,
+        }
+    }
+}
+
 /// A law's output at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GuidanceOutput {
@@ -302,17 +321,7 @@ mod tests {
         let r_c = Vec3::new(4.0, 1.0, 0.0);
         let mut x = law.initial_state(&r_c);
         x[crate::guidance::acceleration::layout::B_HAT] = 8.0;
-        let input = GuidanceInput {
-            r_measured: Some(r_c),
-            command_ned_ft: r_c * 8.0,
-            command_rate_ned_fps: Vec3::zeros(),
-            excitation_ned_ft: Vec3::zeros(),
-            excitation_rate_ned_fps: Vec3::zeros(),
-            excitation_scaled: Vec3::zeros(),
-            excitation_scaled_rate: Vec3::zeros(),
-            follower_velocity_ned_fps: None,
-            follower_velocity_shortfall_ned_fps: None,
-        };
+        let input = GuidanceInput::steady(r_c, r_c * 8.0);
         let mut dx = vec![0.0; law.state_len()];
         let measured = law.derivative(&x, &input, &mut dx);
         let lost = law.derivative(

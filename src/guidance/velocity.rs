@@ -407,17 +407,7 @@ mod tests {
     use super::*;
 
     fn input(r: Vec3) -> GuidanceInput {
-        GuidanceInput {
-            r_measured: Some(r),
-            command_ned_ft: Vec3::new(32.0, 8.0, 0.0),
-            command_rate_ned_fps: Vec3::zeros(),
-            excitation_ned_ft: Vec3::zeros(),
-            excitation_rate_ned_fps: Vec3::zeros(),
-            excitation_scaled: Vec3::zeros(),
-            excitation_scaled_rate: Vec3::zeros(),
-            follower_velocity_ned_fps: None,
-            follower_velocity_shortfall_ned_fps: None,
-        }
+        GuidanceInput::steady(r, Vec3::new(32.0, 8.0, 0.0))
     }
 
     /// With the error at zero and d̂ = d, the follower flies the target's velocity b d and no
