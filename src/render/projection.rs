@@ -120,6 +120,45 @@ mod tests {
         }
     }
 
+    /// In a window's framebuffer a point lands at its image pixel minus the window's origin,
+    /// with the same depth, wherever the window is (even partly outside the image).
+    #[test]
+    fn window_projection_is_a_whole_pixel_shift() {
+        let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
+        let window = PixelWindow {
+            u0_px: 400,
+            v0_px: -20,
+            width_px: 128,
+            height_px: 128,
+        };
+        let whole = clip_from_body(&cam);
+        let windowed = clip_from_body_in_window(&cam, &window);
+        for p in [Vec3::new(100.0, 30.0, -12.0), Vec3::new(40.0, 9.0, -13.0)] {
+            let to_pixel = |m: &Matrix4<f64>, w: f64, h: f64| {
+                let c = m * p.push(1.0);
+                let (x, y, z) = (c.x / c.w, c.y / c.w, c.z / c.w);
+                ((x + 1.0) * 0.5 * w, (1.0 - y) * 0.5 * h, z)
+            };
+            let (u, v, z) = to_pixel(&whole, 640.0, 480.0);
+            let (uw, vw, zw) = to_pixel(&windowed, 128.0, 128.0);
+            assert!((uw - (u - 400.0)).abs() < 1e-9, "{uw} vs {u}");
+            assert!((vw - (v + 20.0)).abs() < 1e-9, "{vw} vs {v}");
+            assert!((zw - z).abs() < 1e-15);
+        }
+        assert_eq!(
+            clip_from_body_in_window(
+                &cam,
+                &PixelWindow {
+                    u0_px: 0,
+                    v0_px: 0,
+                    width_px: 640,
+                    height_px: 480
+                }
+            ),
+            whole
+        );
+    }
+
     #[test]
     fn depth_is_reversed_and_spans_near_to_far() {
         let cam = CameraIntrinsics::from_hfov(160, 120, 60.0);
