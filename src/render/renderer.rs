@@ -138,6 +138,7 @@ pub struct Renderer {
     padded_bytes_per_row: u32,
     clear_color: wgpu::Color,
     noise: Option<NoiseGenerator>,
+    /// The frame [`Renderer::render`] reads back into and returns.
     frame: Frame,
     timings: RenderTimings,
 }
@@ -439,12 +440,7 @@ impl Renderer {
         Ok(())
     }
 
-    /// The last frame rendered (sky-less black before the first call).
-    pub fn frame(&self) -> &Frame {
-        &self.frame
-    }
-
-    /// Timings of the last [`Self::render`] call.
+    /// Timings of the last frame.
     pub fn last_timings(&self) -> RenderTimings {
         self.timings
     }
@@ -461,7 +457,6 @@ impl Renderer {
         let r = &pose.body_from_target;
         self.uniforms.body_from_target =
             std::array::from_fn(|c| [r[(0, c)] as f32, r[(1, c)] as f32, r[(2, c)] as f32, 0.0]);
-        self.uniforms.image[1] = 0.0;
         self.queue
             .write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&self.uniforms));
         let cam = self.settings.intrinsics;
