@@ -99,24 +99,19 @@ fn render(path: &Path, at_s: f64, out: Option<PathBuf>, overrides: &[String]) ->
     });
     match render_frame_at(&scenario, at_s, &out) {
         Ok(record) => {
-            let measured = record
-                .measured
-                .map(|m| {
-                    format!(
-                        "yI {:.2}, zI {:.2}, bI {:.2} px",
-                        m.y_i_px, m.z_i_px, m.b_i_px
-                    )
-                })
-                .unwrap_or_else(|| "nothing".to_string());
-            let truth = record
-                .truth
-                .map(|m| {
-                    format!(
-                        "yI {:.2}, zI {:.2}, bI {:.2} px",
-                        m.y_i_px, m.z_i_px, m.b_i_px
-                    )
-                })
-                .unwrap_or_else(|| "target partly behind the camera".to_string());
+            let describe = |m: Option<wingman::sensing::ImageMeasurement>, none: &str| {
+                m.map_or_else(
+                    || none.to_string(),
+                    |m| {
+                        format!(
+                            "yI {:.2}, zI {:.2}, bI {:.2} px",
+                            m.y_i_px, m.z_i_px, m.b_i_px
+                        )
+                    },
+                )
+            };
+            let measured = describe(record.measured, "nothing");
+            let truth = describe(record.truth, "target partly behind the camera");
             eprintln!(
                 "frame at t = {:.3} s: {} measured {measured}; truth {truth}; written to {}",
                 record.t_s,
