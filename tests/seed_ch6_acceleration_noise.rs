@@ -21,24 +21,14 @@ fn noisy_run_stays_bounded_and_on_the_command() {
         "RMS(a_F - a_T)/RMS(a_T) over [60, 110] s: {:.2?}",
         common::accel_tracking_ratios(&report, 60.0, 110.0)
     );
-    assert_eq!(s.status, RunStatus::Completed);
-    assert_eq!(s.steps, 140_000);
-    // No divergence: the noise reaches a_F at about (b̂ K L + 2) σ ≈ 4.6 ft/s² per sample
-    // (up to 6.7 times more at the start, where the range is largest); the follower's speed,
-    // the error and the estimates stay bounded.
+    // The noise reaches a_F at about (b̂ K L + 2) σ ≈ 4.6 ft/s² per sample (up to 6.7 times
+    // more at the start, where the range is largest): a_F stays bounded too.
     for row in &report.logged {
         let a = row.follower_accel_ned_fps2().expect("acceleration law");
         assert!(a.norm() < 1000.0, "‖a_F‖ {} at {}", a.norm(), row.t_s);
-        assert!(row.follower_velocity_ned_fps.norm() < 300.0);
-        assert!((row.relative_ned_ft - row.command_ned_ft).norm() < 300.0);
-        assert!((0.9..=30.1).contains(&row.b_hat_ft));
-        assert!(row.d_hat.norm() <= (20f64.powi(2) + 1.0).sqrt() + 1e-9);
     }
-    // Issue bounds (measured: b̂ = 7.71 ft; RMS 1.35, 0.33, 0.06 ft).
-    assert!((s.b_hat_final_ft - 8.0).abs() < 0.1 * 8.0);
-    for (axis, rms) in s.rms_error_last20s_ft.iter().enumerate() {
-        assert!(*rms < 3.0, "axis {axis}: RMS {rms} ft");
-    }
+    // Measured: b̂ = 7.71 ft; RMS 1.35, 0.33, 0.06 ft.
+    common::assert_noisy_run_bounded(&report);
 }
 
 /// Without noise the scenario is the Chapter 5 run, row for row; and the noisy sensor at

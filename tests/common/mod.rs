@@ -148,3 +148,23 @@ pub fn assert_seed_ch7_criteria(report: &RunReport) {
         a.max_abs_alpha_deg
     );
 }
+
+/// The Chapter 6 noisy runs' shared claims: the 140 s run completes, nothing diverges (the
+/// follower's speed and the distance to the command stay under 300 ft/s and 300 ft, b̂ and d̂
+/// inside their projection sets [1, 30] ft and ‖d̂‖ ≤ 20, with Ω_1's margins), b̂ ends within
+/// 10% of 8 ft and R within 3 ft RMS of R_c per axis over the last 20 s (issue bounds).
+pub fn assert_noisy_run_bounded(report: &RunReport) {
+    let s = &report.summary;
+    assert_eq!(s.status, wingman::output::summary::RunStatus::Completed);
+    assert_eq!(s.steps, 140_000);
+    for row in &report.logged {
+        assert!(row.follower_velocity_ned_fps.norm() < 300.0, "{}", row.t_s);
+        assert!((row.relative_ned_ft - row.command_ned_ft).norm() < 300.0);
+        assert!((0.9..=30.1).contains(&row.b_hat_ft));
+        assert!(row.d_hat.norm() <= (20f64.powi(2) + 1.0).sqrt() + 1e-9);
+    }
+    assert!((s.b_hat_final_ft - 8.0).abs() < 0.1 * 8.0);
+    for (axis, rms) in s.rms_error_last20s_ft.iter().enumerate() {
+        assert!(*rms < 3.0, "axis {axis}: RMS {rms} ft");
+    }
+}
