@@ -71,11 +71,12 @@ fn windowed_frames_equal_whole_frames() {
         );
         // One sample of four: at most a quarter of the largest target-sky contrast (255).
         assert!(worst <= 64, "{sky:?}: a channel differs by {worst}");
-        // A few edge pixels (3 channels each) in a few frames.
+        // A few edge pixels (3 channels each) in a few frames: measured 30-32 channels in
+        // 10-11 frames; at most 20 pixels in at most 15 of the 60 frames.
         assert!(
             identical >= 45,
             "{sky:?}: only {identical} of 60 frames identical"
         );
-        assert!(differing <= 3 * 60, "{sky:?}: {differing} channels differ");
+        assert!(differing <= 3 * 20, "{sky:?}: {differing} channels differ");
     }
 }
