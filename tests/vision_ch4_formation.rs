@@ -50,11 +50,12 @@ fn full_run_keeps_the_target_in_view() {
         assert!(*rms < 2.0, "axis {axis}: RMS {rms} ft");
     }
     // b̂ against the true 8 ft and the size the camera saw: the measured silhouette is a
-    // little shorter than the projected mesh's (thin tips cover pixels partly), and b̂ ends
-    // within 0.5 ft of both.
+    // little shorter than the projected mesh's, thin tips covering pixels partly (measured:
+    // 7.88 against 8.02 ft, 2%; bound 3%), and b̂ ends within 0.5 ft of both (8.26 ft).
     let apparent = s.apparent_size_last20s_ft.expect("camera run");
     assert!(
-        apparent.measured < apparent.projected && apparent.projected - apparent.measured < 0.4,
+        apparent.measured < apparent.projected
+            && apparent.projected - apparent.measured < 0.03 * apparent.projected,
         "{apparent:?}"
     );
     assert!((apparent.projected - 8.0).abs() < 0.2, "{apparent:?}");
