@@ -66,6 +66,7 @@ use crate::frames::{EulerAngles, GRAVITY_FPS2, Mat3, SEA_LEVEL_DENSITY_SLUG_FT3,
 use crate::guidance::projection::BallBound;
 use crate::scenario::AutopilotSection;
 use crate::scenario::check::{InvalidValue, require};
+use crate::world::aircraft::actuators::ActuatorLimits;
 use crate::world::aircraft::{AirAngles, AirData, AircraftParams, Controls};
 
 use super::prefilter::{
@@ -631,37 +632,28 @@ impl Autopilot {
     /// actuator's present position (and counts as saturated, which stops adaptation).
     fn clamp(&self, unclamped: &Controls, positions: &Controls) -> (Controls, Saturation) {
         let limits = &self.params.actuators;
-        let one = |command: f64, position: f64, min: f64, max: f64| -> (f64, bool) {
+        let one = |command: f64, position: f64, limit: &ActuatorLimits| -> (f64, bool) {
             if command.is_finite() {
-                (command.clamp(min, max), command < min || command > max)
+                (
+                    command.clamp(limit.min, limit.max),
+                    command < limit.min || command > limit.max,
+                )
             } else {
                 (position, true)
             }
         };
-        let (throttle, t) = one(
-            unclamped.throttle,
-            positions.throttle,
-            limits.throttle.min,
-            limits.throttle.max,
-        );
+        let (throttle, t) = one(unclamped.throttle, positions.throttle, &limits.throttle);
         let (elevator_rad, e) = one(
             unclamped.elevator_rad,
             positions.elevator_rad,
-            limits.elevator.min,
-            limits.elevator.max,
+            &limits.elevator,
         );
         let (aileron_rad, a) = one(
             unclamped.aileron_rad,
             positions.aileron_rad,
-            limits.aileron.min,
-            limits.aileron.max,
+            &limits.aileron,
         );
-        let (rudder_rad, r) = one(
-            unclamped.rudder_rad,
-            positions.rudder_rad,
-            limits.rudder.min,
-            limits.rudder.max,
-        );
+        let (rudder_rad, r) = one(unclamped.rudder_rad, positions.rudder_rad, &limits.rudder);
         (
             Controls {
                 throttle,
