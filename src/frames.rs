@@ -76,6 +76,25 @@ impl EulerAngles {
         let tt = st / ct;
         Mat3::new(1.0, sf * tt, cf * tt, 0.0, cf, -sf, 0.0, sf / ct, cf / ct)
     }
+
+    /// H = P⁻¹ of (7.24), mapping Euler-angle rates to body rates [p, q, r]:
+    /// H = [[1, 0, -sθ], [0, cφ, sφ cθ], [0, -sφ, cφ cθ]].
+    pub fn body_rates_from_rates_matrix(&self) -> Mat3 {
+        let (sf, cf) = self.phi_rad.sin_cos();
+        let (st, ct) = self.theta_rad.sin_cos();
+        Mat3::new(1.0, 0.0, -st, 0.0, cf, sf * ct, 0.0, -sf, cf * ct)
+    }
+}
+
+/// An angle wrapped into (-π, π].
+pub fn wrap_angle_rad(angle_rad: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let wrapped = (angle_rad + PI).rem_euclid(TAU) - PI;
+    if wrapped <= -PI {
+        wrapped + TAU
+    } else {
+        wrapped
+    }
 }
 
 /// Attitude of a body whose x axis is along `velocity_ned` (θ = γ, ψ = χ) with the given bank
@@ -128,6 +147,27 @@ mod tests {
         let m = EulerAngles::new(0.0, std::f64::consts::FRAC_PI_2, 0.0).body_from_ned();
         let v = m * Vec3::new(0.0, 0.0, -1.0);
         assert!((v - Vec3::new(1.0, 0.0, 0.0)).norm() < 1e-12);
+    }
+
+    /// H inverts P: H P = I.
+    #[test]
+    fn body_rate_matrix_inverts_euler_rate_matrix() {
+        let e = EulerAngles::new(0.4, -0.3, 2.0);
+        let product = e.body_rates_from_rates_matrix() * e.rates_from_body_rates_matrix();
+        assert!((product - Mat3::identity()).norm() < 1e-12);
+    }
+
+    /// Wrapped angles lie in (-π, π] and differ from the input by whole turns.
+    #[test]
+    fn wrap_is_in_range() {
+        use std::f64::consts::PI;
+        for a in [-10.0, -PI, -1.0, 0.0, 1.0, PI, 3.0 * PI, 7.0] {
+            let w = wrap_angle_rad(a);
+            assert!(w > -PI && w <= PI + 1e-15, "{a} -> {w}");
+            let turns = (a - w) / (2.0 * PI);
+            assert!((turns - turns.round()).abs() < 1e-12, "{a} -> {w}");
+        }
+        assert!((wrap_angle_rad(-PI) - PI).abs() < 1e-12);
     }
 
     #[test]

@@ -15,18 +15,18 @@
 #![warn(missing_docs)]
 
 pub mod control;
+pub mod estimation;
 pub mod follower;
 pub mod frames;
 pub mod guidance;
 pub mod integrate;
 pub mod linalg;
-pub mod noisy_sensor;
 pub mod output;
 pub mod render;
 pub mod scenario;
 pub mod sensing;
-pub mod sensor;
 pub mod sim;
+pub mod state_block;
 
 pub mod vision;
 pub mod world;

@@ -99,7 +99,7 @@ fn render(path: &Path, at_s: f64, out: Option<PathBuf>, overrides: &[String]) ->
     });
     match render_frame_at(&scenario, at_s, &out) {
         Ok(record) => {
-            let describe = |m: Option<wingman::sensing::ImageMeasurement>, none: &str| {
+            let describe = |m: Option<wingman::vision::ImageMeasurement>, none: &str| {
                 m.map_or_else(
                     || none.to_string(),
                     |m| {

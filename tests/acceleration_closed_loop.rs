@@ -16,8 +16,9 @@ use rand_distr::{Distribution, Normal};
 use std::cell::Cell;
 use std::f64::consts::PI;
 use wingman::frames::Vec3;
-use wingman::guidance::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput, layout};
-use wingman::guidance::law::GuidanceInput;
+use wingman::guidance::GuidanceInput;
+use wingman::guidance::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
+use wingman::guidance::excitation::ExcitationOffset;
 use wingman::integrate::Rk4;
 use wingman::scenario::{
     AccelerationSection, GuidanceSection, ObserverGainMode, TargetMotion, TargetSection,
@@ -63,7 +64,7 @@ impl ClosedLoop {
         command_ned_ft: Vec3,
     ) -> Self {
         Self {
-            law: AccelerationGuidance::new(section, guidance, false),
+            law: AccelerationGuidance::new(section, guidance, None),
             target: TargetMotionModel::from_section(target),
             command_ned_ft,
             excitation: Excitation::Off,
@@ -100,12 +101,13 @@ impl ClosedLoop {
             ),
             command_ned_ft: self.command_ned_ft,
             command_rate_ned_fps: Vec3::zeros(),
-            excitation_ned_ft: e * ft,
-            excitation_rate_ned_fps: e * ft_rate,
-            excitation_scaled: e * scaled,
-            excitation_scaled_rate: e * scaled_rate,
-            follower_velocity_ned_fps: None,
-            follower_velocity_shortfall_ned_fps: None,
+            excitation: ExcitationOffset {
+                ned_ft: e * ft,
+                rate_ned_fps: e * ft_rate,
+                scaled: e * scaled,
+                scaled_rate_per_s: e * scaled_rate,
+            },
+            follower: None,
         }
     }
 
@@ -158,12 +160,12 @@ fn rms(values: impl Iterator<Item = f64>) -> f64 {
 fn combined_error(lp: &ClosedLoop, t_s: f64, x: &[f64]) -> Vec<f64> {
     let r = (lp.target.position_ned_ft(t_s) - Vec3::new(x[0], x[1], x[2])) / B_FT;
     let r_rate = (lp.target.velocity_ned_fps(t_s) - Vec3::new(x[3], x[4], x[5])) / B_FT;
-    let w = AccelerationGuidance::filtered_accel_fps(&x[G..]);
+    let state = lp.law.unpack(&x[G..]);
+    let w = state.w_fps;
     let mut xi = Vec::with_capacity(12);
     for i in 0..3 {
         let z = [r[i], r_rate[i] - w[i] / B_FT];
-        let z_m = AccelerationGuidance::axis_state(&x[G..], layout::Z_M, i);
-        let z_hat = AccelerationGuidance::axis_state(&x[G..], layout::Z_HAT, i);
+        let (z_m, z_hat) = (state.z_model[i], state.z_hat[i]);
         xi.extend([z[0] - z_m[0], z[1] - z_m[1]]);
         xi.extend([z[0] - z_hat[0], z[1] - z_hat[1]]);
     }
@@ -214,11 +216,11 @@ fn virtual_control_rate_is_its_derivative() {
         let k1 = lp.law.axis(0).k[0];
         let ticks = (20.0 / dt) as usize;
         lp.run(&mut x, dt, ticks, |t, x, out| {
-            let b_hat = AccelerationGuidance::b_hat_ft(&x[G..]);
-            let d_hat = AccelerationGuidance::d_hat(&x[G..]);
+            let state = lp.law.unpack(&x[G..]);
+            let (b_hat, d_hat) = (state.b_hat_ft, state.d_hat_fps);
             let inside = b_hat > guidance.b_min_ft
                 && b_hat < guidance.b_max_ft
-                && d_hat.norm() < guidance.d_max_per_s;
+                && d_hat.norm() < AccelerationSection::default().d_hat_max_fps;
             samples.push(Sample {
                 w_f: out.virtual_control_fps,
                 w_f_rate: out.virtual_control_rate_fps2,
@@ -227,9 +229,9 @@ fn virtual_control_rate_is_its_derivative() {
             // The ft part of y_c and its b̂' term in ẇ_f: b̂ k1 b̂' y_c,ft / b̂².
             let input = lp.input(t, x);
             let ft_part = if shaping_pole_rps > 0.0 {
-                input.excitation_ned_ft
+                input.excitation.ned_ft
             } else {
-                input.command_ned_ft + input.excitation_ned_ft
+                input.command_ned_ft + input.excitation.ned_ft
             };
             if inside {
                 // Relative to the same scale as the check below.
@@ -286,10 +288,11 @@ fn combined_error_decays_for_straight_target() {
     };
     let lp = ClosedLoop::new(&guidance, &target, Vec3::new(32.0, 8.0, 0.0));
     let mut x = lp.initial_state(Vec3::new(50.0, 0.0, 0.0));
-    for i in 0..3 {
-        x[G + layout::Z_HAT + 2 * i] += 1.0;
-        x[G + layout::Z_HAT + 2 * i + 1] += 0.5;
+    let mut state = lp.law.unpack(&x[G..]);
+    for z_hat in state.z_hat.iter_mut() {
+        *z_hat += nalgebra::Vector2::new(1.0, 0.5);
     }
+    state.pack(&mut x[G..]);
     let xi0 = norm(&combined_error(&lp, 0.0, &x));
     assert!(xi0 > 1.0, "the start must be off the origin: {xi0}");
     let mut below_since: Option<f64> = None;
@@ -309,7 +312,7 @@ fn combined_error_decays_for_straight_target() {
     println!(
         "‖ξ_a(0)‖ = {xi0:.3}; below 1e-3 of it since {below_since:?} s; worst after 60 s: \
          {worst_after_60:.2e}; b̂ = {:.3} ft",
-        AccelerationGuidance::b_hat_ft(&x[G..])
+        lp.law.unpack(&x[G..]).b_hat_ft
     );
     assert!(worst_after_60 < 1e-3, "ξ_a ratio {worst_after_60}");
 }
@@ -337,7 +340,7 @@ fn seed_formation(excitation: Excitation) -> Formation {
     let started = std::time::Instant::now();
     lp.run(&mut x, 1e-3, 140_000, |t, x, out| {
         if (t - 120.0).abs() < 5e-4 {
-            d_hat_120 = AccelerationGuidance::d_hat(&x[G..]).norm();
+            d_hat_120 = lp.law.unpack(&x[G..]).d_hat_fps.norm();
         }
         rows.push(Row {
             t_s: t,
@@ -353,8 +356,8 @@ fn seed_formation(excitation: Excitation) -> Formation {
     );
     Formation {
         rows,
-        b_hat_ft: AccelerationGuidance::b_hat_ft(&x[G..]),
-        d_hat_norm: AccelerationGuidance::d_hat(&x[G..]).norm(),
+        b_hat_ft: lp.law.unpack(&x[G..]).b_hat_ft,
+        d_hat_norm: lp.law.unpack(&x[G..]).d_hat_fps.norm(),
         d_hat_norm_120: d_hat_120,
     }
 }
@@ -523,7 +526,7 @@ fn noisy_measurements_stay_bounded() {
             lp.noise.set(n);
             true
         });
-        let b_hat = AccelerationGuidance::b_hat_ft(&x[G..]);
+        let b_hat = lp.law.unpack(&x[G..]).b_hat_ft;
         let position: Vec<f64> = (0..3).map(|i| rms(errors.iter().map(|e| e[i]))).collect();
         let accel: Vec<f64> = (0..3)
             .map(|i| rms(accel_errors.iter().map(|e| e[i])))
@@ -532,7 +535,7 @@ fn noisy_measurements_stay_bounded() {
             "{mode:?} L = {:?}: b̂ = {b_hat:.3} ft, ‖d̂‖ = {:.3}, position RMS {position:.3?} ft, \
              RMS(a_F - a_T) {accel:.2?} ft/s²",
             lp.law.axis(0).l,
-            AccelerationGuidance::d_hat(&x[G..]).norm()
+            lp.law.unpack(&x[G..]).d_hat_fps.norm()
         );
         let (b_tolerance, position_bound) = match mode {
             ObserverGainMode::Fixed => (0.1, 3.0),

@@ -8,8 +8,9 @@
 //! (the rate filter's fast transient from rest is skipped), so the error is < 5e-5; the bound
 //! 1e-4 also absorbs RK4's O(dt⁴) error in the samples.
 
-use wingman::control::reference::{unwrap_near_rad, wrap_angle_rad};
+use wingman::control::reference::unwrap_near_rad;
 use wingman::control::{IntegralPrefilter, SecondOrderFilter, SmoothIntegralPrefilter};
+use wingman::frames::wrap_angle_rad;
 use wingman::integrate::Rk4;
 
 const DT_S: f64 = 0.005;

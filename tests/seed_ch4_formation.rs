@@ -59,6 +59,6 @@ fn estimate_respects_projection_bounds() {
             s.b_hat_ft,
             s.t_s
         );
-        assert!(s.d_hat.norm() <= (20f64.powi(2) + 1.0).sqrt() + 1e-9);
+        assert!(s.target_motion.vector().norm() <= (20f64.powi(2) + 1.0).sqrt() + 1e-9);
     }
 }

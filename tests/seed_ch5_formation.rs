@@ -7,7 +7,7 @@
 mod common;
 
 use wingman::frames::Vec3;
-use wingman::world::kinematic::FollowerCommand;
+use wingman::guidance::FollowerCommand;
 
 #[test]
 fn formation_reproduces_figures_5_2_to_5_4() {
@@ -31,7 +31,7 @@ fn formation_reproduces_figures_5_2_to_5_4() {
             .logged
             .iter()
             .find(|s| s.t_s >= t - 1e-9)
-            .map_or(f64::NAN, |s| s.d_hat.norm())
+            .map_or(f64::NAN, |s| s.target_motion.vector().norm())
     };
     assert!((3.0..=10.0).contains(&s.d_hat_norm_final));
     assert!(s.d_hat_norm_final - d_at(120.0) < 0.01 * s.d_hat_norm_final);

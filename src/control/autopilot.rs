@@ -62,7 +62,9 @@
 //! 20 Ŵ_D, Ŵ_l, Ŵ_m, Ŵ_n              RBF weights, RBF_CENTRES each
 //! ```
 
-use crate::frames::{EulerAngles, GRAVITY_FPS2, Mat3, SEA_LEVEL_DENSITY_SLUG_FT3, Vec3};
+use crate::frames::{
+    EulerAngles, GRAVITY_FPS2, Mat3, SEA_LEVEL_DENSITY_SLUG_FT3, Vec3, wrap_angle_rad,
+};
 use crate::guidance::projection::BallBound;
 use crate::scenario::AutopilotSection;
 use crate::scenario::check::{InvalidValue, require};
@@ -75,7 +77,7 @@ use super::prefilter::{
 use super::rbf::{RBF_CENTRES, RbfBasis, RbfInput, clamp_ball, project_ball};
 use super::reference::{
     AlphaReferenceInput, VelocityReference, alpha_reference_rad, coordinated_turn_bank_rad,
-    flight_path_for_thrust_rad, limit_flight_path, unwrap_near_rad, wrap_angle_rad,
+    flight_path_for_thrust_rad, limit_flight_path, unwrap_near_rad,
 };
 
 /// Offset of the airspeed prefilter state `[V_I, V_m]`.
@@ -454,7 +456,7 @@ impl Autopilot {
         // Turn no faster than a coordinated turn at the bank limit can: beyond it the yaw
         // channel would skid the aircraft round with the rudder.
         euler_rate_demand.z = euler_rate_demand.z.clamp(-max_turn_rate, max_turn_rate);
-        let rate_cmd = euler_to_body_rates(&euler) * euler_rate_demand;
+        let rate_cmd = euler.body_rates_from_rates_matrix() * euler_rate_demand;
 
         // 5. Command filter: ω_f and ω̇_f.
         let mut filtered = [FilteredCommand::default(); 3];
@@ -740,24 +742,4 @@ fn air_velocity_ned_fps(air: &AirData) -> Vec3 {
 /// velocity, NED, ft/s.
 pub fn measured_wind_ned_fps(air: &AirData) -> Vec3 {
     air.velocity_ned_fps - air_velocity_ned_fps(air)
-}
-
-/// H = P⁻¹ of (7.24): Euler-angle rates to body rates,
-/// H = [[1, 0, -sθ], [0, cφ, sφ cθ], [0, -sφ, cφ cθ]].
-pub fn euler_to_body_rates(euler: &EulerAngles) -> Mat3 {
-    let (sf, cf) = euler.phi_rad.sin_cos();
-    let (st, ct) = euler.theta_rad.sin_cos();
-    Mat3::new(1.0, 0.0, -st, 0.0, cf, sf * ct, 0.0, -sf, cf * ct)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn h_inverts_p() {
-        let e = EulerAngles::new(0.4, -0.3, 2.0);
-        let product = euler_to_body_rates(&e) * e.rates_from_body_rates_matrix();
-        assert!((product - Mat3::identity()).norm() < 1e-12);
-    }
 }

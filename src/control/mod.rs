@@ -17,10 +17,7 @@ pub mod prefilter;
 pub mod rbf;
 pub mod reference;
 
-pub use autopilot::{
-    AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, Saturation,
-    euler_to_body_rates,
-};
+pub use autopilot::{AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, Saturation};
 pub use prefilter::{
     FilteredCommand, IntegralPrefilter, SecondOrderFilter, SmoothIntegralPrefilter,
 };

@@ -3,9 +3,7 @@
 //! commanded path needs (from the nominal lift curve, the simplified (7.8)-(7.9)) and limits
 //! on the flight path from the thrust range.
 
-use std::f64::consts::{PI, TAU};
-
-use crate::frames::{GRAVITY_FPS2, Vec3};
+use crate::frames::{GRAVITY_FPS2, Vec3, wrap_angle_rad};
 
 /// Below this horizontal speed (ft/s) the course of V_F is undefined and the heading command
 /// holds.
@@ -45,16 +43,6 @@ impl VelocityReference {
             flight_path_rad,
             course_rad,
         })
-    }
-}
-
-/// `angle` wrapped into (-π, π].
-pub fn wrap_angle_rad(angle: f64) -> f64 {
-    let wrapped = (angle + PI).rem_euclid(TAU) - PI;
-    if wrapped <= -PI {
-        wrapped + TAU
-    } else {
-        wrapped
     }
 }
 
@@ -157,6 +145,7 @@ pub fn limit_flight_path(raw_rad: f64, lowest_rad: f64, highest_rad: f64) -> f64
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     #[test]
     fn references_of_simple_velocities() {

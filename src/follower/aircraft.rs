@@ -13,16 +13,16 @@
 //! advances the Dryden turbulence and holds the air sample over the RK4 step; Δ perturbations
 //! act on the plant only.
 
+use super::FollowerConfig;
 use crate::control::{AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput};
 use crate::frames::{EulerAngles, Vec3};
+use crate::guidance::signals::{CommandKind, FollowerCommand, FollowerFeedback};
 use crate::scenario::check::InvalidValue;
-use crate::scenario::{GuidanceLawKind, Scenario};
 use crate::world::aircraft::{
     AirData, Aircraft, AircraftFileError, AircraftParams, AircraftState, Controls, STATE_LEN,
     TrimError, TrimRequest, trim_level_flight,
 };
 use crate::world::atmosphere::{Atmosphere, AtmosphereSample};
-use crate::world::kinematic::FollowerCommand;
 
 /// Offset of the autopilot's state in the follower's slice.
 const AUTOPILOT: usize = STATE_LEN;
@@ -92,15 +92,14 @@ pub struct AircraftFollower {
 }
 
 impl AircraftFollower {
-    /// The follower of a scenario and its initial state (trimmed, controller at rest).
-    pub fn new(scenario: &Scenario) -> Result<(Self, Vec<f64>), AircraftSetupError> {
+    /// The follower of a configuration and its initial state (trimmed, controller at rest).
+    pub fn new(config: &FollowerConfig) -> Result<(Self, Vec<f64>), AircraftSetupError> {
         let params = AircraftParams::seed_follower()?;
         let aircraft = Aircraft::new(params.clone())?;
-        let autopilot = Autopilot::new(&params, &scenario.autopilot)?;
-        let atmosphere =
-            Atmosphere::new(&scenario.atmosphere, scenario.run.seed ^ DRYDEN_SEED_SALT)?;
-        let start = Vec3::from(scenario.follower.initial_position_ft);
-        let [north, east, _] = scenario.follower.initial_velocity_fps;
+        let autopilot = Autopilot::new(&params, config.autopilot)?;
+        let atmosphere = Atmosphere::new(config.atmosphere, config.turbulence_seed)?;
+        let start = Vec3::from(config.follower.initial_position_ft);
+        let [north, east, _] = config.follower.initial_velocity_fps;
         let steady = atmosphere.steady_sample(&start);
         let trim = trim_level_flight(
             &aircraft,
@@ -121,7 +120,7 @@ impl AircraftFollower {
             .air_data(&x, &steady)
             .ok_or(AircraftSetupError::TrimState)?;
         x.extend(autopilot.initial_state(&data));
-        let integrates_acceleration = scenario.guidance.law == GuidanceLawKind::Acceleration;
+        let integrates_acceleration = config.command_kind == CommandKind::Acceleration;
         if integrates_acceleration {
             x.extend(data.velocity_ned_fps.iter());
         }
@@ -158,13 +157,18 @@ impl AircraftFollower {
         AircraftState::unpack(x).map_or_else(Vec3::zeros, |s| s.velocity_ned_fps())
     }
 
-    /// V_F - V_a, the integrated velocity command (acceleration law) minus the aircraft's
-    /// velocity, NED, ft/s; `None` when V_F is not integrated here.
-    pub fn velocity_shortfall_ned_fps(&self, x: &[f64]) -> Option<Vec3> {
-        self.integrates_acceleration.then(|| {
-            Vec3::new(x[VELOCITY_CMD], x[VELOCITY_CMD + 1], x[VELOCITY_CMD + 2])
-                - Self::velocity_ned_fps(x)
-        })
+    /// The aircraft's velocity V_a and, when V_F is integrated here (acceleration law), the
+    /// shortfall V_F - V_a (zero otherwise), NED, ft/s.
+    pub fn feedback(&self, x: &[f64]) -> FollowerFeedback {
+        let realised = Self::velocity_ned_fps(x);
+        FollowerFeedback {
+            realised_velocity_ned_fps: realised,
+            velocity_shortfall_ned_fps: if self.integrates_acceleration {
+                Vec3::new(x[VELOCITY_CMD], x[VELOCITY_CMD + 1], x[VELOCITY_CMD + 2]) - realised
+            } else {
+                Vec3::zeros()
+            },
+        }
     }
 
     /// Advances the turbulence by one tick at the aircraft's position and airspeed and holds

@@ -1,6 +1,8 @@
 //! The follower stage as the simulation sees it (DESIGN §1, `[follower] model`): the
 //! kinematic follower of the seed's Chapters 4-6 ([`KinematicFollower`]), or the 6-DOF
-//! aircraft flown by the Chapter 7 flight controller ([`AircraftFollower`]).
+//! aircraft flown by the Chapter 7 flight controller ([`AircraftFollower`]). Which kind of
+//! command it is given (V_F or a_F) is decided by the simulation and handed in with its
+//! configuration ([`FollowerConfig`]).
 //!
 //! Both own a slice of the simulation's state and answer the same questions: where the
 //! follower is, how it is oriented (camera = body), how it turns, how fast it goes. Each RK4
@@ -10,13 +12,30 @@
 
 pub mod aircraft;
 pub mod envelope;
+pub mod kinematic;
 
 pub use aircraft::{AircraftActuation, AircraftFollower, AircraftSetupError};
 pub use envelope::{FlightEnvelope, LimitTicks};
+pub use kinematic::KinematicFollower;
 
 use crate::frames::{EulerAngles, Vec3};
-use crate::scenario::{FollowerModel, GuidanceLawKind, Scenario};
-use crate::world::kinematic::{FollowerCommand, KinematicFollower, Realises};
+use crate::guidance::signals::{CommandKind, FollowerCommand, FollowerFeedback};
+use crate::scenario::{AtmosphereConfig, AutopilotSection, FollowerModel, FollowerSection};
+
+/// Everything the follower stage is built from.
+#[derive(Debug, Clone, Copy)]
+pub struct FollowerConfig<'a> {
+    /// `[follower]`.
+    pub follower: &'a FollowerSection,
+    /// `[autopilot]` (6-DOF follower).
+    pub autopilot: &'a AutopilotSection,
+    /// `[atmosphere]` (6-DOF follower).
+    pub atmosphere: &'a AtmosphereConfig,
+    /// Seed of the turbulence's random stream (6-DOF follower).
+    pub turbulence_seed: u64,
+    /// The kind of command the guidance law gives.
+    pub command_kind: CommandKind,
+}
 
 /// The follower of a run.
 #[derive(Debug, Clone)]
@@ -51,17 +70,14 @@ impl Actuation {
 }
 
 impl Follower {
-    /// The follower a scenario describes and its initial state slice.
-    pub fn new(scenario: &Scenario) -> Result<(Self, Vec<f64>), AircraftSetupError> {
-        let f = &scenario.follower;
+    /// The follower a configuration describes and its initial state slice.
+    pub fn new(config: &FollowerConfig) -> Result<(Self, Vec<f64>), AircraftSetupError> {
+        let f = config.follower;
         match f.model {
             FollowerModel::Kinematic => {
                 let follower = KinematicFollower {
                     attitude_lag_s: f.attitude_lag_s,
-                    realises: match scenario.guidance.law {
-                        GuidanceLawKind::Velocity => Realises::Velocity,
-                        GuidanceLawKind::Acceleration => Realises::Acceleration,
-                    },
+                    realises: config.command_kind,
                 };
                 let [phi, theta, psi] = f.initial_attitude_deg.map(f64::to_radians);
                 let x = follower.initial_state(
@@ -72,7 +88,7 @@ impl Follower {
                 Ok((Self::Kinematic(follower), x))
             }
             FollowerModel::Aircraft => {
-                let (follower, x) = AircraftFollower::new(scenario)?;
+                let (follower, x) = AircraftFollower::new(config)?;
                 Ok((Self::Aircraft(Box::new(follower)), x))
             }
         }
@@ -98,9 +114,7 @@ impl Follower {
     /// aircraft's own rate states.
     pub fn body_rates(&self, x: &[f64]) -> Vec3 {
         match self {
-            Self::Kinematic(k) => {
-                KinematicFollower::body_rates(&KinematicFollower::attitude(x), &k.attitude_rates(x))
-            }
+            Self::Kinematic(k) => k.body_rates(x),
             Self::Aircraft(_) => AircraftFollower::body_rates(x),
         }
     }
@@ -114,22 +128,13 @@ impl Follower {
         }
     }
 
-    /// The velocity the follower flies when it does not simply realise the guidance's
-    /// command (the aircraft's, from its own navigation), NED, ft/s; `None` for the
-    /// kinematic follower, whose velocity is the command.
-    pub fn realised_velocity_ned_fps(&self, x: &[f64]) -> Option<Vec3> {
+    /// How the follower flies its command, from its own navigation, when it does not simply
+    /// realise it (the aircraft); `None` for the kinematic follower, whose velocity is the
+    /// command.
+    pub fn feedback(&self, x: &[f64]) -> Option<FollowerFeedback> {
         match self {
             Self::Kinematic(_) => None,
-            Self::Aircraft(_) => Some(AircraftFollower::velocity_ned_fps(x)),
-        }
-    }
-
-    /// V_F - V_a of a follower that integrates V_F = V_F(0) + ∫ a_F and flies it through its
-    /// own dynamics (the aircraft under the acceleration law), NED, ft/s; `None` otherwise.
-    pub fn velocity_shortfall_ned_fps(&self, x: &[f64]) -> Option<Vec3> {
-        match self {
-            Self::Kinematic(_) => None,
-            Self::Aircraft(a) => a.velocity_shortfall_ned_fps(x),
+            Self::Aircraft(a) => Some(a.feedback(x)),
         }
     }
 
@@ -137,7 +142,7 @@ impl Follower {
     /// the first commanded V_F; the trimmed aircraft flies as it is.
     pub fn align_with_first_command(&self, x: &mut [f64], command: &FollowerCommand) {
         if let (Self::Kinematic(k), FollowerCommand::Velocity(v)) = (self, command)
-            && k.realises == Realises::Velocity
+            && k.realises == CommandKind::Velocity
         {
             KinematicFollower::set_heading_velocity(x, v);
         }

@@ -20,52 +20,68 @@
 //! a_F in ft/s². The seed's (5.38) adds the scaled y_a to accelerations with a unit
 //! coefficient (ft/s² per scaled unit); that is kept.
 //!
-//! State slice layout (see [`layout`]): `[w (3), z_m (6), ẑ (6), S_f (3), b̂, d̂ (3), r_cf (3)]`,
-//! 25 values, and χ (3) with compensation; z_m and ẑ are stored per axis as
-//! `[z_x1, z_x2, z_y1, z_y2, z_z1, z_z2]` (z_i1 ~ r_i, z_i2 ~ ṙ_i).
-//!
-//! Compensation for a follower that does not realise a_F (the 6-DOF aircraft; beyond the
-//! seed). The law's design assumes the follower flies V_F = V_F(0) + ∫ a_F; an aircraft's
-//! velocity V_a lags V_F by a second or two and is bounded. Left alone, the lag enters y
-//! as if the target had manoeuvred, the observer, d̂ and b̂ chase it and a_F grows until the
-//! follower loses the target (measured). The follower's own navigation gives the shortfall
-//! s = V_F - V_a; its leaky integral χ' = s - χ/τ (ft) is how far the follower is behind
-//! where a_F would have put it, recently. The law runs on y - χ/b̂, the measurement as if the
-//! follower had realised its commands over the last τ (as the velocity law's compensation
-//! of command-filtered backstepping does, [`super::velocity`]); a shortfall that lasts
-//! longer than τ (a climb the thrust cannot hold) shows in y and is corrected. With V_a = V_F
-//! χ stays 0 and this is the seed's law.
+//! State: [`AccelerationState`], `[w (3), z_m (6), ẑ (6), S_f (3), b̂, d̂ (3), r_cf (3)]`, 25
+//! values, and the lead ℓ (3) of [`super::compensation`] for a follower that does not realise
+//! a_F (the 6-DOF aircraft): the law then runs on y - ℓ/b̂.
 
-use super::law::GuidanceInput;
+use super::compensation::ShortfallCompensation;
 use super::projection::{BallBound, IntervalBound};
+use super::shaping::{CommandShaping, ShapedCommand};
+use super::signals::GuidanceInput;
 use crate::frames::Vec3;
 use crate::linalg::solve_continuous_are;
 use crate::scenario::{AccelerationSection, GuidanceSection, ObserverGainMode};
+use crate::state_block::{StateReader, StateWriter};
 use nalgebra::{DMatrix, Matrix2, Vector2};
 
-/// Offsets into the acceleration law's state slice.
-pub mod layout {
-    /// w (3): the filtered follower acceleration, ẇ = -Λ w - a_F (5.3), ft/s.
-    pub const W: usize = 0;
-    /// z_m (6): reference-model state (5.6), two per axis.
-    pub const Z_M: usize = 3;
-    /// ẑ (6): observer state (5.10), two per axis.
-    pub const Z_HAT: usize = 9;
-    /// S_f (3): the diagonal of the filtered smooth sign (5.34).
-    pub const S_F: usize = 15;
+/// The law's continuous state; holding rates, its derivative. z_m and ẑ are per axis
+/// `[z_i1, z_i2]` (z_i1 ~ r_i, z_i2 ~ ṙ_i).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AccelerationState {
+    /// w: the filtered follower acceleration, ẇ = -Λ w - a_F (5.3), ft/s.
+    pub w_fps: Vec3,
+    /// z_m: the reference model's state (5.6), per axis.
+    pub z_model: [Vector2<f64>; 3],
+    /// ẑ: the observer's state (5.10), per axis.
+    pub z_hat: [Vector2<f64>; 3],
+    /// S_f: the diagonal of the filtered smooth sign (5.34).
+    pub sign_filter: Vec3,
     /// b̂: estimate of the target's size b, ft (5.20).
-    pub const B_HAT: usize = 18;
-    /// d̂ (3): adaptive bound of the filtered target acceleration d, ft/s (5.41).
-    pub const D_HAT: usize = 19;
-    /// r_cf (3): command-shaping filter ṙ_cf = -p (r_cf - R_c / b̂) (Chapter 4).
-    pub const R_CF: usize = 22;
-    /// Length of the slice without compensation.
-    pub const LEN: usize = 25;
-    /// χ (3), with compensation: leaky integral of the follower's velocity shortfall, ft.
-    pub const CHI: usize = 25;
+    pub b_hat_ft: f64,
+    /// d̂: adaptive bound of the filtered target acceleration d, ft/s (5.41).
+    pub d_hat_fps: Vec3,
+    /// r_cf: the shaping filter's state ([`super::shaping`]).
+    pub shaping_filter: Vec3,
+    /// ℓ: the lead of [`super::compensation`], ft, with compensation.
+    pub lead_ft: Option<Vec3>,
 }
 
-use layout::*;
+impl AccelerationState {
+    /// Writes the block into its state slice.
+    pub fn pack(&self, x: &mut [f64]) {
+        let mut w = StateWriter::new(x);
+        w.vec3(&self.w_fps);
+        for z in self.z_model.iter().chain(&self.z_hat) {
+            w.values(z.as_slice());
+        }
+        w.vec3(&self.sign_filter)
+            .scalar(self.b_hat_ft)
+            .vec3(&self.d_hat_fps)
+            .vec3(&self.shaping_filter)
+            .optional_vec3(&self.lead_ft);
+    }
+
+    /// C z_m: the reference model's output y_m.
+    pub fn y_model(&self) -> Vec3 {
+        Vec3::from(self.z_model.map(|z| z[0]))
+    }
+
+    /// C ẑ: the observer's output, the law's own prediction of y, which it coasts on while
+    /// the target is not measured.
+    pub fn y_observer(&self) -> Vec3 {
+        Vec3::from(self.z_hat.map(|z| z[0]))
+    }
+}
 
 /// Gains of one axis.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -223,16 +239,8 @@ pub struct AccelerationGuidanceOutput {
     pub b_hat_rate_fps: f64,
 }
 
-/// The scaled command y_c = base + extra / b̂ and its parts' rates.
-struct Command {
-    y_c: Vec3,
-    base_rate: Vec3,
-    extra: Vec3,
-    extra_rate: Vec3,
-    filter_rate: Vec3,
-}
-
-/// Acceleration guidance (5.2)-(5.41), Remark 6, noisy form (6.39)-(6.42).
+/// Acceleration guidance (5.2)-(5.41), Remark 6, noisy form (6.39)-(6.42), with compensation
+/// for a follower that does not realise a_F.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AccelerationGuidance {
     axes: [AxisGains; 3],
@@ -242,23 +250,29 @@ pub struct AccelerationGuidance {
     sign_filter_pole_rps: f64,
     b_bound: IntervalBound,
     d_bound: BallBound,
-    shaping_pole_rps: f64,
+    shaping: CommandShaping,
     b0_ft: f64,
     observer: ObserverGainDesign,
-    /// τ of the shortfall's leaky integral, when the law compensates (module docs).
-    compensation_time_constant_s: Option<f64>,
+    compensation: Option<ShortfallCompensation>,
+}
+
+/// The per-axis parts of one evaluation: outputs of the reference model and the observer and
+/// the virtual control's h = -K ẑ + K Cᵀ y_c (5.9).
+struct AxisOutputs {
+    y_model: Vec3,
+    y_observer: Vec3,
+    h: Vec3,
 }
 
 impl AccelerationGuidance {
-    /// The law an `[acceleration]` section describes, with b̂(0), the projection bounds and the
-    /// shaping filter's pole from `[guidance]` (d̂(0) = 0 as (5.41), not `guidance.d0_per_s`;
-    /// `guidance.d_max_per_s` bounds ‖d̂‖ in ft/s here). The observer gain is designed here;
-    /// see [`Self::observer_design`] for where it came from. `compensated`: for a follower
-    /// that does not realise a_F (module docs).
+    /// The law an `[acceleration]` section describes, with b̂(0), its projection bound and the
+    /// shaping filter's pole from `[guidance]` (d̂(0) = 0 as (5.41), not `guidance.d0_per_s`).
+    /// The observer gain is designed here; see [`Self::observer_design`] for where it came
+    /// from.
     pub fn new(
         section: &AccelerationSection,
         guidance: &GuidanceSection,
-        compensated: bool,
+        compensation: Option<ShortfallCompensation>,
     ) -> Self {
         let observer = ObserverGainDesign::from_section(section);
         let axes = observer.gains.map(|l| AxisGains {
@@ -278,13 +292,15 @@ impl AccelerationGuidance {
                 epsilon: guidance.b_epsilon_ft2,
             },
             d_bound: BallBound {
-                max_norm: guidance.d_max_per_s,
-                epsilon: guidance.d_epsilon,
+                max_norm: section.d_hat_max_fps,
+                epsilon: section.d_hat_epsilon_fps2,
             },
-            shaping_pole_rps: guidance.shaping_pole_rps,
+            shaping: CommandShaping {
+                pole_rps: guidance.shaping_pole_rps,
+            },
             b0_ft: guidance.b0_ft,
             observer,
-            compensation_time_constant_s: compensated.then_some(section.shortfall_time_constant_s),
+            compensation,
         }
     }
 
@@ -300,18 +316,24 @@ impl AccelerationGuidance {
 
     /// Length of this law's state slice.
     pub fn state_len(&self) -> usize {
-        LEN + if self.compensation_time_constant_s.is_some() {
-            3
-        } else {
-            0
-        }
+        25 + 3 * usize::from(self.compensation.is_some())
     }
 
-    /// The measurement the law runs on: y - χ/b̂ with compensation (module docs), y without.
-    pub fn compensated_measurement(&self, x: &[f64], y: &Vec3) -> Vec3 {
-        match self.compensation_time_constant_s {
-            Some(_) => y - vec3_at(x, CHI) / x[B_HAT],
-            None => *y,
+    /// The typed state of a state slice.
+    pub fn unpack(&self, x: &[f64]) -> AccelerationState {
+        let mut r = StateReader::new(x);
+        let w_fps = r.vec3();
+        let z_model = [(); 3].map(|_| Vector2::from(r.array::<2>()));
+        let z_hat = [(); 3].map(|_| Vector2::from(r.array::<2>()));
+        AccelerationState {
+            w_fps,
+            z_model,
+            z_hat,
+            sign_filter: r.vec3(),
+            b_hat_ft: r.scalar(),
+            d_hat_fps: r.vec3(),
+            shaping_filter: r.vec3(),
+            lead_ft: r.optional_vec3(self.compensation.is_some()),
         }
     }
 
@@ -320,13 +342,19 @@ impl AccelerationGuidance {
     /// (it needs b), so z_i2 starts at 0 (exact when the follower starts at the target's
     /// velocity, as in the seed).
     pub fn initial_state(&self, r0: &Vec3) -> Vec<f64> {
+        let at_rest = [0, 1, 2].map(|i| Vector2::new(r0[i], 0.0));
         let mut x = vec![0.0; self.state_len()];
-        for i in 0..3 {
-            x[Z_M + 2 * i] = r0[i];
-            x[Z_HAT + 2 * i] = r0[i];
+        AccelerationState {
+            w_fps: Vec3::zeros(),
+            z_model: at_rest,
+            z_hat: at_rest,
+            sign_filter: Vec3::zeros(),
+            b_hat_ft: self.b0_ft,
+            d_hat_fps: Vec3::zeros(),
+            shaping_filter: *r0,
+            lead_ft: self.compensation.map(|_| Vec3::zeros()),
         }
-        x[B_HAT] = self.b0_ft;
-        x[R_CF..R_CF + 3].copy_from_slice(r0.as_slice());
+        .pack(&mut x);
         x
     }
 
@@ -334,25 +362,27 @@ impl AccelerationGuidance {
     /// measurement r(0), keeping b̂, d̂, w and S_f (a camera's first frame arrives after the run
     /// starts).
     pub fn start_at(&self, x: &mut [f64], r0: &Vec3) {
-        for i in 0..3 {
-            x[Z_M + 2 * i] = r0[i];
-            x[Z_M + 2 * i + 1] = 0.0;
-            x[Z_HAT + 2 * i] = r0[i];
-            x[Z_HAT + 2 * i + 1] = 0.0;
+        let at_rest = [0, 1, 2].map(|i| Vector2::new(r0[i], 0.0));
+        AccelerationState {
+            z_model: at_rest,
+            z_hat: at_rest,
+            shaping_filter: *r0,
+            ..self.unpack(x)
         }
-        x[R_CF..R_CF + 3].copy_from_slice(r0.as_slice());
+        .pack(x);
     }
 
     /// Before the first measurement: no state moves and a_F = 0 (the follower keeps V_F(0)).
     pub fn idle(&self, x: &[f64], dx: &mut [f64]) -> AccelerationGuidanceOutput {
         dx.fill(0.0);
+        let state = self.unpack(x);
         let zero = Vec3::zeros();
         AccelerationGuidanceOutput {
             accel_cmd_ned_fps2: zero,
-            y_command: vec3_at(x, R_CF),
+            y_command: state.shaping_filter,
             y_command_rate: zero,
-            y_model: Vec3::new(x[Z_M], x[Z_M + 2], x[Z_M + 4]),
-            y_observer: Self::predicted_measurement(x),
+            y_model: state.y_model(),
+            y_observer: state.y_observer(),
             y_combined: zero,
             virtual_control_fps: zero,
             virtual_control_rate_fps2: zero,
@@ -361,56 +391,27 @@ impl AccelerationGuidance {
         }
     }
 
-    /// The observer's output C ẑ: the law's own prediction of y, which it coasts on while the
-    /// target is not measured.
-    pub fn predicted_measurement(x: &[f64]) -> Vec3 {
-        Vec3::new(x[Z_HAT], x[Z_HAT + 2], x[Z_HAT + 4])
-    }
-
-    /// b̂ of a state slice, ft.
-    pub fn b_hat_ft(x: &[f64]) -> f64 {
-        x[B_HAT]
-    }
-
-    /// d̂ of a state slice, ft/s.
-    pub fn d_hat(x: &[f64]) -> Vec3 {
-        vec3_at(x, D_HAT)
-    }
-
-    /// w of a state slice, ft/s.
-    pub fn filtered_accel_fps(x: &[f64]) -> Vec3 {
-        vec3_at(x, W)
-    }
-
-    /// Axis i's two-state block at `at` (Z_M or Z_HAT).
-    pub fn axis_state(x: &[f64], at: usize, i: usize) -> Vector2<f64> {
-        Vector2::new(x[at + 2 * i], x[at + 2 * i + 1])
-    }
-
-    /// The scaled command and the rates of its parts (everything but b̂').
-    fn command(&self, x: &[f64], input: &GuidanceInput) -> Command {
-        let b_hat = x[B_HAT];
-        let r_cf = vec3_at(x, R_CF);
-        if self.shaping_pole_rps > 0.0 {
-            let filter_rate = (input.command_ned_ft / b_hat - r_cf) * self.shaping_pole_rps;
-            let extra = input.excitation_ned_ft;
-            Command {
-                y_c: r_cf + input.excitation_scaled + extra / b_hat,
-                base_rate: filter_rate + input.excitation_scaled_rate,
-                extra,
-                extra_rate: input.excitation_rate_ned_fps,
-                filter_rate,
-            }
-        } else {
-            let extra = input.command_ned_ft + input.excitation_ned_ft;
-            Command {
-                y_c: input.excitation_scaled + extra / b_hat,
-                base_rate: input.excitation_scaled_rate,
-                extra,
-                extra_rate: input.command_rate_ned_fps + input.excitation_rate_ned_fps,
-                filter_rate: Vec3::zeros(),
-            }
+    /// The y the law runs on: the measurement (y - ℓ/b̂ with compensation), or the observer's
+    /// prediction C ẑ while the target is not measured.
+    fn measurement(&self, state: &AccelerationState, input: &GuidanceInput) -> Vec3 {
+        match (input.r_measured, self.compensation.zip(state.lead_ft)) {
+            (None, _) => state.y_observer(),
+            (Some(y), None) => y,
+            (Some(y), Some((c, lead))) => c.measurement(&y, &lead, state.b_hat_ft),
         }
+    }
+
+    /// y_m, C ẑ and h = -K ẑ + K Cᵀ y_c (5.9).
+    fn axis_outputs(&self, state: &AccelerationState, y_c: &Vec3) -> AxisOutputs {
+        let mut out = AxisOutputs {
+            y_model: state.y_model(),
+            y_observer: state.y_observer(),
+            h: Vec3::zeros(),
+        };
+        for (i, axis) in self.axes.iter().enumerate() {
+            out.h[i] = -axis.k_dot(&state.z_hat[i]) + axis.k[0] * y_c[i];
+        }
+        out
     }
 
     /// Writes ẋ into `dx` and returns the command.
@@ -425,88 +426,98 @@ impl AccelerationGuidance {
         input: &GuidanceInput,
         dx: &mut [f64],
     ) -> AccelerationGuidanceOutput {
-        let b_hat = x[B_HAT];
-        let d_hat = vec3_at(x, D_HAT);
-        let s_f = vec3_at(x, S_F);
-        let w = vec3_at(x, W);
-        // y (or y* with noise), in the law's compensated coordinates; coasting on the
-        // observer's prediction while the target is lost.
-        let y = input
-            .r_measured
-            .unwrap_or_else(|| Self::predicted_measurement(x));
-        let cmd = self.command(x, input);
-
-        let mut y_model = Vec3::zeros();
-        let mut y_observer = Vec3::zeros();
-        let mut h = Vec3::zeros();
-        for (i, axis) in self.axes.iter().enumerate() {
-            let z_hat = Self::axis_state(x, Z_HAT, i);
-            y_model[i] = x[Z_M + 2 * i];
-            y_observer[i] = z_hat[0];
-            h[i] = -axis.k_dot(&z_hat) + axis.k[0] * cmd.y_c[i];
-        }
-        let y_a = y * 2.0 - y_model - y_observer;
-        let b_hat_rate = self.rho * self.b_bound.project(b_hat, -y_a.dot(&h));
-        let y_c_rate =
-            cmd.base_rate + cmd.extra_rate / b_hat - cmd.extra * (b_hat_rate / (b_hat * b_hat));
-
-        let mut h_rate = Vec3::zeros();
-        for (i, axis) in self.axes.iter().enumerate() {
-            let (a_m, b_m) = (axis.a_m(), axis.b_m());
-            let z_m = Self::axis_state(x, Z_M, i);
-            let z_hat = Self::axis_state(x, Z_HAT, i);
-            let z_m_rate = a_m * z_m + b_m * cmd.y_c[i];
-            let innovation = y[i] - z_hat[0];
-            let z_hat_rate = a_m * z_hat + b_m * cmd.y_c[i] + Vector2::from(axis.l) * innovation;
-            h_rate[i] = -axis.k_dot(&z_hat_rate) + axis.k[0] * y_c_rate[i];
-            dx[Z_M + 2 * i..Z_M + 2 * i + 2].copy_from_slice(z_m_rate.as_slice());
-            dx[Z_HAT + 2 * i..Z_HAT + 2 * i + 2].copy_from_slice(z_hat_rate.as_slice());
-        }
-
+        let state = self.unpack(x);
+        let b_hat = state.b_hat_ft;
+        let y = self.measurement(&state, input);
+        let cmd = self.shaping.command(&state.shaping_filter, b_hat, input);
+        let axes = self.axis_outputs(&state, &cmd.value);
+        let y_a = y * 2.0 - axes.y_model - axes.y_observer;
+        let b_hat_rate = self.rho * self.b_bound.project(b_hat, -y_a.dot(&axes.h));
+        let y_c_rate = cmd.rate(b_hat_rate);
+        let mut rates = self.model_and_observer_rates(&state, &y, &cmd);
+        let h_rate = Vec3::from(
+            [0, 1, 2]
+                .map(|i| -self.axes[i].k_dot(&rates.z_hat[i]) + self.axes[i].k[0] * y_c_rate[i]),
+        );
         let s_chi = y_a.map(|v| smooth_sign(v, self.chi));
-        let s_f_rate = (s_f - s_chi) * self.sign_filter_pole_rps;
+        let s_f_rate = (state.sign_filter - s_chi) * self.sign_filter_pole_rps;
         // S(y_a) y_a = |y_a| componentwise (5.41).
-        let d_rate = self.d_bound.project(&d_hat, &y_a.abs()) * self.gamma_d;
-        let w_f = h * b_hat - s_f.component_mul(&d_hat);
-        let w_f_rate = h * b_hat_rate + h_rate * b_hat
+        let d_rate = self.d_bound.project(&state.d_hat_fps, &y_a.abs()) * self.gamma_d;
+        let s_f = state.sign_filter;
+        let w_f = axes.h * b_hat - s_f.component_mul(&state.d_hat_fps);
+        let w_f_rate = axes.h * b_hat_rate + h_rate * b_hat
             - s_f.component_mul(&d_rate)
-            - s_f_rate.component_mul(&d_hat);
+            - s_f_rate.component_mul(&state.d_hat_fps);
         let lambda = Vec3::from(self.axes.map(|a| a.lambda_rps));
         let a_f = -lambda.component_mul(&w_f) - w_f_rate + y_a;
-        let w_rate = -lambda.component_mul(&w) - a_f;
-
-        dx[W..W + 3].copy_from_slice(w_rate.as_slice());
-        dx[S_F..S_F + 3].copy_from_slice(s_f_rate.as_slice());
-        dx[B_HAT] = b_hat_rate;
-        dx[D_HAT..D_HAT + 3].copy_from_slice(d_rate.as_slice());
-        dx[R_CF..R_CF + 3].copy_from_slice(cmd.filter_rate.as_slice());
-        if let Some(tau) = self.compensation_time_constant_s {
-            let shortfall = input
-                .follower_velocity_shortfall_ned_fps
-                .unwrap_or_else(Vec3::zeros);
-            let chi_rate = shortfall - vec3_at(x, CHI) / tau;
-            dx[CHI..CHI + 3].copy_from_slice(chi_rate.as_slice());
-        }
-
+        rates.w_fps = -lambda.component_mul(&state.w_fps) - a_f;
+        rates.sign_filter = s_f_rate;
+        rates.b_hat_ft = b_hat_rate;
+        rates.d_hat_fps = d_rate;
+        rates.lead_ft = self.lead_rate(&state, input);
+        rates.pack(dx);
         AccelerationGuidanceOutput {
             accel_cmd_ned_fps2: a_f,
-            y_command: cmd.y_c,
+            y_command: cmd.value,
             y_command_rate: y_c_rate,
-            y_model,
-            y_observer,
+            y_model: axes.y_model,
+            y_observer: axes.y_observer,
             y_combined: y_a,
             virtual_control_fps: w_f,
             virtual_control_rate_fps2: w_f_rate,
-            error: y - cmd.y_c,
+            error: y - cmd.value,
             b_hat_rate_fps: b_hat_rate,
         }
     }
 
+    /// The rates of the reference model (5.6), the observer (5.10) and the shaping filter;
+    /// the other fields are zero for [`Self::derivative`] to fill.
+    fn model_and_observer_rates(
+        &self,
+        state: &AccelerationState,
+        y: &Vec3,
+        cmd: &ShapedCommand,
+    ) -> AccelerationState {
+        let zero = Vector2::zeros();
+        let mut rates = AccelerationState {
+            w_fps: Vec3::zeros(),
+            z_model: [zero; 3],
+            z_hat: [zero; 3],
+            sign_filter: Vec3::zeros(),
+            b_hat_ft: 0.0,
+            d_hat_fps: Vec3::zeros(),
+            shaping_filter: cmd.filter_rate,
+            lead_ft: None,
+        };
+        for (i, axis) in self.axes.iter().enumerate() {
+            let (a_m, b_m) = (axis.a_m(), axis.b_m());
+            let z_hat = state.z_hat[i];
+            rates.z_model[i] = a_m * state.z_model[i] + b_m * cmd.value[i];
+            let innovation = y[i] - z_hat[0];
+            rates.z_hat[i] = a_m * z_hat + b_m * cmd.value[i] + Vector2::from(axis.l) * innovation;
+        }
+        rates
+    }
+
+    /// ℓ' of the compensation (zero shortfall when the follower reports none).
+    fn lead_rate(&self, state: &AccelerationState, input: &GuidanceInput) -> Option<Vec3> {
+        let shortfall = input
+            .follower
+            .map_or(Vec3::zeros(), |f| f.velocity_shortfall_ned_fps);
+        self.compensation
+            .zip(state.lead_ft)
+            .map(|(c, lead)| c.lead_rate(&lead, &shortfall))
+    }
+
     /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`super::projection`]).
     pub fn enforce_bounds(&self, x: &mut [f64]) {
-        x[B_HAT] = self.b_bound.clamp(x[B_HAT]);
-        let d = self.d_bound.clamp(&vec3_at(x, D_HAT));
-        x[D_HAT..D_HAT + 3].copy_from_slice(d.as_slice());
+        let state = self.unpack(x);
+        AccelerationState {
+            b_hat_ft: self.b_bound.clamp(state.b_hat_ft),
+            d_hat_fps: self.d_bound.clamp(&state.d_hat_fps),
+            ..state
+        }
+        .pack(x);
     }
 }
 
@@ -519,11 +530,6 @@ pub fn smooth_sign(v: f64, chi: f64) -> f64 {
     }
 }
 
-/// The 3-vector stored at `x[at..at + 3]`.
-fn vec3_at(x: &[f64], at: usize) -> Vec3 {
-    Vec3::new(x[at], x[at + 1], x[at + 2])
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -534,7 +540,7 @@ mod tests {
             b0_ft: 8.0,
             ..GuidanceSection::default()
         };
-        AccelerationGuidance::new(section, &guidance, false)
+        AccelerationGuidance::new(section, &guidance, None)
     }
 
     fn input(y: Vec3) -> GuidanceInput {

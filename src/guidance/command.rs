@@ -21,10 +21,9 @@
 //!
 //! State slice: `[ψ_c]` (used by the heading frame only).
 
-use crate::frames::{EulerAngles, Mat3, Vec3};
+use crate::frames::{EulerAngles, Mat3, Vec3, wrap_angle_rad};
 use crate::scenario::{CommandFrame, GuidanceSection, Mission};
 use crate::sensing::line_of_sight_body;
-use crate::world::kinematic::wrap_angle_rad;
 
 /// Length of the command's state slice.
 pub const STATE_LEN: usize = 1;

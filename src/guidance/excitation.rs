@@ -1,9 +1,32 @@
 //! Intelligent excitation (4.31, 2.28): R*_c = R_c + a(t) sin(ωt) E, with an amplitude that
 //! grows with the recent tracking error and fades to k3 once the error is small.
 
+use super::signals::ExcitationErrors;
 use crate::frames::Vec3;
-use crate::scenario::{ExcitationMode, ExcitationSection, ExcitationUnits};
+use crate::scenario::{ExcitationError, ExcitationMode, ExcitationSection, ExcitationUnits};
 use std::collections::VecDeque;
+
+/// The excitation offset a sin(ωt) E and its rate as the laws add them to the command after the
+/// shaping filter: given in ft (the law divides by b̂, (4.14)) or in scaled units (added as
+/// they are), per `excitation.units`; the other pair is zero.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ExcitationOffset {
+    /// Offset in ft, NED.
+    pub ned_ft: Vec3,
+    /// Its rate, ft/s.
+    pub rate_ned_fps: Vec3,
+    /// Offset in scaled units, NED.
+    pub scaled: Vec3,
+    /// Its rate, 1/s.
+    pub scaled_rate_per_s: Vec3,
+}
+
+impl ExcitationOffset {
+    /// The offset in ft for the size estimate b̂ (scaled offsets times b̂).
+    pub fn in_ft(&self, b_hat_ft: f64) -> Vec3 {
+        self.ned_ft + self.scaled * b_hat_ft
+    }
+}
 
 /// Amplitude state of the intelligent excitation. Fed once per tick with eᵀe; evaluated at
 /// any time within the next step.
@@ -11,6 +34,7 @@ use std::collections::VecDeque;
 pub struct Excitation {
     mode: ExcitationMode,
     units: ExcitationUnits,
+    error: ExcitationError,
     period_s: f64,
     omega_rps: f64,
     k1: f64,
@@ -37,6 +61,7 @@ impl Excitation {
         Self {
             mode: section.mode,
             units: section.units,
+            error: section.error,
             period_s: section.period_s,
             omega_rps: 2.0 * std::f64::consts::PI / section.period_s,
             k1: section.k1,
@@ -55,6 +80,16 @@ impl Excitation {
             },
             amplitude_rate: 0.0,
         }
+    }
+
+    /// Records the energy eᵀe of the error the section asks for (measured or estimated) at
+    /// the end of the step that ends at `t_end_s`.
+    pub fn record_errors(&mut self, t_end_s: f64, errors: &ExcitationErrors) {
+        let error = match self.error {
+            ExcitationError::Measured => errors.measured,
+            ExcitationError::Estimated => errors.estimated,
+        };
+        self.record(t_end_s, error.norm_squared());
     }
 
     /// Records eᵀe over the step that ends at `t_end_s` and updates a(t) and ȧ(t).
@@ -114,11 +149,6 @@ impl Excitation {
         self.amplitude
     }
 
-    /// Units of the amplitude and offset.
-    pub fn units(&self) -> ExcitationUnits {
-        self.units
-    }
-
     /// The offset a sin(ωt) E, in the excitation's units, and its time derivative (a and ȧ
     /// held over the step).
     pub fn offset(&self, t_s: f64) -> (Vec3, Vec3) {
@@ -129,6 +159,23 @@ impl Excitation {
         let offset = self.direction * (self.amplitude * s);
         let rate = self.direction * (self.amplitude_rate * s + self.amplitude * self.omega_rps * c);
         (offset, rate)
+    }
+
+    /// The offset at `t_s` in the units the laws take it in (see [`ExcitationOffset`]).
+    pub fn command_offset(&self, t_s: f64) -> ExcitationOffset {
+        let (offset, rate) = self.offset(t_s);
+        match self.units {
+            ExcitationUnits::Ft => ExcitationOffset {
+                ned_ft: offset,
+                rate_ned_fps: rate,
+                ..ExcitationOffset::default()
+            },
+            ExcitationUnits::Scaled => ExcitationOffset {
+                scaled: offset,
+                scaled_rate_per_s: rate,
+                ..ExcitationOffset::default()
+            },
+        }
     }
 }
 

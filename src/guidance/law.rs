@@ -1,94 +1,26 @@
 //! The guidance stage as the simulation sees it: one of the two laws behind one interface
-//! (`[guidance] law = "velocity" | "acceleration"`). It builds the law a scenario asks for
-//! (with the velocity law's estimator gain and the acceleration law's observer-gain design),
-//! maps the common input onto the law's own, and reports the law's command as a
-//! [`FollowerCommand`] for the follower stage.
+//! (`[guidance] law = "velocity" | "acceleration"`). It builds the law a scenario asks for, with
+//! the velocity law's estimator gain, the acceleration law's observer-gain design and, when the
+//! simulation says the follower does not realise the command, the compensation of
+//! [`super::compensation`].
 
 use super::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
-use super::velocity::{
-    VelocityEstimator, VelocityGuidance, VelocityGuidanceOutput, steady_state_estimator_gain,
+use super::compensation::{ShortfallCompensation, VelocityLagCompensation};
+use super::signals::{
+    ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput, TargetMotionEstimate,
 };
+use super::velocity::VelocityGuidance;
+use super::velocity_estimator::{VelocityEstimator, steady_state_estimator_gain};
 use crate::frames::{Mat3, Vec3};
-use crate::scenario::{EstimatorGainMode, FollowerModel, GuidanceLawKind, Scenario};
-use crate::world::kinematic::FollowerCommand;
-
-/// What a guidance law needs at one instant besides its own state.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GuidanceInput {
-    /// Measured scaled relative position r (or r*), NED; `None` while the target is lost: the
-    /// velocity law coasts on its estimate or its command and stops adapting, the
-    /// acceleration law coasts on its observer's prediction C ẑ.
-    pub r_measured: Option<Vec3>,
-    /// R_c, the user's relative-position command, NED, ft (zero for interception).
-    pub command_ned_ft: Vec3,
-    /// Ṙ_c, ft/s.
-    pub command_rate_ned_fps: Vec3,
-    /// Excitation offset a sin(ωt) E in ft, added after the shaping filter (4.31).
-    pub excitation_ned_ft: Vec3,
-    /// Its time derivative, ft/s.
-    pub excitation_rate_ned_fps: Vec3,
-    /// Excitation offset in scaled units, added after the shaping filter as it is.
-    pub excitation_scaled: Vec3,
-    /// Its time derivative, 1/s.
-    pub excitation_scaled_rate: Vec3,
-    /// The follower's realised inertial velocity, NED, ft/s, when it does not realise the
-    /// command exactly (6-DOF follower): the laws then compensate for the difference (see
-    /// [`super::velocity`]); `None` for the kinematic follower.
-    pub follower_velocity_ned_fps: Option<Vec3>,
-    /// The shortfall V_F - V_a of a follower that integrates V_F = V_F(0) + ∫ a_F and flies it
-    /// through its own dynamics (6-DOF follower, acceleration law: see
-    /// [`super::acceleration`]); `None` otherwise.
-    pub follower_velocity_shortfall_ned_fps: Option<Vec3>,
-}
-
-#[cfg(test)]
-impl GuidanceInput {
-    /// A test input: measurement `r` and command `command_ned_ft`, nothing moving, no
-    /// excitation, a follower that flies its command.
-    pub(crate) fn steady(r: Vec3, command_ned_ft: Vec3) -> Self {
-        Self {
-            r_measured: Some(r),
-            command_ned_ft,
-            command_rate_ned_fps: Vec3::zeros(),
-            excitation_ned_ft: Vec3::zeros(),
-            excitation_rate_ned_fps: Vec3::zeros(),
-            excitation_scaled: Vec3::zeros(),
-            excitation_scaled_rate: Vec3::zeros(),
-            follower_velocity_ned_fps: None,
-            follower_velocity_shortfall_ned_fps: None,
-        }
-    }
-}
-
-/// A law's output at one instant.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GuidanceOutput {
-    /// The command for the follower: V_F (4.3) or a_F (5.38).
-    pub command: FollowerCommand,
-    /// The scaled command the law tracks (shaped, excitation included): r_c or y_c.
-    pub r_command: Vec3,
-    /// The measured error whose energy sets the intelligent excitation's amplitude
-    /// (`excitation.error = "measured"`): e = r* - r_c (velocity law, (4.31)); the combined
-    /// output y*_a = C_a ξ_a + 2 n_r = 2y* - y_m - C ẑ (acceleration law: (5.27) integrates
-    /// ‖ξ_a‖², of which y_a is the measurable part; the error y - y_c would keep the amplitude
-    /// up through the reference model's lag alone).
-    pub error: Vec3,
-    /// The law's estimate of the same error from its filtered states
-    /// (`excitation.error = "estimated"`): r̂ - r_c (velocity law with the estimator (6.10));
-    /// C (ẑ - z_m), the observer's estimate of the output tracking error C e (acceleration
-    /// law). Without measurement noise both tend to zero with ξ; with noise they stay near
-    /// the estimator's residual noise instead of the sensor's.
-    pub estimated_error: Vec3,
-    /// The acceleration law's internal signals (y_m, C ẑ, y_a, w_f, …).
-    pub acceleration: Option<AccelerationGuidanceOutput>,
-}
+use crate::linalg::LinalgError;
+use crate::scenario::{AccelerationSection, EstimatorGainMode, GuidanceLawKind, GuidanceSection};
 
 /// Why a guidance law could not be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GuidanceSetupError {
     /// The velocity estimator's matrices could not be computed.
     #[error("velocity estimator: {0}")]
-    Estimator(String),
+    Estimator(#[from] LinalgError),
 }
 
 /// The guidance law of a run.
@@ -100,51 +32,51 @@ pub enum GuidanceLaw {
     Acceleration(AccelerationGuidance),
 }
 
+/// A law's estimates of the target at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LawEstimates {
+    /// b̂, ft.
+    pub b_hat_ft: f64,
+    /// d̂, in the law's own terms.
+    pub target_motion: TargetMotionEstimate,
+}
+
 impl GuidanceLaw {
-    /// The law a scenario describes, and the notes its design leaves for the run's log (the
-    /// estimator gain in use; a Riccati observer gain that fell back to the fixed one).
-    pub fn from_scenario(scenario: &Scenario) -> Result<(Self, Vec<String>), GuidanceSetupError> {
-        let g = &scenario.guidance;
+    /// The law of a `[guidance]` (and `[acceleration]`) section, compensating for a follower
+    /// that does not realise the command when `compensate`, and the notes its design leaves
+    /// for the run's log (the estimator gain in use; a Riccati observer gain that fell back to
+    /// the fixed one).
+    pub fn new(
+        g: &GuidanceSection,
+        acceleration: &AccelerationSection,
+        compensate: bool,
+    ) -> Result<(Self, Vec<String>), GuidanceSetupError> {
         let mut notes = Vec::new();
         match g.law {
             GuidanceLawKind::Velocity => {
                 let estimator = if g.estimator {
-                    let gain = match g.estimator_gain_mode {
-                        EstimatorGainMode::Fixed => Mat3::identity() * g.estimator_gain,
-                        EstimatorGainMode::Covariance => {
-                            let gain = steady_state_estimator_gain(
-                                g.k,
-                                g.estimator_process_psd,
-                                g.estimator_noise_psd,
-                            )
-                            .map_err(|e| GuidanceSetupError::Estimator(e.to_string()))?;
-                            notes.push(format!(
-                                "velocity estimator: L_v = {:.4} I from the steady-state \
-                                 covariance (6.36) (q = {:e} 1/s, K_nr = {:e} s)",
-                                gain[(0, 0)],
-                                g.estimator_process_psd,
-                                g.estimator_noise_psd
-                            ));
-                            gain
-                        }
-                    };
-                    Some(
-                        VelocityEstimator::new(g.k, gain, g.estimator_lyapunov_weight)
-                            .map_err(|e| GuidanceSetupError::Estimator(e.to_string()))?,
-                    )
+                    let (gain, note) = estimator_gain(g)?;
+                    notes.extend(note);
+                    Some(VelocityEstimator::new(
+                        g.k,
+                        gain,
+                        g.estimator_lyapunov_weight,
+                    )?)
                 } else {
                     None
                 };
-                // A follower that does not realise V_F exactly gets the compensated law.
-                let compensated = scenario.follower.model == FollowerModel::Aircraft;
-                Ok((
-                    Self::Velocity(VelocityGuidance::new(g, estimator, compensated)),
-                    notes,
-                ))
+                let compensation = compensate.then_some(VelocityLagCompensation {
+                    adaptation_gain_per_s: g.k,
+                    feedback_gain_per_s: g.k_aircraft,
+                });
+                let law = VelocityGuidance::new(g, estimator, compensation);
+                Ok((Self::Velocity(law), notes))
             }
             GuidanceLawKind::Acceleration => {
-                let compensated = scenario.follower.model == FollowerModel::Aircraft;
-                let law = AccelerationGuidance::new(&scenario.acceleration, g, compensated);
+                let compensation = compensate.then_some(ShortfallCompensation {
+                    time_constant_s: acceleration.shortfall_time_constant_s,
+                });
+                let law = AccelerationGuidance::new(acceleration, g, compensation);
                 notes.extend(law.observer_design().fallback_message());
                 Ok((Self::Acceleration(law), notes))
             }
@@ -179,28 +111,16 @@ impl GuidanceLaw {
     /// the acceleration law a_F = 0 (the follower keeps V_F(0)).
     pub fn idle(&self, x: &[f64], dx: &mut [f64]) -> GuidanceOutput {
         match self {
-            Self::Velocity(law) => velocity_output(&law.idle(x, dx)),
-            Self::Acceleration(law) => acceleration_output(law.idle(x, dx), Vec3::zeros()),
+            Self::Velocity(law) => law.idle(x, dx),
+            Self::Acceleration(law) => acceleration_output(law.idle(x, dx)),
         }
     }
 
     /// Writes the law's ẋ into `dx` and returns its command.
     pub fn derivative(&self, x: &[f64], input: &GuidanceInput, dx: &mut [f64]) -> GuidanceOutput {
         match self {
-            Self::Velocity(law) => velocity_output(&law.derivative(x, input, dx)),
-            Self::Acceleration(law) => {
-                // The observer's prediction is already in the law's (compensated) coordinates.
-                let y_measured = input.r_measured.map_or_else(
-                    || AccelerationGuidance::predicted_measurement(x),
-                    |r| law.compensated_measurement(x, &r),
-                );
-                let measured = GuidanceInput {
-                    r_measured: Some(y_measured),
-                    ..*input
-                };
-                let out = law.derivative(x, &measured, dx);
-                acceleration_output(out, out.y_observer - out.y_model)
-            }
+            Self::Velocity(law) => law.derivative(x, input, dx),
+            Self::Acceleration(law) => acceleration_output(law.derivative(x, input, dx)),
         }
     }
 
@@ -212,52 +132,57 @@ impl GuidanceLaw {
         }
     }
 
-    /// b̂ of a state slice, ft.
-    pub fn b_hat_ft(&self, x: &[f64]) -> f64 {
+    /// The law's estimates b̂ and d̂ in a state slice.
+    pub fn estimates(&self, x: &[f64]) -> LawEstimates {
         match self {
-            Self::Velocity(_) => VelocityGuidance::b_hat_ft(x),
-            Self::Acceleration(_) => AccelerationGuidance::b_hat_ft(x),
-        }
-    }
-
-    /// The estimated scaled target velocity V_T/b (the velocity law's d̂, (4.1)); the
-    /// acceleration law has no such estimate.
-    pub fn scaled_target_velocity(&self, x: &[f64]) -> Option<Vec3> {
-        match self {
-            Self::Velocity(_) => Some(VelocityGuidance::d_hat(x)),
-            Self::Acceleration(_) => None,
-        }
-    }
-
-    /// d̂ of a state slice: the scaled target velocity in 1/s (velocity law, (4.5)) or the
-    /// bound on the filtered target acceleration in ft/s (acceleration law, (5.41)).
-    pub fn d_hat(&self, x: &[f64]) -> Vec3 {
-        match self {
-            Self::Velocity(_) => VelocityGuidance::d_hat(x),
-            Self::Acceleration(_) => AccelerationGuidance::d_hat(x),
+            Self::Velocity(law) => {
+                let state = law.unpack(x);
+                LawEstimates {
+                    b_hat_ft: state.b_hat_ft,
+                    target_motion: TargetMotionEstimate::ScaledVelocity(state.d_hat_per_s),
+                }
+            }
+            Self::Acceleration(law) => {
+                let state = law.unpack(x);
+                LawEstimates {
+                    b_hat_ft: state.b_hat_ft,
+                    target_motion: TargetMotionEstimate::FilteredAccelerationBound(state.d_hat_fps),
+                }
+            }
         }
     }
 }
 
-/// The velocity law's output as a [`GuidanceOutput`].
-fn velocity_output(out: &VelocityGuidanceOutput) -> GuidanceOutput {
-    GuidanceOutput {
-        command: FollowerCommand::Velocity(out.velocity_cmd_ned_fps),
-        r_command: out.r_command,
-        error: out.error,
-        estimated_error: out.estimated_error,
-        acceleration: None,
-    }
+/// L_v of the velocity estimator: fixed, or from the steady-state covariance (6.36) with a
+/// note saying which.
+fn estimator_gain(g: &GuidanceSection) -> Result<(Mat3, Option<String>), LinalgError> {
+    Ok(match g.estimator_gain_mode {
+        EstimatorGainMode::Fixed => (Mat3::identity() * g.estimator_gain, None),
+        EstimatorGainMode::Covariance => {
+            let gain =
+                steady_state_estimator_gain(g.k, g.estimator_process_psd, g.estimator_noise_psd)?;
+            let note = format!(
+                "velocity estimator: L_v = {:.4} I from the steady-state covariance (6.36) \
+                 (q = {:e} 1/s, K_nr = {:e} s)",
+                gain[(0, 0)],
+                g.estimator_process_psd,
+                g.estimator_noise_psd
+            );
+            (gain, Some(note))
+        }
+    })
 }
 
-/// The acceleration law's output as a [`GuidanceOutput`]: its error is the combined output
-/// y_a, its estimated error the one given.
-fn acceleration_output(out: AccelerationGuidanceOutput, estimated_error: Vec3) -> GuidanceOutput {
+/// The acceleration law's output as a [`GuidanceOutput`]: its excitation errors are the
+/// combined output y_a (measured) and C (ẑ - z_m) (estimated).
+fn acceleration_output(out: AccelerationGuidanceOutput) -> GuidanceOutput {
     GuidanceOutput {
         command: FollowerCommand::Acceleration(out.accel_cmd_ned_fps2),
         r_command: out.y_command,
-        error: out.y_combined,
-        estimated_error,
+        excitation_errors: ExcitationErrors {
+            measured: out.y_combined,
+            estimated: out.y_observer - out.y_model,
+        },
         acceleration: Some(out),
     }
 }
@@ -265,32 +190,53 @@ fn acceleration_output(out: AccelerationGuidanceOutput, estimated_error: Vec3) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario::{AccelerationSection, ObserverGainMode};
+    use crate::scenario::ObserverGainMode;
+
+    fn build(g: &GuidanceSection, a: &AccelerationSection) -> (GuidanceLaw, Vec<String>) {
+        GuidanceLaw::new(g, a, false).expect("builds")
+    }
 
     /// The law follows `[guidance] law`; a Riccati observer gain that falls back leaves a
     /// note for the log, as does a covariance estimator gain.
     #[test]
     fn builds_the_law_the_scenario_asks_for() {
-        let mut scenario = Scenario::default();
-        let (law, notes) = GuidanceLaw::from_scenario(&scenario).expect("builds");
+        let mut g = GuidanceSection::default();
+        let a = AccelerationSection::default();
+        let (law, notes) = build(&g, &a);
         assert!(matches!(law, GuidanceLaw::Velocity(_)) && notes.is_empty());
 
-        scenario.guidance.estimator = true;
-        scenario.guidance.estimator_gain_mode = EstimatorGainMode::Covariance;
-        let (law, notes) = GuidanceLaw::from_scenario(&scenario).expect("builds");
+        g.estimator = true;
+        g.estimator_gain_mode = EstimatorGainMode::Covariance;
+        let (law, notes) = build(&g, &a);
         assert_eq!(law.state_len(), 10);
         assert!(notes[0].contains("L_v"), "{notes:?}");
 
-        scenario.guidance.law = GuidanceLawKind::Acceleration;
-        scenario.acceleration = AccelerationSection {
+        g.law = GuidanceLawKind::Acceleration;
+        let riccati = AccelerationSection {
             observer_gain_mode: ObserverGainMode::Riccati,
             riccati_process_psd: 1e-4,
             riccati_noise_psd: 1.0,
             ..AccelerationSection::default()
         };
-        let (law, notes) = GuidanceLaw::from_scenario(&scenario).expect("builds");
+        let (law, notes) = build(&g, &riccati);
         assert!(matches!(law, GuidanceLaw::Acceleration(_)));
         assert!(notes[0].contains("Riccati gain rejected"), "{notes:?}");
+    }
+
+    /// With compensation each law carries the compensation's state (3 values).
+    #[test]
+    fn compensation_adds_its_state() {
+        let mut g = GuidanceSection::default();
+        let a = AccelerationSection::default();
+        for law in [GuidanceLawKind::Velocity, GuidanceLawKind::Acceleration] {
+            g.law = law;
+            let plain = build(&g, &a).0.state_len();
+            let compensated = GuidanceLaw::new(&g, &a, true)
+                .expect("builds")
+                .0
+                .state_len();
+            assert_eq!(compensated, plain + 3);
+        }
     }
 
     /// Before the first measurement the acceleration law commands a_F = 0, moves nothing, and
@@ -298,9 +244,11 @@ mod tests {
     /// frame arrives).
     #[test]
     fn acceleration_law_idles_with_its_signals() {
-        let mut scenario = Scenario::default();
-        scenario.guidance.law = GuidanceLawKind::Acceleration;
-        let (law, _) = GuidanceLaw::from_scenario(&scenario).expect("builds");
+        let g = GuidanceSection {
+            law: GuidanceLawKind::Acceleration,
+            ..GuidanceSection::default()
+        };
+        let (law, _) = build(&g, &AccelerationSection::default());
         let x = law.initial_state(&Vec3::new(25.0, 6.25, 3.75));
         let mut dx = vec![1.0; law.state_len()];
         let out = law.idle(&x, &mut dx);
@@ -314,13 +262,23 @@ mod tests {
     /// that is the measurement itself, so the command is the same.
     #[test]
     fn acceleration_law_coasts_on_its_observer() {
-        let mut scenario = Scenario::default();
-        scenario.guidance.law = GuidanceLawKind::Acceleration;
-        scenario.guidance.shaping_pole_rps = 0.0;
-        let (law, _) = GuidanceLaw::from_scenario(&scenario).expect("builds");
+        let g = GuidanceSection {
+            law: GuidanceLawKind::Acceleration,
+            shaping_pole_rps: 0.0,
+            ..GuidanceSection::default()
+        };
+        let (law, _) = build(&g, &AccelerationSection::default());
+        let GuidanceLaw::Acceleration(acceleration) = &law else {
+            panic!("an acceleration law");
+        };
         let r_c = Vec3::new(4.0, 1.0, 0.0);
         let mut x = law.initial_state(&r_c);
-        x[crate::guidance::acceleration::layout::B_HAT] = 8.0;
+        let state = acceleration.unpack(&x);
+        crate::guidance::acceleration::AccelerationState {
+            b_hat_ft: 8.0,
+            ..state
+        }
+        .pack(&mut x);
         let input = GuidanceInput::steady(r_c, r_c * 8.0);
         let mut dx = vec![0.0; law.state_len()];
         let measured = law.derivative(&x, &input, &mut dx);

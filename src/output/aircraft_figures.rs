@@ -102,7 +102,7 @@ pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Resu
             logged,
             "ψ, deg",
             |a| a.air_data.euler.psi_rad,
-            |a| crate::world::kinematic::wrap_angle_rad(a.autopilot.euler_cmd.psi_rad),
+            |a| crate::frames::wrap_angle_rad(a.autopilot.euler_cmd.psi_rad),
             true,
         ),
     ];

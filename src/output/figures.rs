@@ -147,7 +147,10 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
                 y_label: "‖d̂‖, ft/s".to_string(),
                 series: vec![Series::new(
                     "estimate of ‖d_T‖",
-                    logged.iter().map(|s| s.d_hat.norm()).collect(),
+                    logged
+                        .iter()
+                        .map(|s| s.target_motion.vector().norm())
+                        .collect(),
                     TRUTH,
                 )],
             },
@@ -192,7 +195,7 @@ fn velocity_law_estimates(b_panel: Panel, logged: &[Snapshot]) -> Vec<Panel> {
         series: vec![
             Series::new(
                 "b̂ d̂ (estimate)",
-                component(logged, |s| s.d_hat * s.b_hat_ft, i),
+                component(logged, |s| s.target_motion.vector() * s.b_hat_ft, i),
                 TRUTH,
             ),
             Series::new(

@@ -2,7 +2,7 @@
 //! the measurement (centroid cross, maximal-length segment, status line).
 
 use crate::render::frame::Frame;
-use crate::sensor::CameraSensor;
+use crate::sensing::CameraSensor;
 use crate::vision::BlobMeasurement;
 use crate::vision::overlay::draw_measurement_overlay;
 use std::path::{Path, PathBuf};
@@ -68,7 +68,7 @@ pub enum RenderFrameError {
     Sim(#[from] crate::sim::SimError),
     /// The camera could not be set up or the frame not taken.
     #[error("{0}")]
-    Camera(#[from] crate::sensor::SensorError),
+    Camera(#[from] crate::sensing::SensorError),
     /// The PNG could not be written.
     #[error("{0}")]
     Write(String),
@@ -81,7 +81,7 @@ pub fn render_frame_at(
     scenario: &crate::scenario::Scenario,
     t_s: f64,
     path: &Path,
-) -> Result<crate::sensor::FrameRecord, RenderFrameError> {
+) -> Result<crate::sensing::FrameRecord, RenderFrameError> {
     let mut sim = crate::sim::Simulation::new(scenario)?;
     let target_tick = (t_s / scenario.run.dt_s).round() as u64;
     while sim.tick() < target_tick.min(sim.total_ticks()) {

@@ -2,9 +2,9 @@
 
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::GuidanceLawKind;
-use crate::sensing::ImageMeasurement;
 use crate::sim::{SimError, Simulation, Snapshot, StageTimes};
 use crate::vision::BlobStatus;
+use crate::vision::ImageMeasurement;
 use serde::Serialize;
 
 /// How the run ended.
@@ -228,7 +228,7 @@ impl Summary {
             b_true_ft: sim.scenario().target.size_ft,
             b_hat_final_ft: last.map_or(f64::NAN, |s| s.b_hat_ft),
             law: sim.scenario().guidance.law,
-            d_hat_norm_final: last.map_or(f64::NAN, |s| s.d_hat.norm()),
+            d_hat_norm_final: last.map_or(f64::NAN, |s| s.target_motion.vector().norm()),
             intercept_time_s: sim.intercept_time_s(),
             min_range_ft: sim.min_range_ft(),
             rms_error_last20s_ft: rms_error_since(logged, duration_s - 20.0),

@@ -2,10 +2,11 @@
 //! early keeps what it logged.
 
 use crate::follower::AircraftActuation;
+use crate::frames::wrap_angle_rad;
 use crate::guidance::acceleration::AccelerationGuidanceOutput;
+use crate::guidance::signals::{FollowerCommand, TargetMotionEstimate};
 use crate::sim::Snapshot;
 use crate::vision::BlobStatus;
-use crate::world::kinematic::{FollowerCommand, wrap_angle_rad};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
@@ -20,16 +21,20 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
     let [fn_, fe, fd] = v(&s.follower_position_ned_ft);
     let [cn, ce, cd] = v(&s.command_ned_ft);
     let [xn, xe, xd] = v(&s.excited_command_ned_ft);
-    let [dx, dy, dz] = v(&s.d_hat);
+    let [dx, dy, dz] = v(&s.target_motion.vector());
     // d̂ is a scaled velocity (1/s) in the velocity law, a filtered acceleration bound (ft/s)
     // in the acceleration law: the column names carry the law's unit.
-    let d_names = match s.guidance.command {
-        FollowerCommand::Velocity(_) => ["d_hat_x_per_s", "d_hat_y_per_s", "d_hat_z_per_s"],
-        FollowerCommand::Acceleration(_) => ["d_hat_x_fps", "d_hat_y_fps", "d_hat_z_fps"],
+    let d_names = match s.target_motion {
+        TargetMotionEstimate::ScaledVelocity(_) => {
+            ["d_hat_x_per_s", "d_hat_y_per_s", "d_hat_z_per_s"]
+        }
+        TargetMotionEstimate::FilteredAccelerationBound(_) => {
+            ["d_hat_x_fps", "d_hat_y_fps", "d_hat_z_fps"]
+        }
     };
     let [rx, ry, rz] = s.r_measured.map_or([f64::NAN; 3], |r| v(&r));
     let [rcx, rcy, rcz] = v(&s.guidance.r_command);
-    let image = |m: Option<crate::sensing::ImageMeasurement>| {
+    let image = |m: Option<crate::vision::ImageMeasurement>| {
         m.map_or([f64::NAN; 3], |m| [m.y_i_px, m.z_i_px, m.b_i_px])
     };
     let [yi, zi, bi] = image(s.frame.and_then(|f| f.measured));

@@ -1,6 +1,7 @@
 //! `[acceleration]`: gains of the Chapter 5 acceleration guidance law (SPEC §5) and of its
-//! Chapter 6 observer-gain design (SPEC §6, (6.62)). The projection bounds of b̂ and d̂ and
-//! b̂(0) are shared with the velocity law and live in `[guidance]`.
+//! Chapter 6 observer-gain design (SPEC §6, (6.62)). The projection bound of b̂ and b̂(0) are
+//! shared with the velocity law and live in `[guidance]`; d̂, which is a filtered
+//! acceleration bound in ft/s here and not a scaled velocity, is bounded here.
 
 use serde::{Deserialize, Serialize};
 
@@ -52,12 +53,16 @@ pub struct AccelerationSection {
     /// a_f < 0, pole of the sign filter Ṡ_f = A_f (S_f - S_χ(y_a)) (5.34), A_f = a_f I,
     /// rad/s. Not in the seed: -10.
     pub sign_filter_pole_rps: f64,
-    /// 6-DOF follower only (beyond the seed): time constant τ of the leaky integral
-    /// χ' = (V_F - V_a) - χ/τ of the follower's velocity shortfall, s. The law reads
-    /// y - χ/b̂, the measurement as if the follower had flown the V_F = ∫ a_F it was given,
-    /// for the aircraft's lag; what persists longer than τ it sees and corrects (see
-    /// `guidance::acceleration`). 2 s: the aircraft's velocity follows V_F within a second or
-    /// two.
+    /// Projection bound of ‖d̂‖ (5.41), ft/s. Not in the seed: 20, loose against the seed
+    /// target's filtered accelerations (|a_T| ≤ 3.2 ft/s², so |d_i| ≤ a_T/λ ≈ 1.6 ft/s).
+    pub d_hat_max_fps: f64,
+    /// Projection tolerance ε_d of f_d (Appendix A), ft²/s².
+    pub d_hat_epsilon_fps2: f64,
+    /// 6-DOF follower only (beyond the seed): time constant τ of the lead
+    /// ℓ' = (V_F - V_a) - ℓ/τ, the leaky integral of the follower's velocity shortfall, s. The
+    /// law reads y - ℓ/b̂, the measurement as if the follower had flown the V_F = ∫ a_F it was
+    /// given, for the aircraft's lag; what persists longer than τ it sees and corrects (see
+    /// `guidance::compensation`).
     pub shortfall_time_constant_s: f64,
 }
 
@@ -74,6 +79,8 @@ impl Default for AccelerationSection {
             rho: 1.0,
             gamma_d: 0.2,
             sign_filter_pole_rps: -10.0,
+            d_hat_max_fps: 20.0,
+            d_hat_epsilon_fps2: 1.0,
             shortfall_time_constant_s: 4.0,
         }
     }
@@ -111,6 +118,8 @@ impl AccelerationSection {
         check::positive("acceleration.chi", self.chi)?;
         check::non_negative("acceleration.rho", self.rho)?;
         check::non_negative("acceleration.gamma_d", self.gamma_d)?;
+        check::positive("acceleration.d_hat_max_fps", self.d_hat_max_fps)?;
+        check::positive("acceleration.d_hat_epsilon_fps2", self.d_hat_epsilon_fps2)?;
         check::in_closed(
             "acceleration.shortfall_time_constant_s",
             self.shortfall_time_constant_s,

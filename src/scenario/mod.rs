@@ -2,6 +2,7 @@
 //! validation whose errors name the file, the key, the value and the allowed range.
 
 mod acceleration;
+mod atmosphere;
 mod camera;
 pub mod check;
 mod control;
@@ -9,6 +10,7 @@ mod sections;
 mod sensor;
 
 pub use acceleration::*;
+pub use atmosphere::*;
 pub use camera::*;
 pub use control::*;
 pub use sections::*;

@@ -324,6 +324,15 @@ impl Default for GuidanceSection {
 }
 
 impl GuidanceSection {
+    /// The length of the formation command, ft: ‖R_c‖ for the inertial frame, the commanded
+    /// range otherwise.
+    pub fn command_length_ft(&self) -> f64 {
+        match self.command_frame {
+            CommandFrame::Inertial => crate::frames::Vec3::from(self.command_ft).norm(),
+            _ => self.command_range_ft,
+        }
+    }
+
     fn validate(&self) -> Check {
         check::finite_vec("guidance.command_ft", &self.command_ft)?;
         check::in_closed("guidance.command_range_ft", self.command_range_ft, 0.0, 1e5)?;
@@ -520,7 +529,7 @@ pub struct Scenario {
     /// Camera (sensor `camera`).
     pub camera: super::CameraSection,
     /// The air the 6-DOF follower flies in (`follower.model = "aircraft"`).
-    pub atmosphere: crate::world::atmosphere::AtmosphereConfig,
+    pub atmosphere: super::AtmosphereConfig,
     /// The 6-DOF follower's flight controller (`follower.model = "aircraft"`).
     pub autopilot: super::AutopilotSection,
     /// Outputs.

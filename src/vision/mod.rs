@@ -25,6 +25,7 @@ mod edge_points;
 mod feret;
 mod font;
 mod frame;
+mod image_measurement;
 mod measure;
 pub mod overlay;
 mod pipeline;
@@ -43,5 +44,6 @@ pub use config::{
 };
 pub use feret::{FeretDiameter, FeretFinder, PixelPoint, convex_hull_into, max_feret_diameter};
 pub use frame::FrameError;
+pub use image_measurement::ImageMeasurement;
 pub use pipeline::{BlobMeasurement, BlobStatus, VisionPipeline};
 pub use truth::{ImageTruth, TruthProjector, image_truth};

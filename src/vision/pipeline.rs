@@ -2,8 +2,8 @@
 //! blob selection, centroid and maximal length. [`VisionPipeline`] owns every scratch buffer,
 //! so measuring frames of an unchanged size allocates nothing once the buffers have grown.
 
+use super::ImageMeasurement;
 use crate::render::camera::CameraIntrinsics;
-use crate::sensing::ImageMeasurement;
 
 use super::background::BackgroundFitter;
 use super::components::{BlobSummary, ComponentLabeller, PixelBox};

@@ -7,9 +7,9 @@
 //! The measured centroid is the silhouette's area centroid, not the projected reference point;
 //! the difference between the two is part of what the simulator reports.
 
+use super::ImageMeasurement;
 use crate::frames::Vec3;
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use crate::sensing::ImageMeasurement;
 
 use super::feret::{FeretDiameter, FeretFinder, PixelPoint};
 

@@ -1,6 +1,5 @@
-//! The truth: the target's motion, the follower's plant, and the air it flies in.
+//! The truth: the target's motion, the 6-DOF aircraft's plant, and the air it flies in.
 
 pub mod aircraft;
 pub mod atmosphere;
-pub mod kinematic;
 pub mod target;

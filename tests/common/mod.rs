@@ -161,7 +161,7 @@ pub fn assert_noisy_run_bounded(report: &RunReport) {
         assert!(row.follower_velocity_ned_fps.norm() < 300.0, "{}", row.t_s);
         assert!((row.relative_ned_ft - row.command_ned_ft).norm() < 300.0);
         assert!((0.9..=30.1).contains(&row.b_hat_ft));
-        assert!(row.d_hat.norm() <= (20f64.powi(2) + 1.0).sqrt() + 1e-9);
+        assert!(row.target_motion.vector().norm() <= (20f64.powi(2) + 1.0).sqrt() + 1e-9);
     }
     assert!((s.b_hat_final_ft - 8.0).abs() < 0.1 * 8.0);
     for (axis, rms) in s.rms_error_last20s_ft.iter().enumerate() {

@@ -14,49 +14,21 @@
 //!
 //! State slice: `[R_F (3), φ, θ, ψ, v (3)]`.
 
-use crate::frames::{EulerAngles, GRAVITY_FPS2, Mat3, Vec3};
-use std::f64::consts::PI;
+use crate::frames::{EulerAngles, GRAVITY_FPS2, Vec3, wrap_angle_rad};
+use crate::guidance::signals::{CommandKind, FollowerCommand};
 
 /// Length of the kinematic follower's state slice.
 pub const STATE_LEN: usize = 9;
 /// Offset of v in the state slice.
 const VELOCITY: usize = 6;
 
-/// What a guidance law commands the follower with.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum FollowerCommand {
-    /// Inertial velocity V_F, NED, ft/s (the velocity law, (4.3)).
-    Velocity(Vec3),
-    /// Inertial acceleration a_F, NED, ft/s² (the acceleration law, (5.38)).
-    Acceleration(Vec3),
-}
-
-/// Which command the follower realises exactly.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Realises {
-    /// Ṙ_F = V_F as commanded.
-    Velocity,
-    /// Ṙ_F = V_F, V̇_F = a_F as commanded.
-    Acceleration,
-}
-
 /// A follower that flies the guidance command exactly.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KinematicFollower {
     /// Attitude lag τ, s.
     pub attitude_lag_s: f64,
-    /// The command it realises.
-    pub realises: Realises,
-}
-
-/// Angle wrapped into (-π, π].
-pub fn wrap_angle_rad(angle: f64) -> f64 {
-    let wrapped = (angle + PI).rem_euclid(2.0 * PI) - PI;
-    if wrapped <= -PI {
-        wrapped + 2.0 * PI
-    } else {
-        wrapped
-    }
+    /// The command it realises: Ṙ_F = V_F, or Ṙ_F = V_F and V̇_F = a_F.
+    pub realises: CommandKind,
 }
 
 impl KinematicFollower {
@@ -83,7 +55,7 @@ impl KinematicFollower {
     /// integrates accelerations.
     pub fn velocity_ned_fps(&self, x: &[f64], command: &FollowerCommand) -> Vec3 {
         match (self.realises, command) {
-            (Realises::Velocity, FollowerCommand::Velocity(v)) => *v,
+            (CommandKind::Velocity, FollowerCommand::Velocity(v)) => *v,
             _ => Self::heading_velocity_ned_fps(x),
         }
     }
@@ -126,12 +98,9 @@ impl KinematicFollower {
         Vec3::new(phi_rate, theta_rate, psi_rate)
     }
 
-    /// Body rates [p, q, r] from Euler-angle rates: H = P⁻¹ (SPEC §7).
-    pub fn body_rates(attitude: &EulerAngles, euler_rates: &Vec3) -> Vec3 {
-        let (sf, cf) = attitude.phi_rad.sin_cos();
-        let (st, ct) = attitude.theta_rad.sin_cos();
-        let h = Mat3::new(1.0, 0.0, -st, 0.0, cf, sf * ct, 0.0, -sf, cf * ct);
-        h * euler_rates
+    /// Body rates [p, q, r] of a state slice, from its Euler-angle rates: H = P⁻¹ (SPEC §7).
+    pub fn body_rates(&self, x: &[f64]) -> Vec3 {
+        Self::attitude(x).body_rates_from_rates_matrix() * self.attitude_rates(x)
     }
 
     /// Writes ẋ: Ṙ_F = V_F, the attitude rates toward v, and v̇: a_F when the follower
@@ -140,16 +109,16 @@ impl KinematicFollower {
     pub fn derivative(&self, x: &[f64], command: &FollowerCommand, dx: &mut [f64]) {
         debug_assert!(matches!(
             (self.realises, command),
-            (Realises::Velocity, FollowerCommand::Velocity(_))
-                | (Realises::Acceleration, FollowerCommand::Acceleration(_))
+            (CommandKind::Velocity, FollowerCommand::Velocity(_))
+                | (CommandKind::Acceleration, FollowerCommand::Acceleration(_))
         ));
         let velocity = self.velocity_ned_fps(x, command);
         dx[0..3].copy_from_slice(velocity.as_slice());
         let rates = self.attitude_rates(x);
         dx[3..6].copy_from_slice(rates.as_slice());
         let v_rate = match (self.realises, command) {
-            (Realises::Acceleration, FollowerCommand::Acceleration(a)) => *a,
-            (Realises::Velocity, FollowerCommand::Velocity(v)) => {
+            (CommandKind::Acceleration, FollowerCommand::Acceleration(a)) => *a,
+            (CommandKind::Velocity, FollowerCommand::Velocity(v)) => {
                 (v - Self::heading_velocity_ned_fps(x)) / self.attitude_lag_s
             }
             _ => Vec3::zeros(),
@@ -168,33 +137,13 @@ impl KinematicFollower {
 mod tests {
     use super::*;
 
-    #[test]
-    fn wrap_is_in_range() {
-        for a in [-10.0, -PI, -1.0, 0.0, 1.0, PI, 7.0] {
-            let w = wrap_angle_rad(a);
-            assert!(w > -PI - 1e-15 && w <= PI + 1e-15, "{a} -> {w}");
-            let turns = (a - w) / (2.0 * PI);
-            assert!((turns - turns.round()).abs() < 1e-12, "{a} -> {w}");
-        }
-    }
-
-    /// H inverts P: P H = I.
-    #[test]
-    fn body_rates_invert_euler_rate_matrix() {
-        let att = EulerAngles::new(0.4, -0.3, 1.2);
-        let rates = Vec3::new(0.1, -0.2, 0.3);
-        let pqr = KinematicFollower::body_rates(&att, &rates);
-        let back = att.rates_from_body_rates_matrix() * pqr;
-        assert!((back - rates).norm() < 1e-12);
-    }
-
     /// Flying a constant climbing right-hand velocity: the attitude converges to its
     /// direction and the wings level once the turn toward it is over.
     #[test]
     fn attitude_follows_velocity() {
         let follower = KinematicFollower {
             attitude_lag_s: 0.05,
-            realises: Realises::Velocity,
+            realises: CommandKind::Velocity,
         };
         let v = Vec3::new(30.0, 40.0, -5.0);
         let mut x = follower.initial_state(&Vec3::zeros(), &EulerAngles::default(), &Vec3::zeros());
@@ -220,7 +169,7 @@ mod tests {
     fn acceleration_is_integrated() {
         let follower = KinematicFollower {
             attitude_lag_s: 0.2,
-            realises: Realises::Acceleration,
+            realises: CommandKind::Acceleration,
         };
         let v0 = Vec3::new(50.0, 0.0, 0.0);
         let x = follower.initial_state(&Vec3::zeros(), &EulerAngles::default(), &v0);

@@ -14,9 +14,10 @@
 //! commanded ‖R_c‖²/(3 b²) (`command`: one level for the run). Either way
 //! SNR = 10 log10(E‖r‖² / E‖n_r‖²) in dB; the run reports the SNR it realised.
 
+use super::transform::{image_from_relative_position, scaled_relative_position};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{NoiseOn, Scenario, SnrReference};
-use crate::sensing::{ImageMeasurement, image_from_relative_position, scaled_relative_position};
+use crate::vision::ImageMeasurement;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
@@ -52,14 +53,12 @@ pub struct NoisySensor {
 }
 
 impl NoisySensor {
-    /// The sensor a scenario's `[sensor]` describes (seeded from `[run] seed`).
-    pub fn new(scenario: &Scenario) -> Self {
+    /// The sensor a scenario's `[sensor]` describes (seeded from `[run] seed`), measuring a
+    /// target of size `size_ft` through a camera of focal length `focal_px` (pixel noise) and
+    /// referring the SNR to a command of length `command_norm_ft` (`snr_reference =
+    /// "command"`).
+    pub fn new(scenario: &Scenario, command_norm_ft: f64) -> Self {
         let sensor = &scenario.sensor;
-        let g = &scenario.guidance;
-        let command_norm_ft = match g.command_frame {
-            crate::scenario::CommandFrame::Inertial => Vec3::from(g.command_ft).norm(),
-            _ => g.command_range_ft,
-        };
         let size_ft = scenario.target.size_ft;
         Self {
             noise_on: sensor.noise_on,
@@ -163,6 +162,9 @@ mod tests {
     use crate::frames::EulerAngles;
     use crate::scenario::SensorMode;
 
+    /// ‖[32, 8, 0]‖ ft, the seed's formation command.
+    const SEED_COMMAND_FT: f64 = 32.984845004941285;
+
     fn scenario(noise_on: NoiseOn, reference: SnrReference) -> Scenario {
         let mut s = Scenario::default();
         s.sensor.mode = SensorMode::Noisy;
@@ -177,7 +179,10 @@ mod tests {
     #[test]
     fn realised_snr_is_the_stated_one() {
         for reference in [SnrReference::Signal, SnrReference::Command] {
-            let mut sensor = NoisySensor::new(&scenario(NoiseOn::ScaledPosition, reference));
+            let mut sensor = NoisySensor::new(
+                &scenario(NoiseOn::ScaledPosition, reference),
+                SEED_COMMAND_FT,
+            );
             let relative = Vec3::new(32.0, 8.0, 0.0);
             for _ in 0..20_000 {
                 sensor.draw(&relative, &Mat3::identity());
@@ -190,8 +195,14 @@ mod tests {
     /// Signal reference: σ scales with ‖r‖; command reference: it does not.
     #[test]
     fn sigma_follows_its_reference() {
-        let signal = NoisySensor::new(&scenario(NoiseOn::ScaledPosition, SnrReference::Signal));
-        let command = NoisySensor::new(&scenario(NoiseOn::ScaledPosition, SnrReference::Command));
+        let signal = NoisySensor::new(
+            &scenario(NoiseOn::ScaledPosition, SnrReference::Signal),
+            SEED_COMMAND_FT,
+        );
+        let command = NoisySensor::new(
+            &scenario(NoiseOn::ScaledPosition, SnrReference::Command),
+            SEED_COMMAND_FT,
+        );
         let r_c = Vec3::new(4.0, 1.0, 0.0);
         let expected = (r_c.norm_squared() / 3.0 / 10f64.powf(2.5)).sqrt();
         assert!((signal.scaled_sigma(&r_c) - expected).abs() < 1e-15);
@@ -209,7 +220,7 @@ mod tests {
         let draws = |seed: u64| {
             let mut s = scenario(NoiseOn::ScaledPosition, SnrReference::Signal);
             s.run.seed = seed;
-            let mut sensor = NoisySensor::new(&s);
+            let mut sensor = NoisySensor::new(&s, SEED_COMMAND_FT);
             (0..5)
                 .map(|_| {
                     sensor.draw(&Vec3::new(200.0, 50.0, 30.0), &Mat3::identity());
@@ -226,7 +237,10 @@ mod tests {
     /// error moves it sideways by aI δ/l (at the image centre, level attitude).
     #[test]
     fn pixel_noise_propagates_through_the_sensing_transform() {
-        let mut sensor = NoisySensor::new(&scenario(NoiseOn::Pixels, SnrReference::Signal));
+        let mut sensor = NoisySensor::new(
+            &scenario(NoiseOn::Pixels, SnrReference::Signal),
+            SEED_COMMAND_FT,
+        );
         let attitude = EulerAngles::new(0.1, -0.05, 0.3);
         let l_be = attitude.body_from_ned();
         let relative = l_be.transpose() * Vec3::new(100.0, 0.0, 0.0);

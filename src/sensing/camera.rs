@@ -4,6 +4,7 @@
 //! reach the guidance `latency_frames` frames after their frame was taken and are held
 //! between frames; a frame whose status is not `Ok` is a lost frame: the guidance then coasts.
 
+use super::transform::scaled_relative_position;
 use crate::frames::{EulerAngles, Vec3};
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use crate::render::frame::Frame;
@@ -12,10 +13,9 @@ use crate::render::mesh::TargetMesh;
 use crate::render::renderer::{PendingFrame, RenderTimings, Renderer};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
 use crate::scenario::{BlobChoice, CameraSection, Scenario, SkyKind};
-use crate::sensing::{ImageMeasurement, scaled_relative_position};
 use crate::vision::{
-    BlobMeasurement, BlobSelection, BlobStatus, ImageTruth, TruthProjector, VisionConfig,
-    VisionPipeline,
+    BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ImageTruth, TruthProjector,
+    VisionConfig, VisionPipeline,
 };
 use std::collections::VecDeque;
 use std::path::Path;

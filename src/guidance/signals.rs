@@ -1,0 +1,127 @@
+//! What flows into the guidance stage and out of it: the measurement, the user's command and
+//! the excitation in; the follower's command and the signals telemetry and the excitation read
+//! out.
+
+use super::acceleration::AccelerationGuidanceOutput;
+use super::excitation::ExcitationOffset;
+use crate::frames::Vec3;
+
+/// What a guidance law commands the follower with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FollowerCommand {
+    /// Inertial velocity V_F, NED, ft/s (the velocity law, (4.3)).
+    Velocity(Vec3),
+    /// Inertial acceleration a_F, NED, ft/s² (the acceleration law, (5.38)).
+    Acceleration(Vec3),
+}
+
+impl FollowerCommand {
+    /// Which kind of command this is.
+    pub fn kind(&self) -> CommandKind {
+        match self {
+            Self::Velocity(_) => CommandKind::Velocity,
+            Self::Acceleration(_) => CommandKind::Acceleration,
+        }
+    }
+}
+
+/// The kind of command a law gives the follower (decided by `[guidance] law`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CommandKind {
+    /// V_F, ft/s.
+    Velocity,
+    /// a_F, ft/s².
+    Acceleration,
+}
+
+/// What the follower's own navigation tells the guidance about how it flies its command, for a
+/// follower that does not realise the command exactly (the 6-DOF aircraft, see
+/// [`super::compensation`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FollowerFeedback {
+    /// The follower's inertial velocity V_a, NED, ft/s.
+    pub realised_velocity_ned_fps: Vec3,
+    /// V_F - V_a for a follower that integrates V_F = V_F(0) + ∫ a_F and flies it (the
+    /// acceleration law), NED, ft/s; zero under the velocity law.
+    pub velocity_shortfall_ned_fps: Vec3,
+}
+
+/// What a guidance law needs at one instant besides its own state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GuidanceInput {
+    /// Measured scaled relative position r (or r*), NED; `None` while the target is lost: the
+    /// velocity law coasts on its estimate or its command and stops adapting, the
+    /// acceleration law coasts on its observer's prediction C ẑ.
+    pub r_measured: Option<Vec3>,
+    /// R_c, the user's relative-position command, NED, ft (zero for interception).
+    pub command_ned_ft: Vec3,
+    /// Ṙ_c, ft/s.
+    pub command_rate_ned_fps: Vec3,
+    /// The excitation added to the command after the shaping filter (4.31).
+    pub excitation: ExcitationOffset,
+    /// How the follower flies the command (6-DOF follower); `None` for the kinematic
+    /// follower, which realises it exactly.
+    pub follower: Option<FollowerFeedback>,
+}
+
+#[cfg(test)]
+impl GuidanceInput {
+    /// A test input: measurement `r` and command `command_ned_ft`, nothing moving, no
+    /// excitation, a follower that flies its command.
+    pub(crate) fn steady(r: Vec3, command_ned_ft: Vec3) -> Self {
+        Self {
+            r_measured: Some(r),
+            command_ned_ft,
+            command_rate_ned_fps: Vec3::zeros(),
+            excitation: ExcitationOffset::default(),
+            follower: None,
+        }
+    }
+}
+
+/// The errors whose energy sets the intelligent excitation's amplitude (4.31), (5.27).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ExcitationErrors {
+    /// From the measurement (`excitation.error = "measured"`): e = r* - r_c (velocity law,
+    /// (4.31)); the combined output y*_a = 2y* - y_m - C ẑ (acceleration law: (5.27)
+    /// integrates ‖ξ_a‖², of which y_a is the measurable part; the error y - y_c would keep
+    /// the amplitude up through the reference model's lag alone).
+    pub measured: Vec3,
+    /// From the law's filtered states (`excitation.error = "estimated"`): r̂ - r_c (velocity
+    /// law with the estimator (6.10)); C (ẑ - z_m), the observer's estimate of the output
+    /// tracking error C e (acceleration law). Without measurement noise both tend to zero with
+    /// ξ; with noise they stay near the estimator's residual noise instead of the sensor's.
+    pub estimated: Vec3,
+}
+
+/// A law's output at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GuidanceOutput {
+    /// The command for the follower: V_F (4.3) or a_F (5.38).
+    pub command: FollowerCommand,
+    /// The scaled command the law tracks (shaped, excitation included): r_c or y_c.
+    pub r_command: Vec3,
+    /// What drives the excitation's amplitude.
+    pub excitation_errors: ExcitationErrors,
+    /// The acceleration law's internal signals (y_m, C ẑ, y_a, w_f, …).
+    pub acceleration: Option<AccelerationGuidanceOutput>,
+}
+
+/// The law's estimate of how the target moves, in the law's own terms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TargetMotionEstimate {
+    /// d̂ = V_T/b, the scaled target velocity, 1/s (velocity law, (4.5)).
+    ScaledVelocity(Vec3),
+    /// d̂, the adaptive bound of the filtered target acceleration, ft/s (acceleration law,
+    /// (5.41)).
+    FilteredAccelerationBound(Vec3),
+}
+
+impl TargetMotionEstimate {
+    /// The estimate's vector, in its own unit.
+    pub fn vector(&self) -> Vec3 {
+        match self {
+            Self::ScaledVelocity(v) | Self::FilteredAccelerationBound(v) => *v,
+        }
+    }
+}

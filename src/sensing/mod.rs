@@ -1,0 +1,122 @@
+//! The sensor stage (DESIGN §1, `[sensor] mode`): what the follower measures of the target.
+//!
+//! - `perfect`: r = R/b exactly, at every instant (seed Chapters 4-5).
+//! - `noisy`: r* = r + noise, or noise on (yI, zI, bI), drawn every sample period and held
+//!   ([`noisy`], seed Chapter 6).
+//! - `camera`: the target rendered as the follower's camera sees it and measured by the image
+//!   pipeline, every frame, delivered after its latency ([`camera`]).
+//!
+//! All three go through the sensing transform (3.3)-(3.12) of [`transform`] (the perfect and
+//! noisy sensors in its exact form). The perfect and noisy sensors are continuous: the
+//! simulation evaluates them at every integration stage. The camera delivers frames.
+
+pub mod camera;
+pub mod noisy;
+pub mod transform;
+
+pub use camera::{CameraSensor, CaptureGeometry, FrameRecord, SensorError};
+pub use noisy::NoisySensor;
+pub use transform::{
+    bearing_elevation_rad, image_from_relative_position, line_of_sight_body,
+    scaled_relative_position,
+};
+
+use crate::frames::{Mat3, Vec3};
+use crate::scenario::{Scenario, SensorMode};
+
+/// The sensor of a run.
+#[derive(Debug)]
+pub enum Sensor {
+    /// r = R/b, the target's true size b in ft.
+    Perfect {
+        /// b, ft.
+        size_ft: f64,
+    },
+    /// r* with held noise.
+    Noisy(NoisySensor),
+    /// The camera in the loop.
+    Camera(Box<CameraSensor>),
+}
+
+impl Sensor {
+    /// The sensor a scenario's `[sensor]` describes; `command_norm_ft` is the length of the
+    /// formation command a noisy sensor may refer its SNR to.
+    pub fn new(scenario: &Scenario, command_norm_ft: f64) -> Result<Self, SensorError> {
+        Ok(match scenario.sensor.mode {
+            SensorMode::Perfect => Self::Perfect {
+                size_ft: scenario.target.size_ft,
+            },
+            SensorMode::Noisy => Self::Noisy(NoisySensor::new(scenario, command_norm_ft)),
+            SensorMode::Camera => Self::Camera(Box::new(CameraSensor::new(scenario)?)),
+        })
+    }
+
+    /// Whether the sensor measures at every instant (perfect, noisy) rather than at frames.
+    pub fn is_continuous(&self) -> bool {
+        !matches!(self, Self::Camera(_))
+    }
+
+    /// r at an instant with relative position R (NED, ft) and the follower's L_BE, for the
+    /// continuous sensors (the noisy one with its held noise); `None` when the noisy sensor's
+    /// target is not in front of the camera, and always for the camera, which measures at
+    /// frames only.
+    pub fn continuous_measurement(
+        &self,
+        relative_ned_ft: &Vec3,
+        body_from_ned: &Mat3,
+    ) -> Option<Vec3> {
+        match self {
+            Self::Perfect { size_ft } => Some(relative_ned_ft / *size_ft),
+            Self::Noisy(sensor) => sensor.measure(relative_ned_ft, body_from_ned),
+            Self::Camera(_) => None,
+        }
+    }
+
+    /// Acts at the start of tick `tick` in the geometry then: the noisy sensor draws its next
+    /// sample when one is due (tick 0's is drawn at set-up, see
+    /// [`Self::draw_initial_noise`]); the camera takes a frame when one is due and returns
+    /// the record the guidance holds from now on.
+    pub fn sample(
+        &mut self,
+        tick: u64,
+        t_s: f64,
+        geometry: &CaptureGeometry,
+    ) -> Result<Option<FrameRecord>, SensorError> {
+        match self {
+            Self::Perfect { .. } => Ok(None),
+            Self::Noisy(sensor) => {
+                if tick > 0 && sensor.is_sample_tick(tick) {
+                    let body_from_ned = geometry.follower_attitude.body_from_ned();
+                    sensor.draw(&geometry.relative_ned_ft, &body_from_ned);
+                }
+                Ok(None)
+            }
+            Self::Camera(camera) if camera.is_frame_tick(tick) => camera.capture(t_s, geometry),
+            Self::Camera(_) => Ok(None),
+        }
+    }
+
+    /// Draws the noisy sensor's first sample, for the measurement the filters start at.
+    pub fn draw_initial_noise(&mut self, geometry: &CaptureGeometry) {
+        if let Self::Noisy(sensor) = self {
+            let body_from_ned = geometry.follower_attitude.body_from_ned();
+            sensor.draw(&geometry.relative_ned_ft, &body_from_ned);
+        }
+    }
+
+    /// The camera, in camera runs.
+    pub fn camera(&self) -> Option<&CameraSensor> {
+        match self {
+            Self::Camera(camera) => Some(camera),
+            _ => None,
+        }
+    }
+
+    /// The noisy sensor, in noisy runs.
+    pub fn noisy(&self) -> Option<&NoisySensor> {
+        match self {
+            Self::Noisy(sensor) => Some(sensor),
+            _ => None,
+        }
+    }
+}
