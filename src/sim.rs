@@ -15,7 +15,7 @@
 //! tick: the noisy sensor may draw its noise, the camera may take a frame and deliver one to
 //! the guidance. A snapshot between ticks therefore shows what the guidance works with.
 
-use crate::estimation::{HeldFrame, MeasurementHold, MeasurementSource};
+use crate::estimation::{HeldFrame, MeasurementHold, MeasurementSource, TargetMotionEstimate};
 use crate::follower::AircraftSetupError;
 use crate::follower::aircraft::DRYDEN_SEED_SALT;
 use crate::follower::{Actuation, AircraftActuation, FlightEnvelope, Follower, FollowerConfig};
@@ -23,9 +23,7 @@ use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::command::{self, FormationCommand};
 use crate::guidance::excitation::Excitation;
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
-use crate::guidance::signals::{
-    CommandKind, FollowerCommand, GuidanceInput, GuidanceOutput, TargetMotionEstimate,
-};
+use crate::guidance::signals::{CommandKind, FollowerCommand, GuidanceInput, GuidanceOutput};
 use crate::integrate::Rk4;
 use crate::scenario::{FollowerModel, GuidanceLawKind, Mission, Scenario};
 use crate::sensing::{

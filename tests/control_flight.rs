@@ -10,7 +10,7 @@
 
 mod common;
 
-use wingman::control::{Autopilot, AutopilotInput, AutopilotOutput};
+use wingman::control::{Autopilot, AutopilotInput, AutopilotOutput, AutopilotState};
 use wingman::frames::{SEA_LEVEL_DENSITY_SLUG_FT3, Vec3};
 use wingman::integrate::Rk4;
 use wingman::scenario::{AutopilotSection, TargetSection};
@@ -123,7 +123,8 @@ fn fly_in(
                 actuators: state.actuators,
             };
             let out = autopilot.derivative(&x[STATE_LEN..], &input, &mut scratch);
-            let [wl, wm, wn] = Autopilot::moment_weights(&x[STATE_LEN..]);
+            let weights = AutopilotState::unpack(&x[STATE_LEN..]);
+            let [wl, wm, wn] = weights.moment_weights();
             samples.push(Sample {
                 t_s,
                 velocity_ned_fps: data.velocity_ned_fps,
@@ -138,7 +139,7 @@ fn fly_in(
                     state.actuators.aileron_rad,
                     state.actuators.rudder_rad,
                 ),
-                drag_weight_norm: norm(Autopilot::drag_weights(&x[STATE_LEN..])),
+                drag_weight_norm: norm(weights.drag_weights()),
                 moment_weight_norm_max: norm(wl).max(norm(wm)).max(norm(wn)),
             });
         }

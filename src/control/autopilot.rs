@@ -51,16 +51,8 @@
 //! Ŵ_D' = G_D Proj(Ŵ_D, e_V Φ), which would make the drag estimate run away from the true
 //! drag; the moment laws (7.28) are consistent as printed (J⁻¹Δ enters (7.25) with a minus).
 //!
-//! State layout (offsets in the controller's slice, [`Autopilot::state_len`] values):
-//! ```text
-//! 0  V_I, V_m                        airspeed prefilter (7.33)
-//! 2  φ_I, φ_m, φ̇_m                   roll prefilter
-//! 5  θ_I, θ_m, θ̇_m                   pitch prefilter
-//! 8  ψ_I, ψ_m, ψ̇_m                   heading prefilter (ψ_m continuous, not wrapped)
-//! 11 p_f, ṗ_f, q_f, q̇_f, r_f, ṙ_f     rate command filter
-//! 17 ŵ_N, ŵ_E, ŵ_D                   wind estimate, ft/s
-//! 20 Ŵ_D, Ŵ_l, Ŵ_m, Ŵ_n              RBF weights, RBF_CENTRES each
-//! ```
+//! State: [`AutopilotState`], `[V_I, V_m | φ_I, φ_m, φ̇_m | θ_I, θ_m, θ̇_m | ψ_I, ψ_m, ψ̇_m |
+//! p_f, ṗ_f, q_f, q̇_f, r_f, ṙ_f | ŵ (3) | Ŵ_D, Ŵ_l, Ŵ_m, Ŵ_n]`, the weights RBF_CENTRES each.
 
 use crate::frames::{
     EulerAngles, GRAVITY_FPS2, Mat3, SEA_LEVEL_DENSITY_SLUG_FT3, Vec3, wrap_angle_rad,
@@ -68,40 +60,108 @@ use crate::frames::{
 use crate::guidance::projection::BallBound;
 use crate::scenario::AutopilotSection;
 use crate::scenario::check::{InvalidValue, require};
+use crate::state_block::{StateReader, StateWriter};
 use crate::world::aircraft::actuators::ActuatorLimits;
-use crate::world::aircraft::{AirAngles, AirData, AircraftParams, Controls};
+use crate::world::aircraft::{
+    AirAngles, AirData, AircraftParams, CoefficientValues, ControlEffectiveness, Controls,
+};
 
 use super::prefilter::{
     FilteredCommand, IntegralPrefilter, SecondOrderFilter, SmoothIntegralPrefilter,
 };
-use super::rbf::{RBF_CENTRES, RbfBasis, RbfInput, clamp_ball, project_ball};
+use super::rbf::{RBF_CENTRES, RbfBasis, RbfInput};
 use super::reference::{
     AlphaReferenceInput, VelocityReference, alpha_reference_rad, coordinated_turn_bank_rad,
     flight_path_for_thrust_rad, limit_flight_path, unwrap_near_rad,
 };
 
-/// Offset of the airspeed prefilter state `[V_I, V_m]`.
-pub const AIRSPEED_FILTER: usize = 0;
-/// Offset of the roll prefilter state `[φ_I, φ_m, φ̇_m]`.
-pub const ROLL_FILTER: usize = 2;
-/// Offset of the pitch prefilter state `[θ_I, θ_m, θ̇_m]`.
-pub const PITCH_FILTER: usize = 5;
-/// Offset of the heading prefilter state `[ψ_I, ψ_m, ψ̇_m]`.
-pub const HEADING_FILTER: usize = 8;
-/// Offset of the rate command filter `[p_f, ṗ_f, q_f, q̇_f, r_f, ṙ_f]`.
-pub const RATE_FILTER: usize = 11;
-/// Offset of the wind estimate ŵ (NED, ft/s).
-pub const WIND_ESTIMATE: usize = 17;
-/// Offset of the RBF weights `[Ŵ_D, Ŵ_l, Ŵ_m, Ŵ_n]`, [`RBF_CENTRES`] each.
-pub const WEIGHTS: usize = 20;
 /// Length of the controller's state.
-pub const AUTOPILOT_STATE_LEN: usize = WEIGHTS + 4 * RBF_CENTRES;
+pub const AUTOPILOT_STATE_LEN: usize = 20 + 4 * RBF_CENTRES;
 
 /// Index of each network among the weights: drag, roll, pitch, yaw moment.
 const DRAG: usize = 0;
 const ROLL: usize = 1;
 const PITCH: usize = 2;
 const YAW: usize = 3;
+
+/// The controller's continuous state ([`AUTOPILOT_STATE_LEN`] values, in this order);
+/// holding rates, its derivative.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AutopilotState {
+    /// `[V_I, V_m]`: the airspeed prefilter (7.33).
+    pub airspeed_filter: [f64; 2],
+    /// `[φ_I, φ_m, φ̇_m]`: the roll prefilter.
+    pub roll_filter: [f64; 3],
+    /// `[θ_I, θ_m, θ̇_m]`: the pitch prefilter.
+    pub pitch_filter: [f64; 3],
+    /// `[ψ_I, ψ_m, ψ̇_m]`: the heading prefilter (ψ_m continuous, not wrapped).
+    pub heading_filter: [f64; 3],
+    /// `[ω_f, ω̇_f]` for p, q and r: the rate command filter.
+    pub rate_filter: [[f64; 2]; 3],
+    /// ŵ: the wind estimate, NED, ft/s.
+    pub wind_estimate_ned_fps: Vec3,
+    /// The RBF weights Ŵ_D, Ŵ_l, Ŵ_m, Ŵ_n.
+    pub weights: [[f64; RBF_CENTRES]; 4],
+}
+
+impl AutopilotState {
+    /// Everything zero.
+    pub fn zero() -> Self {
+        Self {
+            airspeed_filter: [0.0; 2],
+            roll_filter: [0.0; 3],
+            pitch_filter: [0.0; 3],
+            heading_filter: [0.0; 3],
+            rate_filter: [[0.0; 2]; 3],
+            wind_estimate_ned_fps: Vec3::zeros(),
+            weights: [[0.0; RBF_CENTRES]; 4],
+        }
+    }
+
+    /// The typed state of a state slice.
+    pub fn unpack(x: &[f64]) -> Self {
+        let mut r = StateReader::new(x);
+        Self {
+            airspeed_filter: r.array(),
+            roll_filter: r.array(),
+            pitch_filter: r.array(),
+            heading_filter: r.array(),
+            rate_filter: [(); 3].map(|_| r.array()),
+            wind_estimate_ned_fps: r.vec3(),
+            weights: [(); 4].map(|_| r.array()),
+        }
+    }
+
+    /// Writes the block into its state slice.
+    pub fn pack(&self, x: &mut [f64]) {
+        let mut w = StateWriter::new(x);
+        w.values(&self.airspeed_filter)
+            .values(&self.roll_filter)
+            .values(&self.pitch_filter)
+            .values(&self.heading_filter);
+        for axis in &self.rate_filter {
+            w.values(axis);
+        }
+        w.vec3(&self.wind_estimate_ned_fps);
+        for network in &self.weights {
+            w.values(network);
+        }
+    }
+
+    /// Ŵ_D.
+    pub fn drag_weights(&self) -> &[f64; RBF_CENTRES] {
+        &self.weights[DRAG]
+    }
+
+    /// Ŵ_l, Ŵ_m, Ŵ_n (in that order).
+    pub fn moment_weights(&self) -> [&[f64; RBF_CENTRES]; 3] {
+        [
+            &self.weights[ROLL],
+            &self.weights[PITCH],
+            &self.weights[YAW],
+        ]
+    }
+}
 
 /// What the controller reads at one instant besides its own state.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -168,6 +228,63 @@ pub struct AutopilotOutput {
     pub drag_correction_fps2: f64,
     /// [Ŵ_lᵀΦ, Ŵ_mᵀΦ, Ŵ_nᵀΦ], the moment corrections J⁻¹Δ, rad/s².
     pub moment_correction_rps2: Vec3,
+}
+
+/// What the controller knows of the aircraft at one instant ([`Autopilot::derivative`]).
+struct NominalModel {
+    /// q̄ the inversions use, floored at the minimum control airspeed, lbf/ft².
+    qbar_control: f64,
+    /// Forces and moments per unit of each control at that q̄.
+    effectiveness: ControlEffectiveness,
+    /// Φ, the RBF basis (2.34).
+    phi: [f64; RBF_CENTRES],
+    /// Ŵ_DᵀΦ, ft/s².
+    drag_correction_fps2: f64,
+    /// [Ŵ_lᵀΦ, Ŵ_mᵀΦ, Ŵ_nᵀΦ], rad/s².
+    moment_correction_rps2: Vec3,
+    /// Nominal coefficients at zero deflection.
+    coefficients: CoefficientValues,
+    /// q̄ S, lbf.
+    qs: f64,
+    /// Nominal drag, lbf.
+    nominal_drag_lbf: f64,
+}
+
+/// Step 1's references.
+struct VelocityReferences {
+    /// χ_c of the air-relative command, rad (None when it is vertical or zero).
+    course_rad: Option<f64>,
+    /// V_c, ft/s.
+    airspeed_cmd_fps: f64,
+    /// V_m and V̇_m.
+    airspeed_ref: FilteredCommand,
+    /// e_V = V - V_m, ft/s.
+    airspeed_error_fps: f64,
+    /// γ of the air-relative velocity, rad.
+    air_flight_path_rad: f64,
+    /// γ_c before and after the flight-path limits, rad.
+    raw_flight_path_rad: f64,
+    flight_path_cmd_rad: f64,
+}
+
+/// Steps 2-3's references.
+struct AttitudeReferences {
+    euler_cmd: EulerAngles,
+    euler_rate_cmd_rps: Vec3,
+    euler_error_rad: Vec3,
+    /// The turn rate of the bank limit, rad/s.
+    max_turn_rate_rps: f64,
+}
+
+/// Steps 4-5's rate commands.
+struct RateLoop {
+    /// [p_c, q_c, r_c] of (7.24).
+    command_rps: Vec3,
+    /// ω_f and ω̇_f.
+    filtered_rps: Vec3,
+    filtered_rate_rps2: Vec3,
+    /// e_ω = ω - ω_f.
+    error_rps: Vec3,
 }
 
 /// The Chapter 7 controller for one aircraft (its nominal model and the gains).
@@ -247,44 +364,25 @@ impl Autopilot {
     /// filter at rest on the present airspeed, attitude and rates, so that the first commands
     /// reproduce the present state; weights zero.
     pub fn initial_state(&self, air_data: &AirData) -> Vec<f64> {
-        let mut x = vec![0.0; AUTOPILOT_STATE_LEN];
         let euler = &air_data.euler;
-        x[AIRSPEED_FILTER..AIRSPEED_FILTER + 2]
-            .copy_from_slice(&IntegralPrefilter::initial_state(air_data.airspeed_fps));
-        for (at, value) in [
-            (ROLL_FILTER, euler.phi_rad),
-            (PITCH_FILTER, euler.theta_rad),
-            (HEADING_FILTER, euler.psi_rad),
-        ] {
-            x[at..at + 3].copy_from_slice(&SmoothIntegralPrefilter::initial_state(value));
-        }
-        for axis in 0..3 {
-            let at = RATE_FILTER + 2 * axis;
-            x[at..at + 2].copy_from_slice(&SecondOrderFilter::initial_state(
-                air_data.body_rates_rps[axis],
-            ));
-        }
         let wind = measured_wind_ned_fps(air_data);
-        if wind.iter().all(|w| w.is_finite()) {
-            x[WIND_ESTIMATE..WIND_ESTIMATE + 3].copy_from_slice(wind.as_slice());
-        }
+        let state = AutopilotState {
+            airspeed_filter: IntegralPrefilter::initial_state(air_data.airspeed_fps),
+            roll_filter: SmoothIntegralPrefilter::initial_state(euler.phi_rad),
+            pitch_filter: SmoothIntegralPrefilter::initial_state(euler.theta_rad),
+            heading_filter: SmoothIntegralPrefilter::initial_state(euler.psi_rad),
+            rate_filter: [0, 1, 2]
+                .map(|axis| SecondOrderFilter::initial_state(air_data.body_rates_rps[axis])),
+            wind_estimate_ned_fps: if wind.iter().all(|w| w.is_finite()) {
+                wind
+            } else {
+                Vec3::zeros()
+            },
+            ..AutopilotState::zero()
+        };
+        let mut x = vec![0.0; AUTOPILOT_STATE_LEN];
+        state.pack(&mut x);
         x
-    }
-
-    /// ŵ of a state slice, NED, ft/s.
-    pub fn wind_estimate_ned_fps(x: &[f64]) -> Vec3 {
-        Vec3::new(x[WIND_ESTIMATE], x[WIND_ESTIMATE + 1], x[WIND_ESTIMATE + 2])
-    }
-
-    /// Ŵ_D of a state slice.
-    pub fn drag_weights(x: &[f64]) -> &[f64] {
-        &x[WEIGHTS..WEIGHTS + RBF_CENTRES]
-    }
-
-    /// Ŵ_l, Ŵ_m, Ŵ_n of a state slice (in that order).
-    pub fn moment_weights(x: &[f64]) -> [&[f64]; 3] {
-        let at = |k: usize| &x[WEIGHTS + k * RBF_CENTRES..WEIGHTS + (k + 1) * RBF_CENTRES];
-        [at(ROLL), at(PITCH), at(YAW)]
     }
 
     /// Ω_1 of the drag network's projection: ‖Ŵ_D‖ ≤ this.
@@ -297,40 +395,81 @@ impl Autopilot {
         (self.moment_bound.max_norm.powi(2) + self.moment_bound.epsilon).sqrt()
     }
 
-    /// Pulls every weight vector back into Ω_1 after an integration step (see
-    /// [`crate::guidance::projection`]).
-    pub fn enforce_bounds(&self, x: &mut [f64]) {
-        for k in 0..4 {
-            let bound = if k == DRAG {
-                &self.drag_bound
-            } else {
-                &self.moment_bound
-            };
-            let w = &mut x[WEIGHTS + k * RBF_CENTRES..WEIGHTS + (k + 1) * RBF_CENTRES];
-            clamp_ball(bound, w);
+    /// The projection bound of network `k` (drag, or a moment).
+    fn weight_bound(&self, k: usize) -> &BallBound {
+        if k == DRAG {
+            &self.drag_bound
+        } else {
+            &self.moment_bound
         }
     }
 
-    /// Writes ẋ of the controller's state into `dx` and returns the actuator commands with
-    /// telemetry. `x` and `dx` must hold [`Self::state_len`] values.
-    pub fn derivative(&self, x: &[f64], input: &AutopilotInput, dx: &mut [f64]) -> AutopilotOutput {
-        debug_assert!(x.len() >= AUTOPILOT_STATE_LEN && dx.len() >= AUTOPILOT_STATE_LEN);
-        let g = &self.gains;
-        let air = &input.air_data;
-        let mass = self.params.mass.mass_slug;
-        let wing_area = self.params.geometry.wing_area_ft2;
+    /// Pulls every weight vector back into Ω_1 after an integration step (see
+    /// [`crate::guidance::projection`]).
+    pub fn enforce_bounds(&self, x: &mut [f64]) {
+        let mut state = AutopilotState::unpack(x);
+        for (k, w) in state.weights.iter_mut().enumerate() {
+            self.weight_bound(k).clamp_slice(w);
+        }
+        state.pack(x);
+    }
 
-        // Dynamic pressure used by the inversions, floored at the minimum control airspeed.
+    /// Writes ẋ of the controller's state into `dx` and returns the actuator commands with
+    /// telemetry. `x` and `dx` must hold [`Self::state_len`] values. The steps are those of
+    /// the module docs.
+    pub fn derivative(&self, x: &[f64], input: &AutopilotInput, dx: &mut [f64]) -> AutopilotOutput {
+        let state = AutopilotState::unpack(x);
+        let mut rates = AutopilotState::zero();
+        let model = self.nominal_model(&state, input);
+        let velocity = self.velocity_references(&state, input, &model, &mut rates);
+        let attitude = self.attitude_references(&state, input, &model, &velocity, &mut rates);
+        let rate_loop = self.rate_commands(&state, &input.air_data, &attitude, &mut rates);
+        let moment_cmd = self.moment_command(&input.air_data, &model, &attitude, &rate_loop);
+        let (unclamped, thrust_cmd) = self.inverted_commands(input, &model, &velocity, &moment_cmd);
+        let (controls, saturation) = self.clamp(&unclamped, &input.actuators);
+        rates.weights = self.adaptation_rates(
+            &state,
+            &model.phi,
+            velocity.airspeed_error_fps,
+            &rate_loop.error_rps,
+            &saturation,
+        );
+        rates.pack(dx);
+        AutopilotOutput {
+            controls,
+            unclamped,
+            saturation,
+            airspeed_cmd_fps: velocity.airspeed_cmd_fps,
+            airspeed_ref_fps: velocity.airspeed_ref.value,
+            airspeed_error_fps: velocity.airspeed_error_fps,
+            flight_path_cmd_rad: velocity.flight_path_cmd_rad,
+            flight_path_limited: velocity.flight_path_cmd_rad != velocity.raw_flight_path_rad,
+            euler_cmd: attitude.euler_cmd,
+            euler_rate_cmd_rps: attitude.euler_rate_cmd_rps,
+            euler_error_rad: attitude.euler_error_rad,
+            rate_cmd_rps: rate_loop.command_rps,
+            rate_cmd_filtered_rps: rate_loop.filtered_rps,
+            rate_error_rps: rate_loop.error_rps,
+            thrust_cmd_lbf: thrust_cmd,
+            moment_cmd_lbf_ft: moment_cmd,
+            drag_correction_fps2: model.drag_correction_fps2,
+            moment_correction_rps2: model.moment_correction_rps2,
+        }
+    }
+
+    /// What the controller knows of the aircraft at this instant: the dynamic pressure it
+    /// inverts with (floored at the minimum control airspeed), the controls' effectiveness
+    /// there, the nominal aerodynamics at zero deflection (its model: no Δ) and the RBF
+    /// networks' corrections.
+    fn nominal_model(&self, state: &AutopilotState, input: &AutopilotInput) -> NominalModel {
+        let air = &input.air_data;
         let density = if air.airspeed_fps > 1.0 {
             2.0 * air.dynamic_pressure_lbf_ft2 / (air.airspeed_fps * air.airspeed_fps)
         } else {
             SEA_LEVEL_DENSITY_SLUG_FT3
         };
-        let qbar_floor = 0.5 * density * g.min_control_airspeed_fps.powi(2);
+        let qbar_floor = 0.5 * density * self.gains.min_control_airspeed_fps.powi(2);
         let qbar_control = air.dynamic_pressure_lbf_ft2.max(qbar_floor);
-        let effectiveness = self.params.control_effectiveness(qbar_control);
-
-        // RBF basis and the networks' outputs.
         let mut phi = [0.0; RBF_CENTRES];
         self.basis.evaluate(
             &RbfInput {
@@ -342,43 +481,53 @@ impl Autopilot {
             },
             &mut phi,
         );
-        let network = |k: usize| -> f64 {
-            let w = &x[WEIGHTS + k * RBF_CENTRES..WEIGHTS + (k + 1) * RBF_CENTRES];
-            w.iter().zip(&phi).map(|(a, b)| a * b).sum()
-        };
-        let drag_correction = network(DRAG);
-        let moment_correction = Vec3::new(network(ROLL), network(PITCH), network(YAW));
-
-        // Nominal aerodynamics at zero deflection (the controller's model: no Δ).
+        let network =
+            |k: usize| -> f64 { state.weights[k].iter().zip(&phi).map(|(a, b)| a * b).sum() };
         let angles = AirAngles {
             airspeed_fps: air.airspeed_fps,
             alpha_rad: air.alpha_rad,
             beta_rad: air.beta_rad,
         };
-        let zero = Controls::default();
-        let coefficients = self
-            .params
-            .coefficients(&angles, &air.body_rates_rps, &zero);
-        let qs = air.dynamic_pressure_lbf_ft2 * wing_area;
-        let nominal_drag_lbf = qs * coefficients.drag;
+        let coefficients =
+            self.params
+                .coefficients(&angles, &air.body_rates_rps, &Controls::default());
+        let qs = air.dynamic_pressure_lbf_ft2 * self.params.geometry.wing_area_ft2;
+        NominalModel {
+            qbar_control,
+            effectiveness: self.params.control_effectiveness(qbar_control),
+            drag_correction_fps2: network(DRAG),
+            moment_correction_rps2: Vec3::new(network(ROLL), network(PITCH), network(YAW)),
+            phi,
+            nominal_drag_lbf: qs * coefficients.drag,
+            coefficients,
+            qs,
+        }
+    }
 
-        // 1. Wind estimate, then V_F → V_c, γ_c, χ_c (held at the filter states for a
-        // non-finite command).
+    /// Step 1: the wind estimate, then V_F → V_c, γ_c, χ_c (held at the filter states for a
+    /// non-finite command), the airspeed prefilter and the flight-path limits.
+    fn velocity_references(
+        &self,
+        state: &AutopilotState,
+        input: &AutopilotInput,
+        model: &NominalModel,
+        rates: &mut AutopilotState,
+    ) -> VelocityReferences {
+        let g = &self.gains;
+        let air = &input.air_data;
         let air_velocity_ned = air_velocity_ned_fps(air);
         let wind_measured = air.velocity_ned_fps - air_velocity_ned;
-        let wind_estimate = Self::wind_estimate_ned_fps(x);
-        let wind_rate = if wind_measured.iter().all(|w| w.is_finite()) {
-            (wind_measured - wind_estimate) / g.wind_filter_time_constant_s
-        } else {
-            Vec3::zeros()
-        };
-        dx[WIND_ESTIMATE..WIND_ESTIMATE + 3].copy_from_slice(wind_rate.as_slice());
+        let wind_estimate = state.wind_estimate_ned_fps;
+        if wind_measured.iter().all(|w| w.is_finite()) {
+            rates.wind_estimate_ned_fps =
+                (wind_measured - wind_estimate) / g.wind_filter_time_constant_s;
+        }
         let air_velocity_cmd = if g.wind_compensation {
             input.velocity_cmd_ned_fps - wind_estimate
         } else {
             input.velocity_cmd_ned_fps
         };
-        let air_flight_path = if air.airspeed_fps > 0.0 {
+        let air_flight_path_rad = if air.airspeed_fps > 0.0 {
             (-air_velocity_ned.z / air.airspeed_fps)
                 .clamp(-1.0, 1.0)
                 .asin()
@@ -386,165 +535,198 @@ impl Autopilot {
             0.0
         };
         let reference = VelocityReference::from_velocity_ned(&air_velocity_cmd);
-        let airspeed_cmd = reference
-            .map_or(x[AIRSPEED_FILTER + 1], |r| r.airspeed_fps)
+        let airspeed_cmd_fps = reference
+            .map_or(state.airspeed_filter[1], |r| r.airspeed_fps)
             .clamp(g.min_airspeed_cmd_fps, g.max_airspeed_cmd_fps);
-        let v_ref = self.airspeed_filter.derivative(
-            &x[AIRSPEED_FILTER..],
-            airspeed_cmd,
-            &mut dx[AIRSPEED_FILTER..],
+        let airspeed_ref = self.airspeed_filter.derivative(
+            &state.airspeed_filter,
+            airspeed_cmd_fps,
+            &mut rates.airspeed_filter,
         );
-        let euler = air.euler;
-        let raw_flight_path = reference.map_or(air_flight_path, |r| r.flight_path_rad);
-        let flight_path_cmd = self.limited_flight_path(
-            raw_flight_path,
+        let raw_flight_path_rad = reference.map_or(air_flight_path_rad, |r| r.flight_path_rad);
+        let flight_path_cmd_rad = self.limited_flight_path(
+            raw_flight_path_rad,
             air,
-            effectiveness.thrust_per_throttle_lbf,
-            nominal_drag_lbf,
-            drag_correction,
+            model.effectiveness.thrust_per_throttle_lbf,
+            model.nominal_drag_lbf,
+            model.drag_correction_fps2,
         );
+        VelocityReferences {
+            course_rad: reference.and_then(|r| r.course_rad),
+            airspeed_cmd_fps,
+            airspeed_ref,
+            airspeed_error_fps: air.airspeed_fps - airspeed_ref.value,
+            air_flight_path_rad,
+            raw_flight_path_rad,
+            flight_path_cmd_rad,
+        }
+    }
 
-        // 2-3. Attitude references and their prefilters.
-        let psi_m = x[HEADING_FILTER + 1];
-        let heading_cmd = reference
-            .and_then(|r| r.course_rad)
+    /// Steps 2-3: the raw attitude references (Remark 9, with the bank for the heading rate
+    /// (7.24) asks for and the α reference) through their prefilters, then the α envelope.
+    fn attitude_references(
+        &self,
+        state: &AutopilotState,
+        input: &AutopilotInput,
+        model: &NominalModel,
+        velocity: &VelocityReferences,
+        rates: &mut AutopilotState,
+    ) -> AttitudeReferences {
+        let g = &self.gains;
+        let air = &input.air_data;
+        let psi_m = state.heading_filter[1];
+        let heading_cmd = velocity
+            .course_rad
             .map_or(psi_m, |course| unwrap_near_rad(course, psi_m));
         let psi_ref = self.heading_filter.derivative(
-            &x[HEADING_FILTER..],
+            &state.heading_filter,
             heading_cmd,
-            &mut dx[HEADING_FILTER..],
+            &mut rates.heading_filter,
         );
         // Bank for the heading rate (7.24) asks for, ψ̇_m - k_ψ e_ψ, limited to the turn rate
         // of the bank limit: with the seed's φ_c from ψ̇_m alone a heading error the reference
         // has run ahead of (a large turn) is flown on the rudder, skidding with it at its limit.
-        let max_turn_rate = GRAVITY_FPS2 * g.max_bank_deg.to_radians().tan()
-            / air.airspeed_fps.max(g.min_control_airspeed_fps);
+        let max_turn_rate_rps = self.max_turn_rate_rps(air);
         let heading_rate_demand = (psi_ref.rate
             - g.yaw_gain_per_s * wrap_angle_rad(air.euler.psi_rad - psi_ref.value))
-        .clamp(-max_turn_rate, max_turn_rate);
+        .clamp(-max_turn_rate_rps, max_turn_rate_rps);
         let bank_cmd = coordinated_turn_bank_rad(
             heading_rate_demand,
-            v_ref.value,
+            velocity.airspeed_ref.value,
             g.max_bank_deg.to_radians(),
         );
         let phi_ref =
             self.roll_filter
-                .derivative(&x[ROLL_FILTER..], bank_cmd, &mut dx[ROLL_FILTER..]);
+                .derivative(&state.roll_filter, bank_cmd, &mut rates.roll_filter);
         let pitch_offset = self.pitch_offset_rad(
             air,
-            flight_path_cmd,
-            qbar_control * wing_area,
+            velocity.flight_path_cmd_rad,
+            model.qbar_control * self.params.geometry.wing_area_ft2,
             input.actuators.elevator_rad,
         );
-        let pitch_cmd = flight_path_cmd + pitch_offset;
+        let pitch_cmd = velocity.flight_path_cmd_rad + pitch_offset;
         let theta_ref =
             self.pitch_filter
-                .derivative(&x[PITCH_FILTER..], pitch_cmd, &mut dx[PITCH_FILTER..]);
+                .derivative(&state.pitch_filter, pitch_cmd, &mut rates.pitch_filter);
         let (theta_cmd, theta_rate_cmd) =
-            self.alpha_envelope(&theta_ref, air_flight_path, euler.phi_rad);
+            self.alpha_envelope(&theta_ref, velocity.air_flight_path_rad, air.euler.phi_rad);
         let euler_cmd = EulerAngles::new(phi_ref.value, theta_cmd, psi_ref.value);
-        let euler_rate_cmd = Vec3::new(phi_ref.rate, theta_rate_cmd, psi_ref.rate);
+        let euler = &air.euler;
+        AttitudeReferences {
+            euler_cmd,
+            euler_rate_cmd_rps: Vec3::new(phi_ref.rate, theta_rate_cmd, psi_ref.rate),
+            euler_error_rad: Vec3::new(
+                euler.phi_rad - euler_cmd.phi_rad,
+                euler.theta_rad - euler_cmd.theta_rad,
+                wrap_angle_rad(euler.psi_rad - euler_cmd.psi_rad),
+            ),
+            max_turn_rate_rps,
+        }
+    }
 
-        // 4. (7.24): body-rate commands.
-        let euler_error = Vec3::new(
-            euler.phi_rad - euler_cmd.phi_rad,
-            euler.theta_rad - euler_cmd.theta_rad,
-            wrap_angle_rad(euler.psi_rad - euler_cmd.psi_rad),
-        );
+    /// The turn rate of a coordinated turn at the bank limit, g tan φ_max / V, rad/s.
+    fn max_turn_rate_rps(&self, air: &AirData) -> f64 {
+        let g = &self.gains;
+        GRAVITY_FPS2 * g.max_bank_deg.to_radians().tan()
+            / air.airspeed_fps.max(g.min_control_airspeed_fps)
+    }
+
+    /// Steps 4-5: the body-rate commands of (7.24) and the command filter's ω_f and ω̇_f.
+    fn rate_commands(
+        &self,
+        state: &AutopilotState,
+        air: &AirData,
+        attitude: &AttitudeReferences,
+        rates: &mut AutopilotState,
+    ) -> RateLoop {
+        let g = &self.gains;
         let gains_euler = Vec3::new(g.roll_gain_per_s, g.pitch_gain_per_s, g.yaw_gain_per_s);
-        let mut euler_rate_demand = -gains_euler.component_mul(&euler_error) + euler_rate_cmd;
+        let mut euler_rate_demand =
+            -gains_euler.component_mul(&attitude.euler_error_rad) + attitude.euler_rate_cmd_rps;
         // Turn no faster than a coordinated turn at the bank limit can: beyond it the yaw
         // channel would skid the aircraft round with the rudder.
-        euler_rate_demand.z = euler_rate_demand.z.clamp(-max_turn_rate, max_turn_rate);
-        let rate_cmd = euler.body_rates_from_rates_matrix() * euler_rate_demand;
-
-        // 5. Command filter: ω_f and ω̇_f.
+        let limit = attitude.max_turn_rate_rps;
+        euler_rate_demand.z = euler_rate_demand.z.clamp(-limit, limit);
+        let command_rps = air.euler.body_rates_from_rates_matrix() * euler_rate_demand;
         let mut filtered = [FilteredCommand::default(); 3];
         for (axis, out) in filtered.iter_mut().enumerate() {
-            let at = RATE_FILTER + 2 * axis;
-            *out = self
-                .rate_filter
-                .derivative(&x[at..], rate_cmd[axis], &mut dx[at..]);
+            *out = self.rate_filter.derivative(
+                &state.rate_filter[axis],
+                command_rps[axis],
+                &mut rates.rate_filter[axis],
+            );
         }
-        let rate_filtered = Vec3::new(filtered[0].value, filtered[1].value, filtered[2].value);
-        let rate_filtered_dot = Vec3::new(filtered[0].rate, filtered[1].rate, filtered[2].rate);
-        let omega = air.body_rates_rps;
-        let rate_error = omega - rate_filtered;
+        let filtered_rps = Vec3::new(filtered[0].value, filtered[1].value, filtered[2].value);
+        RateLoop {
+            command_rps,
+            filtered_rps,
+            filtered_rate_rps2: Vec3::new(filtered[0].rate, filtered[1].rate, filtered[2].rate),
+            error_rps: air.body_rates_rps - filtered_rps,
+        }
+    }
 
-        // 6. (7.25): moments.
+    /// Step 6, (7.25): [L, M, N]_cmd = ω × Jω - J Pᵀ e_E - J Ŵᵀ Φ + J [-k e_ω + ω̇_f], lbf ft.
+    fn moment_command(
+        &self,
+        air: &AirData,
+        model: &NominalModel,
+        attitude: &AttitudeReferences,
+        rate_loop: &RateLoop,
+    ) -> Vec3 {
+        let g = &self.gains;
         let j = &self.inertia_slug_ft2;
         let gains_rate = Vec3::new(
             g.roll_rate_gain_per_s,
             g.pitch_rate_gain_per_s,
             g.yaw_rate_gain_per_s,
         );
-        let p_matrix = euler.rates_from_body_rates_matrix();
-        let angular_accel_demand = -gains_rate.component_mul(&rate_error) + rate_filtered_dot;
-        let moment_cmd = omega.cross(&(j * omega))
-            - j * (p_matrix.transpose() * euler_error)
-            - j * moment_correction
-            + j * angular_accel_demand;
+        let omega = air.body_rates_rps;
+        let p_matrix = air.euler.rates_from_body_rates_matrix();
+        let angular_accel_demand =
+            -gains_rate.component_mul(&rate_loop.error_rps) + rate_loop.filtered_rate_rps2;
+        omega.cross(&(j * omega))
+            - j * (p_matrix.transpose() * attitude.euler_error_rad)
+            - j * model.moment_correction_rps2
+            + j * angular_accel_demand
+    }
 
-        // 7. Invert (7.19) for the surfaces and (7.20) for the throttle.
-        let span = self.params.geometry.span_ft;
-        let chord = self.params.geometry.chord_ft;
-        let moment_zero = Vec3::new(
-            qs * span * coefficients.roll,
-            qs * chord * coefficients.pitch,
-            qs * span * coefficients.yaw,
-        );
-        let surfaces = effectiveness
+    /// Step 7: (7.19) inverted for the surfaces, [δa, δe, δr] = B(q̄)⁻¹ ([L, M, N]_cmd - M_0),
+    /// and (7.20) for the throttle; the commands before clamping and the thrust, lbf.
+    fn inverted_commands(
+        &self,
+        input: &AutopilotInput,
+        model: &NominalModel,
+        velocity: &VelocityReferences,
+        moment_cmd: &Vec3,
+    ) -> (Controls, f64) {
+        let g = &self.gains;
+        let air = &input.air_data;
+        let (span, chord) = (self.params.geometry.span_ft, self.params.geometry.chord_ft);
+        let c = &model.coefficients;
+        let qs = model.qs;
+        let moment_zero = Vec3::new(qs * span * c.roll, qs * chord * c.pitch, qs * span * c.yaw);
+        let surfaces = model
+            .effectiveness
             .moment_per_surface_lbf_ft
             .try_inverse()
             .map_or(Vec3::zeros(), |inverse| {
                 inverse * (moment_cmd - moment_zero)
             });
-        let airspeed_error = air.airspeed_fps - v_ref.value;
+        let mass = self.params.mass.mass_slug;
         let cos_alpha_beta = (air.alpha_rad.cos() * air.beta_rad.cos()).max(0.1);
-        let thrust_cmd = (mass * GRAVITY_FPS2 * air_flight_path.sin()
-            + nominal_drag_lbf
-            + mass * drag_correction
-            - mass * g.airspeed_gain_per_s * airspeed_error
-            + mass * v_ref.rate)
+        let thrust_cmd = (mass * GRAVITY_FPS2 * velocity.air_flight_path_rad.sin()
+            + model.nominal_drag_lbf
+            + mass * model.drag_correction_fps2
+            - mass * g.airspeed_gain_per_s * velocity.airspeed_error_fps
+            + mass * velocity.airspeed_ref.rate)
             / cos_alpha_beta;
         let unclamped = Controls {
-            throttle: thrust_cmd / effectiveness.thrust_per_throttle_lbf,
+            throttle: thrust_cmd / model.effectiveness.thrust_per_throttle_lbf,
             aileron_rad: surfaces.x,
             elevator_rad: surfaces.y,
             rudder_rad: surfaces.z,
         };
-        let (controls, saturation) = self.clamp(&unclamped, &input.actuators);
-
-        // 8. Adaptation (7.23), (7.28).
-        self.adaptation_rates(
-            x,
-            &phi,
-            airspeed_error,
-            &rate_error,
-            &saturation,
-            &mut dx[WEIGHTS..AUTOPILOT_STATE_LEN],
-        );
-
-        AutopilotOutput {
-            controls,
-            unclamped,
-            saturation,
-            airspeed_cmd_fps: airspeed_cmd,
-            airspeed_ref_fps: v_ref.value,
-            airspeed_error_fps: airspeed_error,
-            flight_path_cmd_rad: flight_path_cmd,
-            flight_path_limited: flight_path_cmd != raw_flight_path,
-            euler_cmd,
-            euler_rate_cmd_rps: euler_rate_cmd,
-            euler_error_rad: euler_error,
-            rate_cmd_rps: rate_cmd,
-            rate_cmd_filtered_rps: rate_filtered,
-            rate_error_rps: rate_error,
-            thrust_cmd_lbf: thrust_cmd,
-            moment_cmd_lbf_ft: moment_cmd,
-            drag_correction_fps2: drag_correction,
-            moment_correction_rps2: moment_correction,
-        }
+        (unclamped, thrust_cmd)
     }
 
     /// γ_c kept between the steepest descent and climb that (7.20) can hold with the
@@ -679,52 +861,35 @@ impl Autopilot {
     /// networks while the aileron or the rudder is (the inversion couples them).
     fn adaptation_rates(
         &self,
-        x: &[f64],
+        state: &AutopilotState,
         phi: &[f64; RBF_CENTRES],
         airspeed_error: f64,
         rate_error: &Vec3,
         saturation: &Saturation,
-        dw: &mut [f64],
-    ) {
+    ) -> [[f64; RBF_CENTRES]; 4] {
         let g = &self.gains;
         let freeze = g.freeze_adaptation_on_saturation;
         let lateral = saturation.aileron || saturation.rudder;
         let networks = [
-            (
-                DRAG,
-                -airspeed_error,
-                g.drag_adaptation_gain,
-                saturation.throttle,
-            ),
-            (ROLL, rate_error.x, g.roll_adaptation_gain, lateral),
-            (
-                PITCH,
-                rate_error.y,
-                g.pitch_adaptation_gain,
-                saturation.elevator,
-            ),
-            (YAW, rate_error.z, g.yaw_adaptation_gain, lateral),
+            (-airspeed_error, g.drag_adaptation_gain, saturation.throttle),
+            (rate_error.x, g.roll_adaptation_gain, lateral),
+            (rate_error.y, g.pitch_adaptation_gain, saturation.elevator),
+            (rate_error.z, g.yaw_adaptation_gain, lateral),
         ];
-        for (k, error, gain, saturated) in networks {
-            let range = k * RBF_CENTRES..(k + 1) * RBF_CENTRES;
-            let out = &mut dw[range.clone()];
+        let mut rates = [[0.0; RBF_CENTRES]; 4];
+        for (k, (error, gain, saturated)) in networks.into_iter().enumerate() {
             let active = g.rbf_enabled && !(freeze && saturated) && error.is_finite();
             if !active {
-                out.fill(0.0);
                 continue;
             }
+            let out = &mut rates[k];
             for (o, p) in out.iter_mut().zip(phi) {
                 *o = error * p;
             }
-            let w = &x[WEIGHTS + range.start..WEIGHTS + range.end];
-            let bound = if k == DRAG {
-                &self.drag_bound
-            } else {
-                &self.moment_bound
-            };
-            project_ball(bound, w, out);
+            self.weight_bound(k).project_slice(&state.weights[k], out);
             out.iter_mut().for_each(|o| *o *= gain);
         }
+        rates
     }
 }
 

@@ -17,7 +17,9 @@ pub mod prefilter;
 pub mod rbf;
 pub mod reference;
 
-pub use autopilot::{AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, Saturation};
+pub use autopilot::{
+    AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, AutopilotState, Saturation,
+};
 pub use prefilter::{
     FilteredCommand, IntegralPrefilter, SecondOrderFilter, SmoothIntegralPrefilter,
 };

@@ -1,6 +1,5 @@
-//! Gaussian radial basis functions (2.34) of the flight condition, and the ball projection of
-//! Appendix A for weight vectors of any length (SPEC §3; the 3-vector version is
-//! [`crate::guidance::projection::BallBound`], whose parameters are reused here).
+//! Gaussian radial basis functions (2.34) of the flight condition (the weights are bounded by
+//! the ball projection of Appendix A, [`crate::guidance::projection::BallBound`]).
 //!
 //! Inputs (7.18): ξ = (V, α, β, p, q, r) and u = (δT, δa, δe, δr), where u are the actuator
 //! *positions* (plant states), not the commands being computed, so Φ never closes an algebraic
@@ -15,7 +14,6 @@
 //! would need 3¹⁰ centres.
 
 use crate::frames::Vec3;
-use crate::guidance::projection::BallBound;
 use crate::world::aircraft::Controls;
 
 /// Number of network inputs: V, α, β, p, q, r, δT, δa, δe, δr.
@@ -116,42 +114,6 @@ impl RbfBasis {
     }
 }
 
-/// f(W) = (WᵀW - W_max²)/ε of the ball bound, for a weight vector of any length.
-pub fn ball_f(bound: &BallBound, w: &[f64]) -> f64 {
-    (dot(w, w) - bound.max_norm * bound.max_norm) / bound.epsilon
-}
-
-/// Proj(W, y) of Appendix A for the ball bound, in place on `y`: unchanged when f(W) < 0 or
-/// ∇fᵀy ≤ 0, else y - ∇f ∇fᵀ y f(W) / ‖∇f‖² (∇f = 2W/ε, so the factor reduces to
-/// (Wᵀy / WᵀW) f(W) W).
-pub fn project_ball(bound: &BallBound, w: &[f64], y: &mut [f64]) {
-    let f = ball_f(bound, w);
-    let wy = dot(w, y);
-    let ww = dot(w, w);
-    if f < 0.0 || wy <= 0.0 || ww <= 0.0 {
-        return;
-    }
-    let scale = wy * f / ww;
-    for (yi, wi) in y.iter_mut().zip(w) {
-        *yi -= scale * wi;
-    }
-}
-
-/// Pulls W back onto Ω_1 = {‖W‖² ≤ W_max² + ε} after an integration step (the discrete
-/// integrator can overshoot the continuous-time bound by one step).
-pub fn clamp_ball(bound: &BallBound, w: &mut [f64]) {
-    let outer = (bound.max_norm * bound.max_norm + bound.epsilon).sqrt();
-    let norm = dot(w, w).sqrt();
-    if norm > outer {
-        let s = outer / norm;
-        w.iter_mut().for_each(|wi| *wi *= s);
-    }
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -184,27 +146,5 @@ mod tests {
         bad.alpha_rad = f64::NAN;
         basis.evaluate(&bad, &mut phi);
         assert!(phi.iter().all(|p| *p == 0.0));
-    }
-
-    /// The slice projection agrees with the 3-vector [`BallBound::project`] and keeps
-    /// (W - W*)ᵀ(Proj - y) ≤ 0 for W* inside Ω_0.
-    #[test]
-    fn slice_projection_matches_vector_version() {
-        let bound = BallBound {
-            max_norm: 2.0,
-            epsilon: 0.5,
-        };
-        let w = Vec3::new(1.6, 1.3, 0.3);
-        assert!(ball_f(&bound, w.as_slice()) > 0.0);
-        let y = Vec3::new(2.0, -0.5, 1.0);
-        let mut y_slice = [y.x, y.y, y.z];
-        project_ball(&bound, w.as_slice(), &mut y_slice);
-        let expected = bound.project(&w, &y);
-        assert!((Vec3::from(y_slice) - expected).norm() < 1e-12);
-        let star = Vec3::new(-1.0, 0.5, 1.0);
-        assert!((w - star).dot(&(expected - y)) <= 1e-12);
-        let mut big = [10.0, 0.0, 0.0];
-        clamp_ball(&bound, &mut big);
-        assert!((big[0] - 4.5f64.sqrt()).abs() < 1e-12);
     }
 }

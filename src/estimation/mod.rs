@@ -8,8 +8,26 @@
 //! measurement the law idles.
 
 use crate::frames::Vec3;
-use crate::guidance::signals::TargetMotionEstimate;
 use crate::sensing::FrameRecord;
+
+/// An estimate of how the target moves, in the estimating law's own terms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TargetMotionEstimate {
+    /// d̂ = V_T/b, the scaled target velocity, 1/s (velocity law, (4.5)).
+    ScaledVelocity(Vec3),
+    /// d̂, the adaptive bound of the filtered target acceleration, ft/s (acceleration law,
+    /// (5.41)).
+    FilteredAccelerationBound(Vec3),
+}
+
+impl TargetMotionEstimate {
+    /// The estimate's vector, in its own unit.
+    pub fn vector(&self) -> Vec3 {
+        match self {
+            Self::ScaledVelocity(v) | Self::FilteredAccelerationBound(v) => *v,
+        }
+    }
+}
 
 /// A camera measurement as the guidance holds it.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -6,11 +6,10 @@
 
 use super::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
 use super::compensation::{ShortfallCompensation, VelocityLagCompensation};
-use super::signals::{
-    ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput, TargetMotionEstimate,
-};
+use super::signals::{ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput};
 use super::velocity::VelocityGuidance;
 use super::velocity_estimator::{VelocityEstimator, steady_state_estimator_gain};
+use crate::estimation::TargetMotionEstimate;
 use crate::frames::{Mat3, Vec3};
 use crate::linalg::LinalgError;
 use crate::scenario::{AccelerationSection, EstimatorGainMode, GuidanceLawKind, GuidanceSection};

@@ -69,29 +69,59 @@ pub struct BallBound {
 }
 
 impl BallBound {
+    /// f(d) for a vector of any length.
+    pub fn f_slice(&self, d: &[f64]) -> f64 {
+        (dot(d, d) - self.max_norm * self.max_norm) / self.epsilon
+    }
+
     /// f(d).
     pub fn f(&self, d: &Vec3) -> f64 {
-        (d.norm_squared() - self.max_norm.powi(2)) / self.epsilon
+        self.f_slice(d.as_slice())
+    }
+
+    /// Proj(d, y) for vectors of any length, in place on `y`: unchanged when f(d) < 0 or
+    /// ∇fᵀy ≤ 0, else y - ∇f ∇fᵀ y f(d) / ‖∇f‖² (∇f = 2d/ε, so the correction reduces to
+    /// (dᵀy / dᵀd) f(d) d).
+    pub fn project_slice(&self, d: &[f64], y: &mut [f64]) {
+        let f = self.f_slice(d);
+        let dy = dot(d, y);
+        let dd = dot(d, d);
+        if f < 0.0 || dy <= 0.0 || dd <= 0.0 {
+            return;
+        }
+        let scale = dy * f / dd;
+        for (yi, di) in y.iter_mut().zip(d) {
+            *yi -= scale * di;
+        }
     }
 
     /// Proj(d, y).
     pub fn project(&self, d: &Vec3, y: &Vec3) -> Vec3 {
-        let f = self.f(d);
-        let grad = d * (2.0 / self.epsilon);
-        let grad_y = grad.dot(y);
-        if f < 0.0 || grad_y <= 0.0 {
-            *y
-        } else {
-            y - grad * (grad_y * f / grad.norm_squared())
+        let mut out = *y;
+        self.project_slice(d.as_slice(), out.as_mut_slice());
+        out
+    }
+
+    /// Pulls a vector of any length back onto Ω_1 = {‖d‖² ≤ max² + ε}, in place.
+    pub fn clamp_slice(&self, d: &mut [f64]) {
+        let outer = (self.max_norm * self.max_norm + self.epsilon).sqrt();
+        let norm = dot(d, d).sqrt();
+        if norm > outer {
+            let s = outer / norm;
+            d.iter_mut().for_each(|di| *di *= s);
         }
     }
 
     /// The nearest point of Ω_1.
     pub fn clamp(&self, d: &Vec3) -> Vec3 {
-        let outer = (self.max_norm.powi(2) + self.epsilon).sqrt();
-        let n = d.norm();
-        if n > outer { d * (outer / n) } else { *d }
+        let mut out = *d;
+        self.clamp_slice(out.as_mut_slice());
+        out
     }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 #[cfg(test)]

@@ -106,22 +106,3 @@ pub struct GuidanceOutput {
     /// The acceleration law's internal signals (y_m, C ẑ, y_a, w_f, …).
     pub acceleration: Option<AccelerationGuidanceOutput>,
 }
-
-/// The law's estimate of how the target moves, in the law's own terms.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum TargetMotionEstimate {
-    /// d̂ = V_T/b, the scaled target velocity, 1/s (velocity law, (4.5)).
-    ScaledVelocity(Vec3),
-    /// d̂, the adaptive bound of the filtered target acceleration, ft/s (acceleration law,
-    /// (5.41)).
-    FilteredAccelerationBound(Vec3),
-}
-
-impl TargetMotionEstimate {
-    /// The estimate's vector, in its own unit.
-    pub fn vector(&self) -> Vec3 {
-        match self {
-            Self::ScaledVelocity(v) | Self::FilteredAccelerationBound(v) => *v,
-        }
-    }
-}

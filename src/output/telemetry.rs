@@ -1,10 +1,11 @@
 //! `telemetry.csv`: one row per logged tick, written as the run goes so that a run that stops
 //! early keeps what it logged.
 
+use crate::estimation::TargetMotionEstimate;
 use crate::follower::AircraftActuation;
 use crate::frames::wrap_angle_rad;
 use crate::guidance::acceleration::AccelerationGuidanceOutput;
-use crate::guidance::signals::{FollowerCommand, TargetMotionEstimate};
+use crate::guidance::signals::FollowerCommand;
 use crate::sim::Snapshot;
 use crate::vision::BlobStatus;
 use std::fs::File;
