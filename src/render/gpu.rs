@@ -102,11 +102,6 @@ impl GpuContext {
         &self.limits
     }
 
-    /// Adapter name, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
-    pub fn adapter_name(&self) -> &str {
-        &self.info.name
-    }
-
     /// Adapter kind; lavapipe is [`wgpu::DeviceType::Cpu`].
     pub fn device_type(&self) -> wgpu::DeviceType {
         self.info.device_type
