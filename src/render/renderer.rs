@@ -42,10 +42,27 @@ pub enum RenderError {
     NonFinitePose(TargetPoseInCamera),
     /// wgpu rejected the creation of a GPU resource (validation or out of memory).
     #[error("GPU rejected the renderer's resources: {0}")]
-    Gpu(String),
+    Gpu(#[source] wgpu::Error),
     /// The frame could not be read back from the GPU.
     #[error("frame readback failed: {0}")]
-    Readback(String),
+    Readback(#[from] ReadbackError),
+}
+
+/// The step of a frame's readback that failed, with wgpu's error.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadbackError {
+    /// Waiting for the frame's submission failed.
+    #[error("waiting for the GPU: {0}")]
+    Wait(#[from] wgpu::PollError),
+    /// The staging buffer's map callback was dropped without reporting.
+    #[error("map callback was dropped")]
+    CallbackDropped(#[from] mpsc::RecvError),
+    /// The staging buffer could not be mapped.
+    #[error("mapping the staging buffer: {0}")]
+    Map(#[from] wgpu::BufferAsyncError),
+    /// The mapped staging buffer could not be viewed.
+    #[error("{0}")]
+    View(#[from] wgpu::MapRangeError),
 }
 
 /// A frame submitted by [`Renderer::begin_frame`] and not yet read back.
@@ -166,7 +183,7 @@ impl Renderer {
         let validation = pollster::block_on(validation_scope.pop());
         let oom = pollster::block_on(oom_scope.pop());
         if let Some(e) = validation.or(oom) {
-            return Err(RenderError::Gpu(e.to_string()));
+            return Err(RenderError::Gpu(e));
         }
         Ok(built)
     }
@@ -634,18 +651,14 @@ impl Renderer {
         }
     }
 
-    fn read_back(&mut self, pending: PendingFrame, frame: &mut Frame) -> Result<(), RenderError> {
-        self.device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(pending.submission),
-                timeout: None,
-            })
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
-        pending
-            .mapped
-            .recv()
-            .map_err(|_| RenderError::Readback("map callback was dropped".into()))?
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
+    /// Waits for the frame's submission and mapping, and unpads the staging buffer's rows
+    /// into `frame` (resized to the camera).
+    fn read_back(&mut self, pending: PendingFrame, frame: &mut Frame) -> Result<(), ReadbackError> {
+        self.device.poll(wgpu::PollType::Wait {
+            submission_index: Some(pending.submission),
+            timeout: None,
+        })?;
+        pending.mapped.recv()??;
         let cam = self.settings.intrinsics;
         frame.width_px = cam.width_px;
         frame.height_px = cam.height_px;
@@ -654,11 +667,7 @@ impl Renderer {
             .resize(4 * cam.width_px as usize * cam.height_px as usize, 0);
         let row_bytes = 4 * cam.width_px as usize;
         {
-            let mapped = self
-                .staging
-                .slice(..)
-                .get_mapped_range()
-                .map_err(|e| RenderError::Readback(e.to_string()))?;
+            let mapped = self.staging.slice(..).get_mapped_range()?;
             for (dst, src) in frame
                 .rgba
                 .chunks_exact_mut(row_bytes)
