@@ -21,6 +21,9 @@ fn series(logged: &[Snapshot], f: impl Fn(&AircraftActuation) -> f64) -> Vec<f64
         .collect()
 }
 
+/// Degrees per radian.
+const DEG_PER_RAD: f64 = 180.0 / std::f64::consts::PI;
+
 /// One panel of a quantity (converted to degrees when `deg`) against its command.
 fn versus_command(
     logged: &[Snapshot],
@@ -29,11 +32,7 @@ fn versus_command(
     command: impl Fn(&AircraftActuation) -> f64,
     deg: bool,
 ) -> Panel {
-    let scale = if deg {
-        180.0 / std::f64::consts::PI
-    } else {
-        1.0
-    };
+    let scale = if deg { DEG_PER_RAD } else { 1.0 };
     Panel {
         y_label: label.to_string(),
         series: vec![
@@ -43,12 +42,65 @@ fn versus_command(
     }
 }
 
+/// One panel of a single quantity times `scale`, its curve named `name`.
+fn single(
+    logged: &[Snapshot],
+    label: &str,
+    name: &str,
+    f: fn(&AircraftActuation) -> f64,
+    scale: f64,
+) -> Panel {
+    Panel {
+        y_label: label.to_string(),
+        series: vec![Series::new(name, series(logged, |a| f(a) * scale), TRUTH)],
+    }
+}
+
+/// The panels of one figure from the logged rows.
+type Panels = fn(&[Snapshot]) -> Vec<Panel>;
+
 /// Draws the 6-DOF figures into `dir` (nothing when no row carries aircraft data).
 pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Result<(), PlotError> {
     if logged.iter().all(|s| s.aircraft.is_none()) {
         return Ok(());
     }
-    let velocity: Vec<Panel> = (0..3)
+    let figures: [(&str, &str, Panels); 5] = [
+        (
+            "flight_velocity.png",
+            "Follower velocity, guidance command and target (seed Ch 7)",
+            velocity_panels,
+        ),
+        (
+            "euler_angles.png",
+            "Euler angles and their references (7.24) (seed Ch 7)",
+            euler_panels,
+        ),
+        (
+            "body_rates.png",
+            "Body rates and their commands (7.25) (seed Ch 7)",
+            body_rate_panels,
+        ),
+        (
+            "surfaces.png",
+            "Control surfaces and throttle (seed Figs 7.5-7.6, 7.12-7.13)",
+            surface_panels,
+        ),
+        (
+            "air_data.png",
+            "Airspeed, angle of attack and sideslip (seed Figs 7.5-7.6, 7.12-7.13)",
+            air_data_panels,
+        ),
+    ];
+    for (file, title, panels) in figures {
+        draw_figure(&dir.join(file), title, t, &panels(logged))?;
+    }
+    Ok(())
+}
+
+/// `flight_velocity.png`: the follower's velocity, the V_F the autopilot flies and the
+/// target's, per NED axis.
+fn velocity_panels(logged: &[Snapshot]) -> Vec<Panel> {
+    (0..3)
         .map(|i| Panel {
             y_label: format!("V{}, ft/s", AXES[i]),
             series: vec![
@@ -75,15 +127,12 @@ pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Resu
                 ),
             ],
         })
-        .collect();
-    draw_figure(
-        &dir.join("flight_velocity.png"),
-        "Follower velocity, guidance command and target (seed Ch 7)",
-        t,
-        &velocity,
-    )?;
+        .collect()
+}
 
-    let euler = vec![
+/// `euler_angles.png`: φ, θ, ψ against the references of (7.24).
+fn euler_panels(logged: &[Snapshot]) -> Vec<Panel> {
+    vec![
         versus_command(
             logged,
             "φ, deg",
@@ -105,15 +154,12 @@ pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Resu
             |a| crate::frames::wrap_angle_rad(a.autopilot.euler_cmd.psi_rad),
             true,
         ),
-    ];
-    draw_figure(
-        &dir.join("euler_angles.png"),
-        "Euler angles and their references (7.24) (seed Ch 7)",
-        t,
-        &euler,
-    )?;
+    ]
+}
 
-    let rates: Vec<Panel> = ["p", "q", "r"]
+/// `body_rates.png`: p, q, r against the filtered rate commands of (7.25).
+fn body_rate_panels(logged: &[Snapshot]) -> Vec<Panel> {
+    ["p", "q", "r"]
         .iter()
         .enumerate()
         .map(|(i, name)| {
@@ -125,36 +171,37 @@ pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Resu
                 true,
             )
         })
-        .collect();
-    draw_figure(
-        &dir.join("body_rates.png"),
-        "Body rates and their commands (7.25) (seed Ch 7)",
-        t,
-        &rates,
-    )?;
+        .collect()
+}
 
-    let deg = 180.0 / std::f64::consts::PI;
-    let single = |label: &str, name: &str, f: fn(&AircraftActuation) -> f64, scale: f64| Panel {
-        y_label: label.to_string(),
-        series: vec![Series::new(name, series(logged, |a| f(a) * scale), TRUTH)],
-    };
+/// `surfaces.png`: δe, δa, δr and δT.
+fn surface_panels(logged: &[Snapshot]) -> Vec<Panel> {
     let surface = |label: &str, f: fn(&AircraftActuation) -> f64, scale: f64| {
-        single(label, "position", f, scale)
+        single(logged, label, "position", f, scale)
     };
-    let surfaces = vec![
-        surface("δe, deg (limit ±30)", |a| a.actuators.elevator_rad, deg),
-        surface("δa, deg (limit ±30)", |a| a.actuators.aileron_rad, deg),
-        surface("δr, deg (limit ±20)", |a| a.actuators.rudder_rad, deg),
+    vec![
+        surface(
+            "δe, deg (limit ±30)",
+            |a| a.actuators.elevator_rad,
+            DEG_PER_RAD,
+        ),
+        surface(
+            "δa, deg (limit ±30)",
+            |a| a.actuators.aileron_rad,
+            DEG_PER_RAD,
+        ),
+        surface(
+            "δr, deg (limit ±20)",
+            |a| a.actuators.rudder_rad,
+            DEG_PER_RAD,
+        ),
         surface("δT (0 to 1)", |a| a.actuators.throttle, 1.0),
-    ];
-    draw_figure(
-        &dir.join("surfaces.png"),
-        "Control surfaces and throttle (seed Figs 7.5-7.6, 7.12-7.13)",
-        t,
-        &surfaces,
-    )?;
+    ]
+}
 
-    let air = vec![
+/// `air_data.png`: V against V_c, α and β.
+fn air_data_panels(logged: &[Snapshot]) -> Vec<Panel> {
+    vec![
         versus_command(
             logged,
             "V, ft/s",
@@ -162,13 +209,19 @@ pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Resu
             |a| a.autopilot.airspeed_cmd_fps,
             false,
         ),
-        single("α, deg", "aircraft", |a| a.air_data.alpha_rad, deg),
-        single("β, deg", "aircraft", |a| a.air_data.beta_rad, deg),
-    ];
-    draw_figure(
-        &dir.join("air_data.png"),
-        "Airspeed, angle of attack and sideslip (seed Figs 7.5-7.6, 7.12-7.13)",
-        t,
-        &air,
-    )
+        single(
+            logged,
+            "α, deg",
+            "aircraft",
+            |a| a.air_data.alpha_rad,
+            DEG_PER_RAD,
+        ),
+        single(
+            logged,
+            "β, deg",
+            "aircraft",
+            |a| a.air_data.beta_rad,
+            DEG_PER_RAD,
+        ),
+    ]
 }

@@ -95,25 +95,6 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
     })?;
     let t: Vec<f64> = logged.iter().map(|s| s.t_s).collect();
     let numbers = FigureNumbers::of(scenario);
-
-    let relative: Vec<Panel> = (0..3)
-        .map(|i| Panel {
-            y_label: format!("R{}, ft", AXES[i]),
-            series: vec![
-                Series::new(
-                    "R (true)",
-                    component(logged, |s| s.relative_ned_ft, i),
-                    TRUTH,
-                ),
-                Series::new("R_c", component(logged, |s| s.command_ned_ft, i), REFERENCE),
-                Series::new(
-                    "R*_c (with excitation)",
-                    component(logged, |s| s.excited_command_ned_ft, i),
-                    EXTRA,
-                ),
-            ],
-        })
-        .collect();
     draw_figure(
         &dir.join("relative_position.png"),
         &format!(
@@ -121,48 +102,14 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
             numbers.relative
         ),
         &t,
-        &relative,
+        &relative_position_panels(logged),
     )?;
-
-    let b_panel = Panel {
-        y_label: "b, ft".to_string(),
-        series: vec![
-            Series::new(
-                "b estimate",
-                logged.iter().map(|s| s.b_hat_ft).collect(),
-                TRUTH,
-            ),
-            Series::new(
-                "b true",
-                vec![scenario.target.size_ft; logged.len()],
-                REFERENCE,
-            ),
-        ],
-    };
-    let estimates = match scenario.guidance.law {
-        GuidanceLawKind::Velocity => velocity_law_estimates(b_panel, logged),
-        GuidanceLawKind::Acceleration => vec![
-            b_panel,
-            Panel {
-                y_label: "‖d̂‖, ft/s".to_string(),
-                series: vec![Series::new(
-                    "estimate of ‖d_T‖",
-                    logged
-                        .iter()
-                        .map(|s| s.target_motion.vector().norm())
-                        .collect(),
-                    TRUTH,
-                )],
-            },
-        ],
-    };
     draw_figure(
         &dir.join("parameter_estimates.png"),
         &format!("Parameter estimates ({})", numbers.estimates),
         &t,
-        &estimates,
+        &estimate_panels(scenario, logged),
     )?;
-
     let velocity = versus_target(
         logged,
         "V",
@@ -185,6 +132,65 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
         draw_measurement_figure(dir, scenario, &t, logged)?;
     }
     super::aircraft_figures::draw_aircraft_figures(dir, &t, logged)
+}
+
+/// `relative_position.png`: R against R_c and the excited R*_c, per NED axis.
+fn relative_position_panels(logged: &[Snapshot]) -> Vec<Panel> {
+    (0..3)
+        .map(|i| Panel {
+            y_label: format!("R{}, ft", AXES[i]),
+            series: vec![
+                Series::new(
+                    "R (true)",
+                    component(logged, |s| s.relative_ned_ft, i),
+                    TRUTH,
+                ),
+                Series::new("R_c", component(logged, |s| s.command_ned_ft, i), REFERENCE),
+                Series::new(
+                    "R*_c (with excitation)",
+                    component(logged, |s| s.excited_command_ned_ft, i),
+                    EXTRA,
+                ),
+            ],
+        })
+        .collect()
+}
+
+/// `parameter_estimates.png`: b̂ against b, then the law's estimates of the target's motion
+/// (b̂ d̂ against V_T for the velocity law, ‖d̂‖ for the acceleration law).
+fn estimate_panels(scenario: &Scenario, logged: &[Snapshot]) -> Vec<Panel> {
+    let b_panel = Panel {
+        y_label: "b, ft".to_string(),
+        series: vec![
+            Series::new(
+                "b estimate",
+                logged.iter().map(|s| s.b_hat_ft).collect(),
+                TRUTH,
+            ),
+            Series::new(
+                "b true",
+                vec![scenario.target.size_ft; logged.len()],
+                REFERENCE,
+            ),
+        ],
+    };
+    match scenario.guidance.law {
+        GuidanceLawKind::Velocity => velocity_law_estimates(b_panel, logged),
+        GuidanceLawKind::Acceleration => vec![
+            b_panel,
+            Panel {
+                y_label: "‖d̂‖, ft/s".to_string(),
+                series: vec![Series::new(
+                    "estimate of ‖d_T‖",
+                    logged
+                        .iter()
+                        .map(|s| s.target_motion.vector().norm())
+                        .collect(),
+                    TRUTH,
+                )],
+            },
+        ],
+    }
 }
 
 /// Velocity law: b̂ and b̂ d̂ (the estimate of V_T) against V_T.

@@ -13,26 +13,38 @@ pub const INSTALL_HINT: &str = "apt-get install -y mesa-vulkan-drivers libvulkan
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {
     /// No adapter (GPU or software rasteriser) is available.
-    #[error("no GPU adapter found ({reason}); install a software Vulkan driver: {hint}")]
+    #[error(
+        "no GPU adapter found ({}); install a software Vulkan driver: {hint}",
+        one_line(.source)
+    )]
     NoAdapter {
-        /// wgpu's reason, on one line.
-        reason: String,
+        /// wgpu's reason.
+        #[source]
+        source: wgpu::RequestAdapterError,
         /// The install command, [`INSTALL_HINT`].
         hint: &'static str,
     },
     /// The adapter refused to create a device.
-    #[error("GPU adapter {adapter} refused to create a device: {reason}")]
+    #[error(
+        "GPU adapter {adapter} refused to create a device: {}",
+        one_line(.source)
+    )]
     NoDevice {
         /// The adapter's name.
         adapter: String,
-        /// wgpu's reason, on one line.
-        reason: String,
+        /// wgpu's reason.
+        #[source]
+        source: wgpu::RequestDeviceError,
     },
 }
 
-/// One line, whatever the source message held.
-fn one_line(text: &str) -> String {
-    text.split_whitespace().collect::<Vec<_>>().join(" ")
+/// `error`'s message on one line, whatever line breaks it held.
+fn one_line(error: &dyn std::error::Error) -> String {
+    error
+        .to_string()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// A wgpu device and queue without a surface, with the adapter's description.
@@ -62,8 +74,8 @@ impl GpuContext {
                 apply_limit_buckets: false,
             })
             .await
-            .map_err(|e| GpuError::NoAdapter {
-                reason: one_line(&e.to_string()),
+            .map_err(|source| GpuError::NoAdapter {
+                source,
                 hint: INSTALL_HINT,
             })?;
         let info = adapter.get_info();
@@ -75,9 +87,9 @@ impl GpuContext {
                 ..Default::default()
             })
             .await
-            .map_err(|e| GpuError::NoDevice {
+            .map_err(|source| GpuError::NoDevice {
                 adapter: info.name.clone(),
-                reason: one_line(&e.to_string()),
+                source,
             })?;
         Ok(Self {
             device,
@@ -100,11 +112,6 @@ impl GpuContext {
     /// The limits the device was created with.
     pub fn limits(&self) -> &wgpu::Limits {
         &self.limits
-    }
-
-    /// Adapter name, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
-    pub fn adapter_name(&self) -> &str {
-        &self.info.name
     }
 
     /// Adapter kind; lavapipe is [`wgpu::DeviceType::Cpu`].

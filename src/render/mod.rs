@@ -19,5 +19,5 @@ pub mod window;
 pub use frame::Frame;
 pub use gpu::{GpuContext, GpuError};
 pub use mesh::{MeshError, TargetMesh};
-pub use renderer::{RenderError, RenderTimings, Renderer};
+pub use renderer::{ReadbackError, RenderError, RenderTimings, Renderer};
 pub use settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};

@@ -21,7 +21,9 @@ use crate::render::frame::Frame;
 use crate::render::gpu::GpuContext;
 use crate::render::mesh::TargetMesh;
 use crate::render::noise::NoiseGenerator;
-use crate::render::projection::{body_from_target, clip_from_body, clip_from_body_in_window};
+use crate::render::projection::{
+    PixelWindow, body_from_target, clip_from_body, clip_from_body_in_window,
+};
 use crate::render::settings::{RenderSettings, Sky};
 use crate::render::window::{FramePlan, WindowCopy, bounding_corners, plan_frame};
 
@@ -42,10 +44,27 @@ pub enum RenderError {
     NonFinitePose(TargetPoseInCamera),
     /// wgpu rejected the creation of a GPU resource (validation or out of memory).
     #[error("GPU rejected the renderer's resources: {0}")]
-    Gpu(String),
+    Gpu(#[source] wgpu::Error),
     /// The frame could not be read back from the GPU.
     #[error("frame readback failed: {0}")]
-    Readback(String),
+    Readback(#[from] ReadbackError),
+}
+
+/// The step of a frame's readback that failed, with wgpu's error.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadbackError {
+    /// Waiting for the frame's submission failed.
+    #[error("waiting for the GPU: {0}")]
+    Wait(#[from] wgpu::PollError),
+    /// The staging buffer's map callback was dropped without reporting.
+    #[error("map callback was dropped")]
+    CallbackDropped(#[from] mpsc::RecvError),
+    /// The staging buffer could not be mapped.
+    #[error("mapping the staging buffer: {0}")]
+    Map(#[from] wgpu::BufferAsyncError),
+    /// The mapped staging buffer could not be viewed.
+    #[error("{0}")]
+    View(#[from] wgpu::MapRangeError),
 }
 
 /// A frame submitted by [`Renderer::begin_frame`] and not yet read back.
@@ -112,28 +131,18 @@ pub struct Renderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
     settings: RenderSettings,
-    target_pipeline: wgpu::RenderPipeline,
-    background_pipeline: Option<wgpu::RenderPipeline>,
+    pipelines: Pipelines,
     vertex_buffer: wgpu::Buffer,
     vertex_count: u32,
-    uniform_buffer: wgpu::Buffer,
-    bind_group: wgpu::BindGroup,
-    /// The second uniform slot's bind group: the target window's projection.
-    window_bind_group: wgpu::BindGroup,
-    /// Byte offset of the second uniform slot.
-    window_slot_offset: u64,
-    /// The one-sample sky of a windowed frame (gradient sky with multisampling only).
-    sky_pipeline: Option<wgpu::RenderPipeline>,
+    uniform_slots: UniformSlots,
     /// Corners of the mesh's bounding box, target axes, ft (plans the window).
     corners_ft: [Vec3; 8],
     /// Multisampled window framebuffers by side (index log2 side), made when first needed.
-    windows: Vec<Option<WindowTargets>>,
+    windows: Vec<Option<RenderTargets>>,
     uniforms: FrameUniforms,
     clip_from_body: Matrix4<f64>,
-    msaa_view: Option<wgpu::TextureView>,
-    resolve_texture: wgpu::Texture,
-    resolve_view: wgpu::TextureView,
-    depth_view: wgpu::TextureView,
+    /// The whole image's framebuffers; its resolve texture is the image read back.
+    image: RenderTargets,
     staging: wgpu::Buffer,
     padded_bytes_per_row: u32,
     clear_color: wgpu::Color,
@@ -166,11 +175,13 @@ impl Renderer {
         let validation = pollster::block_on(validation_scope.pop());
         let oom = pollster::block_on(oom_scope.pop());
         if let Some(e) = validation.or(oom) {
-            return Err(RenderError::Gpu(e.to_string()));
+            return Err(RenderError::Gpu(e));
         }
         Ok(built)
     }
 
+    /// Creates the renderer's GPU objects (inside [`Self::new`]'s error scopes) and uploads
+    /// the mesh and the first uniforms.
     fn build(
         gpu: &GpuContext,
         settings: RenderSettings,
@@ -180,166 +191,29 @@ impl Renderer {
         let device = gpu.device().clone();
         let queue = gpu.queue().clone();
         let cam = settings.intrinsics;
-        let samples = settings.msaa_samples;
         let shader = device.create_shader_module(wgpu::include_wgsl!("../../shaders/target.wgsl"));
 
         let uniforms = initial_uniforms(&settings);
-        // Two slots: the whole image's projection and the target window's.
-        let uniform_size = std::mem::size_of::<FrameUniforms>() as u64;
-        let window_slot_offset = uniform_size
-            .next_multiple_of(u64::from(gpu.limits().min_uniform_buffer_offset_alignment));
-        let uniform_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("frame uniforms"),
-            size: window_slot_offset + uniform_size,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        queue.write_buffer(&uniform_buffer, 0, bytemuck::bytes_of(&uniforms));
-        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("frame uniforms"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(
-                        std::mem::size_of::<FrameUniforms>() as u64
-                    ),
-                },
-                count: None,
-            }],
-        });
-        let slot = |offset: u64| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("frame uniforms"),
-                layout: &bind_group_layout,
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &uniform_buffer,
-                        offset,
-                        size: wgpu::BufferSize::new(uniform_size),
-                    }),
-                }],
-            })
-        };
-        let bind_group = slot(0);
-        let window_bind_group = slot(window_slot_offset);
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("target"),
-            bind_group_layouts: &[Some(&bind_group_layout)],
-            immediate_size: 0,
-        });
-
-        // One pipeline of the shader's: entry points, vertex buffers, depth state, samples.
-        let pipeline = |name: &str,
-                        buffers: &[Option<wgpu::VertexBufferLayout>],
-                        depth_stencil: Option<wgpu::DepthStencilState>,
-                        sample_count: u32| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(name),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &shader,
-                    entry_point: Some(&format!("vs_{name}")),
-                    compilation_options: Default::default(),
-                    buffers,
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    cull_mode: None,
-                    ..Default::default()
-                },
-                depth_stencil,
-                multisample: wgpu::MultisampleState {
-                    count: sample_count,
-                    ..Default::default()
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: &shader,
-                    entry_point: Some(&format!("fs_{name}")),
-                    compilation_options: Default::default(),
-                    targets: &[Some(COLOR_FORMAT.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        };
-        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
-        let target_pipeline = pipeline(
-            "target",
-            &[Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<TargetVertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &attributes,
-            })],
-            Some(depth_state(true, wgpu::CompareFunction::Greater)),
-            samples,
+        let uniform_layout = uniform_layout(&device);
+        let uniform_slots = UniformSlots::new(
+            &device,
+            &uniform_layout,
+            gpu.limits().min_uniform_buffer_offset_alignment,
         );
-        let needs_background_pass = matches!(settings.background.sky, Sky::VerticalGradient { .. });
-        // The sky: `samples` per pixel when drawn with the target, one in the sky pass of a
-        // windowed frame (no depth there).
-        let sky_pipeline = |sample_count: u32, depth: bool| {
-            pipeline(
-                "background",
-                &[],
-                depth.then(|| depth_state(false, wgpu::CompareFunction::Always)),
-                sample_count,
-            )
-        };
-        let background_pipeline = needs_background_pass.then(|| sky_pipeline(samples, true));
-        let one_sample_sky = (needs_background_pass && samples > 1).then(|| sky_pipeline(1, false));
-
+        queue.write_buffer(&uniform_slots.buffer, 0, bytemuck::bytes_of(&uniforms));
+        let pipelines = Pipelines::new(&device, &shader, &uniform_layout, &settings);
         let vertex_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("target vertices"),
             contents: bytemuck::cast_slice(vertices),
             usage: wgpu::BufferUsages::VERTEX,
         });
-
-        let size = wgpu::Extent3d {
-            width: cam.width_px,
-            height: cam.height_px,
-            depth_or_array_layers: 1,
-        };
-        let texture = |label, sample_count, format, usage| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size,
-                mip_level_count: 1,
-                sample_count,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
-        };
-        let resolve_texture = texture(
-            "colour",
-            1,
-            COLOR_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::COPY_DST,
+        let image = RenderTargets::new(
+            &device,
+            "",
+            extent_px(cam.width_px, cam.height_px),
+            settings.msaa_samples,
+            wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST,
         );
-        let resolve_view = resolve_texture.create_view(&Default::default());
-        let msaa_view = (samples > 1).then(|| {
-            texture(
-                "colour msaa",
-                samples,
-                COLOR_FORMAT,
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
-            )
-            .create_view(&Default::default())
-        });
-        let depth_view = texture(
-            "depth",
-            samples,
-            DEPTH_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT,
-        )
-        .create_view(&Default::default());
-
         let padded_bytes_per_row = padded_bytes_per_row(cam.width_px);
         let staging = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
@@ -347,41 +221,23 @@ impl Renderer {
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let clear_rgb = match settings.background.sky {
-            Sky::Uniform { rgb } => rgb,
-            Sky::VerticalGradient { top_rgb, .. } => top_rgb,
-        };
-        let clear_color = wgpu::Color {
-            r: f64::from(clear_rgb[0]) / 255.0,
-            g: f64::from(clear_rgb[1]) / 255.0,
-            b: f64::from(clear_rgb[2]) / 255.0,
-            a: 1.0,
-        };
 
         Self {
             device,
             queue,
             settings,
-            target_pipeline,
-            background_pipeline,
+            pipelines,
             vertex_buffer,
             vertex_count: vertices.len() as u32,
-            uniform_buffer,
-            bind_group,
-            window_bind_group,
-            window_slot_offset,
-            sky_pipeline: one_sample_sky,
+            uniform_slots,
             corners_ft,
             windows: Vec::new(),
             uniforms,
             clip_from_body: clip_from_body(&cam),
-            msaa_view,
-            resolve_texture,
-            resolve_view,
-            depth_view,
+            image,
             staging,
             padded_bytes_per_row,
-            clear_color,
+            clear_color: clear_color(&settings.background.sky),
             noise: settings
                 .background
                 .noise
@@ -445,36 +301,23 @@ impl Renderer {
         self.timings
     }
 
+    /// Writes the uniforms for `pose`, encodes the passes of its frame plan and the copy into
+    /// the staging buffer, submits them and starts mapping the staging buffer.
     fn submit(&mut self, pose: &TargetPoseInCamera) -> Result<PendingFrame, RenderError> {
         if !(pose.position_body_ft.iter().all(|x| x.is_finite())
             && pose.body_from_target.iter().all(|x| x.is_finite()))
         {
             return Err(RenderError::NonFinitePose(*pose));
         }
-        let target_to_body = body_from_target(pose);
-        let clip_from_target = self.clip_from_body * target_to_body;
-        self.uniforms.clip_from_target = columns_f32(&clip_from_target);
-        let r = &pose.body_from_target;
-        self.uniforms.body_from_target =
-            std::array::from_fn(|c| [r[(0, c)] as f32, r[(1, c)] as f32, r[(2, c)] as f32, 0.0]);
-        self.queue
-            .write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&self.uniforms));
+        let target_to_body = self.write_image_uniforms(pose);
         let cam = self.settings.intrinsics;
-        let plan = if self.msaa_view.is_some() && self.settings.multisample_window {
+        let plan = if self.image.msaa_view.is_some() && self.settings.multisample_window {
             plan_frame(&self.corners_ft, pose, &cam)
         } else {
             FramePlan::Whole
         };
         if let FramePlan::Window(window) = plan {
-            let mut in_window = self.uniforms;
-            in_window.clip_from_target =
-                columns_f32(&(clip_from_body_in_window(&cam, &window) * target_to_body));
-            in_window.image[1] = window.v0_px as f32;
-            self.queue.write_buffer(
-                &self.uniform_buffer,
-                self.window_slot_offset,
-                bytemuck::bytes_of(&in_window),
-            );
+            self.write_window_uniforms(&window, &target_to_body);
         }
 
         let mut encoder = self
@@ -482,48 +325,92 @@ impl Renderer {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("target frame"),
             });
+        self.encode_passes(&mut encoder, plan);
+        self.copy_image_to_staging(&mut encoder);
+        let submission = self.queue.submit([encoder.finish()]);
+        Ok(self.map_staging(submission))
+    }
+
+    /// Writes the first uniform slot (the whole image's projection of the target at `pose`)
+    /// and returns the target-to-body transform.
+    fn write_image_uniforms(&mut self, pose: &TargetPoseInCamera) -> Matrix4<f64> {
+        let target_to_body = body_from_target(pose);
+        let clip_from_target = self.clip_from_body * target_to_body;
+        self.uniforms.clip_from_target = columns_f32(&clip_from_target);
+        let r = &pose.body_from_target;
+        self.uniforms.body_from_target =
+            std::array::from_fn(|c| [r[(0, c)] as f32, r[(1, c)] as f32, r[(2, c)] as f32, 0.0]);
+        self.queue.write_buffer(
+            &self.uniform_slots.buffer,
+            0,
+            bytemuck::bytes_of(&self.uniforms),
+        );
+        target_to_body
+    }
+
+    /// Writes the second uniform slot: the first with the projection into `window`.
+    fn write_window_uniforms(&self, window: &PixelWindow, target_to_body: &Matrix4<f64>) {
+        let cam = self.settings.intrinsics;
+        let mut in_window = self.uniforms;
+        in_window.clip_from_target =
+            columns_f32(&(clip_from_body_in_window(&cam, window) * target_to_body));
+        in_window.image[1] = window.v0_px as f32;
+        self.queue.write_buffer(
+            &self.uniform_slots.buffer,
+            self.uniform_slots.window_offset,
+            bytemuck::bytes_of(&in_window),
+        );
+    }
+
+    /// The render passes of `plan`, leaving the frame in the image's resolve texture.
+    fn encode_passes(&mut self, encoder: &mut wgpu::CommandEncoder, plan: FramePlan) {
         match plan {
-            FramePlan::Whole => {
-                let (view, resolve_target) = match &self.msaa_view {
-                    Some(msaa) => (msaa, Some(&self.resolve_view)),
-                    None => (&self.resolve_view, None),
-                };
-                self.draw_target(&mut encoder, view, resolve_target, &self.depth_view, false);
-            }
-            FramePlan::SkyOnly => self.draw_sky(&mut encoder),
+            FramePlan::Whole => self.draw_target(encoder, &self.image, false),
+            FramePlan::SkyOnly => self.draw_sky(encoder),
             FramePlan::Window(window) => {
-                self.draw_sky(&mut encoder);
+                self.draw_sky(encoder);
+                let cam = self.settings.intrinsics;
                 if let Some(copy) = WindowCopy::of(&window, &cam) {
-                    let side = window.width_px;
-                    let slot = side.trailing_zeros() as usize;
-                    if self.windows.len() <= slot {
-                        self.windows.resize_with(slot + 1, || None);
-                    }
-                    if self.windows[slot].is_none() {
-                        let samples = self.settings.msaa_samples;
-                        self.windows[slot] = Some(WindowTargets::new(&self.device, side, samples));
-                    }
+                    let slot = self.make_window_targets(window.width_px);
                     if let Some(targets) = &self.windows[slot] {
-                        self.draw_target(
-                            &mut encoder,
-                            &targets.msaa_view,
-                            Some(&targets.resolve_view),
-                            &targets.depth_view,
-                            true,
-                        );
+                        self.draw_target(encoder, targets, true);
                         copy_window(
-                            &mut encoder,
+                            encoder,
                             &targets.resolve_texture,
-                            &self.resolve_texture,
+                            &self.image.resolve_texture,
                             &copy,
                         );
                     }
                 }
             }
         }
+    }
+
+    /// Makes the framebuffers of a window of side `side_px` unless they exist; returns their
+    /// index in `windows`.
+    fn make_window_targets(&mut self, side_px: u32) -> usize {
+        let slot = side_px.trailing_zeros() as usize;
+        if self.windows.len() <= slot {
+            self.windows.resize_with(slot + 1, || None);
+        }
+        if self.windows[slot].is_none() {
+            self.windows[slot] = Some(RenderTargets::new(
+                &self.device,
+                "window ",
+                extent_px(side_px, side_px),
+                self.settings.msaa_samples,
+                wgpu::TextureUsages::COPY_SRC,
+            ));
+        }
+        slot
+    }
+
+    /// Copies the image's resolve texture into the staging buffer (rows padded).
+    fn copy_image_to_staging(&self, encoder: &mut wgpu::CommandEncoder) {
+        let cam = self.settings.intrinsics;
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
-                texture: &self.resolve_texture,
+                texture: &self.image.resolve_texture,
                 mip_level: 0,
                 origin: wgpu::Origin3d::ZERO,
                 aspect: wgpu::TextureAspect::All,
@@ -536,13 +423,13 @@ impl Renderer {
                     rows_per_image: Some(cam.height_px),
                 },
             },
-            wgpu::Extent3d {
-                width: cam.width_px,
-                height: cam.height_px,
-                depth_or_array_layers: 1,
-            },
+            extent_px(cam.width_px, cam.height_px),
         );
-        let submission = self.queue.submit([encoder.finish()]);
+    }
+
+    /// Starts mapping the staging buffer once `submission` is done; the frame reports on a
+    /// channel (DESIGN §6).
+    fn map_staging(&self, submission: wgpu::SubmissionIndex) -> PendingFrame {
         let (sender, receiver) = mpsc::channel();
         self.staging
             .slice(..)
@@ -550,22 +437,21 @@ impl Renderer {
                 // The receiver lives until the frame is read back; a send error cannot matter.
                 let _ = sender.send(result);
             });
-        Ok(PendingFrame {
+        PendingFrame {
             submission,
             mapped: receiver,
-        })
+        }
     }
 
-    /// One pass: sky and target into `view` (multisampled, resolved into `resolve_target`),
-    /// with the whole image's projection or, `in_window`, the window's.
+    /// One pass: sky and target into `targets` (multisampled and resolved when they have
+    /// multisampled colour), with the whole image's projection or, `in_window`, the window's.
     fn draw_target(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        view: &wgpu::TextureView,
-        resolve_target: Option<&wgpu::TextureView>,
-        depth_view: &wgpu::TextureView,
+        targets: &RenderTargets,
         in_window: bool,
     ) {
+        let (view, resolve_target) = targets.colour_attachment();
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("target frame"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -582,7 +468,7 @@ impl Renderer {
                 },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth_view,
+                view: &targets.depth_view,
                 // Reversed depth: 0 is the far plane.
                 depth_ops: Some(wgpu::Operations {
                     load: wgpu::LoadOp::Clear(0.0),
@@ -595,16 +481,16 @@ impl Renderer {
             multiview_mask: None,
         });
         let uniforms = if in_window {
-            &self.window_bind_group
+            &self.uniform_slots.window
         } else {
-            &self.bind_group
+            &self.uniform_slots.whole
         };
         pass.set_bind_group(0, uniforms, &[]);
-        if let Some(background) = &self.background_pipeline {
+        if let Some(background) = &self.pipelines.background {
             pass.set_pipeline(background);
             pass.draw(0..3, 0..1);
         }
-        pass.set_pipeline(&self.target_pipeline);
+        pass.set_pipeline(&self.pipelines.target);
         pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
         pass.draw(0..self.vertex_count, 0..1);
     }
@@ -614,7 +500,7 @@ impl Renderer {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("sky"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &self.resolve_view,
+                view: &self.image.resolve_view,
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
@@ -627,25 +513,21 @@ impl Renderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        if let Some(sky) = &self.sky_pipeline {
-            pass.set_bind_group(0, &self.bind_group, &[]);
+        if let Some(sky) = &self.pipelines.one_sample_sky {
+            pass.set_bind_group(0, &self.uniform_slots.whole, &[]);
             pass.set_pipeline(sky);
             pass.draw(0..3, 0..1);
         }
     }
 
-    fn read_back(&mut self, pending: PendingFrame, frame: &mut Frame) -> Result<(), RenderError> {
-        self.device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(pending.submission),
-                timeout: None,
-            })
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
-        pending
-            .mapped
-            .recv()
-            .map_err(|_| RenderError::Readback("map callback was dropped".into()))?
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
+    /// Waits for the frame's submission and mapping, and unpads the staging buffer's rows
+    /// into `frame` (resized to the camera).
+    fn read_back(&mut self, pending: PendingFrame, frame: &mut Frame) -> Result<(), ReadbackError> {
+        self.device.poll(wgpu::PollType::Wait {
+            submission_index: Some(pending.submission),
+            timeout: None,
+        })?;
+        pending.mapped.recv()??;
         let cam = self.settings.intrinsics;
         frame.width_px = cam.width_px;
         frame.height_px = cam.height_px;
@@ -654,11 +536,7 @@ impl Renderer {
             .resize(4 * cam.width_px as usize * cam.height_px as usize, 0);
         let row_bytes = 4 * cam.width_px as usize;
         {
-            let mapped = self
-                .staging
-                .slice(..)
-                .get_mapped_range()
-                .map_err(|e| RenderError::Readback(e.to_string()))?;
+            let mapped = self.staging.slice(..).get_mapped_range()?;
             for (dst, src) in frame
                 .rgba
                 .chunks_exact_mut(row_bytes)
@@ -672,25 +550,213 @@ impl Renderer {
     }
 }
 
-/// Multisampled colour and depth of a square window, and the texture it resolves into.
+/// The uniform buffer's two slots, the whole image's projection and the target window's, and
+/// a bind group for each.
 #[derive(Debug)]
-struct WindowTargets {
-    msaa_view: wgpu::TextureView,
+struct UniformSlots {
+    buffer: wgpu::Buffer,
+    /// Binds the first slot: the whole image's projection.
+    whole: wgpu::BindGroup,
+    /// Binds the second slot: the target window's projection.
+    window: wgpu::BindGroup,
+    /// Byte offset of the second slot.
+    window_offset: u64,
+}
+
+impl UniformSlots {
+    /// The buffer, its second slot at the first multiple of `min_offset_alignment` after the
+    /// first slot, and the slots' bind groups of `layout`.
+    fn new(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        min_offset_alignment: u32,
+    ) -> Self {
+        let uniform_size = std::mem::size_of::<FrameUniforms>() as u64;
+        let window_offset = uniform_size.next_multiple_of(u64::from(min_offset_alignment));
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame uniforms"),
+            size: window_offset + uniform_size,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let slot = |offset: u64| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("frame uniforms"),
+                layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &buffer,
+                        offset,
+                        size: wgpu::BufferSize::new(uniform_size),
+                    }),
+                }],
+            })
+        };
+        Self {
+            whole: slot(0),
+            window: slot(window_offset),
+            window_offset,
+            buffer,
+        }
+    }
+}
+
+/// The layout of one uniform slot: a [`FrameUniforms`] at binding 0, seen by both stages.
+fn uniform_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("frame uniforms"),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(
+                    std::mem::size_of::<FrameUniforms>() as u64
+                ),
+            },
+            count: None,
+        }],
+    })
+}
+
+/// The render pipelines.
+#[derive(Debug)]
+struct Pipelines {
+    /// The target, `msaa_samples` per pixel, with depth.
+    target: wgpu::RenderPipeline,
+    /// The gradient sky in the target's pass (none for a uniform sky: the clear colour is
+    /// the sky).
+    background: Option<wgpu::RenderPipeline>,
+    /// The one-sample sky of a windowed frame (gradient sky with multisampling only).
+    one_sample_sky: Option<wgpu::RenderPipeline>,
+}
+
+impl Pipelines {
+    /// The pipelines `settings` need, of `shader`'s programs, binding `uniform_layout`.
+    fn new(
+        device: &wgpu::Device,
+        shader: &wgpu::ShaderModule,
+        uniform_layout: &wgpu::BindGroupLayout,
+        settings: &RenderSettings,
+    ) -> Self {
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("target"),
+            bind_group_layouts: &[Some(uniform_layout)],
+            immediate_size: 0,
+        });
+        let builder = PipelineBuilder {
+            device,
+            layout: &layout,
+            shader,
+        };
+        let samples = settings.msaa_samples;
+        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+        let target = builder.create(
+            "target",
+            &[Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<TargetVertex>() as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &attributes,
+            })],
+            Some(depth_state(true, wgpu::CompareFunction::Greater)),
+            samples,
+        );
+        let needs_background_pass = matches!(settings.background.sky, Sky::VerticalGradient { .. });
+        // The sky: `samples` per pixel when drawn with the target, one in the sky pass of a
+        // windowed frame (no depth there).
+        let sky = |sample_count: u32, depth: bool| {
+            builder.create(
+                "background",
+                &[],
+                depth.then(|| depth_state(false, wgpu::CompareFunction::Always)),
+                sample_count,
+            )
+        };
+        Self {
+            target,
+            background: needs_background_pass.then(|| sky(samples, true)),
+            one_sample_sky: (needs_background_pass && samples > 1).then(|| sky(1, false)),
+        }
+    }
+}
+
+/// Makes pipelines of one shader module with one layout.
+struct PipelineBuilder<'a> {
+    device: &'a wgpu::Device,
+    layout: &'a wgpu::PipelineLayout,
+    shader: &'a wgpu::ShaderModule,
+}
+
+impl PipelineBuilder<'_> {
+    /// The pipeline of the shader's `vs_{name}` and `fs_{name}`, drawing triangles into one
+    /// colour target with `sample_count` samples.
+    fn create(
+        &self,
+        name: &str,
+        buffers: &[Option<wgpu::VertexBufferLayout>],
+        depth_stencil: Option<wgpu::DepthStencilState>,
+        sample_count: u32,
+    ) -> wgpu::RenderPipeline {
+        self.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(name),
+                layout: Some(self.layout),
+                vertex: wgpu::VertexState {
+                    module: self.shader,
+                    entry_point: Some(&format!("vs_{name}")),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology: wgpu::PrimitiveTopology::TriangleList,
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil,
+                multisample: wgpu::MultisampleState {
+                    count: sample_count,
+                    ..Default::default()
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: self.shader,
+                    entry_point: Some(&format!("fs_{name}")),
+                    compilation_options: Default::default(),
+                    targets: &[Some(COLOR_FORMAT.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+    }
+}
+
+/// Colour (multisampled when there are several samples) and depth attachments of one size,
+/// and the one-sample texture the colour resolves into (or is drawn into without
+/// multisampling).
+#[derive(Debug)]
+struct RenderTargets {
+    msaa_view: Option<wgpu::TextureView>,
     depth_view: wgpu::TextureView,
     resolve_texture: wgpu::Texture,
     resolve_view: wgpu::TextureView,
 }
 
-impl WindowTargets {
-    fn new(device: &wgpu::Device, side_px: u32, samples: u32) -> Self {
-        let texture = |label, sample_count, format, usage| {
+impl RenderTargets {
+    /// Targets of `size` with `samples` per pixel, labelled `label_prefix` + their role; the
+    /// resolve texture is also used as `resolve_usage` says.
+    fn new(
+        device: &wgpu::Device,
+        label_prefix: &str,
+        size: wgpu::Extent3d,
+        samples: u32,
+        resolve_usage: wgpu::TextureUsages,
+    ) -> Self {
+        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let texture = |role: &str, sample_count, format, usage| {
             device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: side_px,
-                    height: side_px,
-                    depth_or_array_layers: 1,
-                },
+                label: Some(&format!("{label_prefix}{role}")),
+                size,
                 mip_level_count: 1,
                 sample_count,
                 dimension: wgpu::TextureDimension::D2,
@@ -699,21 +765,35 @@ impl WindowTargets {
                 view_formats: &[],
             })
         };
-        let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        let resolve_texture = texture(
-            "window colour",
-            1,
-            COLOR_FORMAT,
-            attachment | wgpu::TextureUsages::COPY_SRC,
-        );
+        let resolve_texture = texture("colour", 1, COLOR_FORMAT, attachment | resolve_usage);
         Self {
-            msaa_view: texture("window colour msaa", samples, COLOR_FORMAT, attachment)
-                .create_view(&Default::default()),
-            depth_view: texture("window depth", samples, DEPTH_FORMAT, attachment)
+            msaa_view: (samples > 1).then(|| {
+                texture("colour msaa", samples, COLOR_FORMAT, attachment)
+                    .create_view(&Default::default())
+            }),
+            depth_view: texture("depth", samples, DEPTH_FORMAT, attachment)
                 .create_view(&Default::default()),
             resolve_view: resolve_texture.create_view(&Default::default()),
             resolve_texture,
         }
+    }
+
+    /// The colour view to draw into and the view it resolves into (none without
+    /// multisampling).
+    fn colour_attachment(&self) -> (&wgpu::TextureView, Option<&wgpu::TextureView>) {
+        match &self.msaa_view {
+            Some(msaa) => (msaa, Some(&self.resolve_view)),
+            None => (&self.resolve_view, None),
+        }
+    }
+}
+
+/// A 2-D extent of `width_px` x `height_px`.
+fn extent_px(width_px: u32, height_px: u32) -> wgpu::Extent3d {
+    wgpu::Extent3d {
+        width: width_px,
+        height: height_px,
+        depth_or_array_layers: 1,
     }
 }
 
@@ -733,11 +813,7 @@ fn copy_window(
     encoder.copy_texture_to_texture(
         at(window, copy.from_px),
         at(image, copy.to_px),
-        wgpu::Extent3d {
-            width: copy.size_px[0],
-            height: copy.size_px[1],
-            depth_or_array_layers: 1,
-        },
+        extent_px(copy.size_px[0], copy.size_px[1]),
     );
 }
 
@@ -757,14 +833,30 @@ fn padded_bytes_per_row(width_px: u32) -> u32 {
     (4 * width_px).div_ceil(align) * align
 }
 
-fn initial_uniforms(settings: &RenderSettings) -> FrameUniforms {
-    let (top, bottom) = match settings.background.sky {
+/// The sky's colours at the top and at the bottom of the image (RGB, 0-255).
+fn sky_top_bottom_rgb(sky: &Sky) -> ([u8; 3], [u8; 3]) {
+    match *sky {
         Sky::Uniform { rgb } => (rgb, rgb),
         Sky::VerticalGradient {
             top_rgb,
             bottom_rgb,
         } => (top_rgb, bottom_rgb),
-    };
+    }
+}
+
+/// The colour frames are cleared to: the sky's top colour.
+fn clear_color(sky: &Sky) -> wgpu::Color {
+    let (top_rgb, _) = sky_top_bottom_rgb(sky);
+    wgpu::Color {
+        r: f64::from(top_rgb[0]) / 255.0,
+        g: f64::from(top_rgb[1]) / 255.0,
+        b: f64::from(top_rgb[2]) / 255.0,
+        a: 1.0,
+    }
+}
+
+fn initial_uniforms(settings: &RenderSettings) -> FrameUniforms {
+    let (top, bottom) = sky_top_bottom_rgb(&settings.background.sky);
     let light = settings.shading.light_dir_body.normalize();
     FrameUniforms {
         clip_from_target: [[0.0; 4]; 4],

@@ -157,62 +157,89 @@ impl Default for AutopilotSection {
 impl AutopilotSection {
     /// Checks every value; keys are named as under `[autopilot]`.
     pub fn validate(&self) -> Check {
-        let gains = [
-            ("autopilot.airspeed_gain_per_s", self.airspeed_gain_per_s),
-            ("autopilot.roll_gain_per_s", self.roll_gain_per_s),
-            ("autopilot.pitch_gain_per_s", self.pitch_gain_per_s),
-            ("autopilot.yaw_gain_per_s", self.yaw_gain_per_s),
-            ("autopilot.roll_rate_gain_per_s", self.roll_rate_gain_per_s),
-            (
-                "autopilot.pitch_rate_gain_per_s",
-                self.pitch_rate_gain_per_s,
-            ),
-            ("autopilot.yaw_rate_gain_per_s", self.yaw_rate_gain_per_s),
-        ];
-        for (key, value) in gains {
-            check::in_closed(key, value, 1e-3, 1e3)?;
-        }
-        let filters = [
-            (
-                "autopilot.airspeed_prefilter_omega_rps",
-                self.airspeed_prefilter_omega_rps,
-            ),
-            (
-                "autopilot.roll_prefilter_omega_rps",
-                self.roll_prefilter_omega_rps,
-            ),
-            (
-                "autopilot.pitch_prefilter_omega_rps",
-                self.pitch_prefilter_omega_rps,
-            ),
-            (
-                "autopilot.heading_prefilter_omega_rps",
-                self.heading_prefilter_omega_rps,
-            ),
-            (
-                "autopilot.rate_filter_omega_rps",
-                self.rate_filter_omega_rps,
-            ),
-        ];
-        for (key, value) in filters {
-            check::in_closed(key, value, 1e-3, 1e3)?;
-        }
-        let dampings = [
-            (
-                "autopilot.airspeed_prefilter_zeta",
-                self.airspeed_prefilter_zeta,
-            ),
-            ("autopilot.roll_prefilter_zeta", self.roll_prefilter_zeta),
-            ("autopilot.pitch_prefilter_zeta", self.pitch_prefilter_zeta),
-            (
-                "autopilot.heading_prefilter_zeta",
-                self.heading_prefilter_zeta,
-            ),
-            ("autopilot.rate_filter_zeta", self.rate_filter_zeta),
-        ];
-        for (key, value) in dampings {
-            check::in_closed(key, value, 0.1, 10.0)?;
-        }
+        self.validate_gains()?;
+        self.validate_filters()?;
+        self.validate_attitude_limits()?;
+        self.validate_throttle_and_airspeed()?;
+        check::in_closed(
+            "autopilot.wind_filter_time_constant_s",
+            self.wind_filter_time_constant_s,
+            1e-3,
+            1e3,
+        )?;
+        self.validate_rbf()
+    }
+
+    /// The error-dynamics gains of (7.20), (7.24) and (7.25).
+    fn validate_gains(&self) -> Check {
+        all_in_closed(
+            &[
+                ("autopilot.airspeed_gain_per_s", self.airspeed_gain_per_s),
+                ("autopilot.roll_gain_per_s", self.roll_gain_per_s),
+                ("autopilot.pitch_gain_per_s", self.pitch_gain_per_s),
+                ("autopilot.yaw_gain_per_s", self.yaw_gain_per_s),
+                ("autopilot.roll_rate_gain_per_s", self.roll_rate_gain_per_s),
+                (
+                    "autopilot.pitch_rate_gain_per_s",
+                    self.pitch_rate_gain_per_s,
+                ),
+                ("autopilot.yaw_rate_gain_per_s", self.yaw_rate_gain_per_s),
+            ],
+            1e-3,
+            1e3,
+        )
+    }
+
+    /// The prefilters' and the rate command filter's natural frequencies, then their damping
+    /// ratios.
+    fn validate_filters(&self) -> Check {
+        all_in_closed(
+            &[
+                (
+                    "autopilot.airspeed_prefilter_omega_rps",
+                    self.airspeed_prefilter_omega_rps,
+                ),
+                (
+                    "autopilot.roll_prefilter_omega_rps",
+                    self.roll_prefilter_omega_rps,
+                ),
+                (
+                    "autopilot.pitch_prefilter_omega_rps",
+                    self.pitch_prefilter_omega_rps,
+                ),
+                (
+                    "autopilot.heading_prefilter_omega_rps",
+                    self.heading_prefilter_omega_rps,
+                ),
+                (
+                    "autopilot.rate_filter_omega_rps",
+                    self.rate_filter_omega_rps,
+                ),
+            ],
+            1e-3,
+            1e3,
+        )?;
+        all_in_closed(
+            &[
+                (
+                    "autopilot.airspeed_prefilter_zeta",
+                    self.airspeed_prefilter_zeta,
+                ),
+                ("autopilot.roll_prefilter_zeta", self.roll_prefilter_zeta),
+                ("autopilot.pitch_prefilter_zeta", self.pitch_prefilter_zeta),
+                (
+                    "autopilot.heading_prefilter_zeta",
+                    self.heading_prefilter_zeta,
+                ),
+                ("autopilot.rate_filter_zeta", self.rate_filter_zeta),
+            ],
+            0.1,
+            10.0,
+        )
+    }
+
+    /// The α reference and envelope and the bank limit.
+    fn validate_attitude_limits(&self) -> Check {
         check::in_closed(
             "autopilot.max_alpha_ref_deg",
             self.max_alpha_ref_deg,
@@ -227,7 +254,11 @@ impl AutopilotSection {
             self.max_alpha_ref_deg,
             format!("<= autopilot.max_alpha_deg = {}", self.max_alpha_deg),
         )?;
-        check::in_closed("autopilot.max_bank_deg", self.max_bank_deg, 1.0, 80.0)?;
+        check::in_closed("autopilot.max_bank_deg", self.max_bank_deg, 1.0, 80.0)
+    }
+
+    /// The flight-path limits' throttle margin and the airspeed command and control limits.
+    fn validate_throttle_and_airspeed(&self) -> Check {
         check::in_closed(
             "autopilot.thrust_margin_fraction",
             self.thrust_margin_fraction,
@@ -256,26 +287,25 @@ impl AutopilotSection {
             self.min_control_airspeed_fps,
             1.0,
             500.0,
-        )?;
-        check::in_closed(
-            "autopilot.wind_filter_time_constant_s",
-            self.wind_filter_time_constant_s,
-            1e-3,
-            1e3,
-        )?;
+        )
+    }
+
+    /// The RBF networks (7.23), (7.28): width, adaptation gains and projection bounds.
+    fn validate_rbf(&self) -> Check {
         check::in_closed("autopilot.rbf_width", self.rbf_width, 0.05, 100.0)?;
-        let adaptation = [
-            ("autopilot.drag_adaptation_gain", self.drag_adaptation_gain),
-            ("autopilot.roll_adaptation_gain", self.roll_adaptation_gain),
-            (
-                "autopilot.pitch_adaptation_gain",
-                self.pitch_adaptation_gain,
-            ),
-            ("autopilot.yaw_adaptation_gain", self.yaw_adaptation_gain),
-        ];
-        for (key, value) in adaptation {
-            check::in_closed(key, value, 0.0, 1e4)?;
-        }
+        all_in_closed(
+            &[
+                ("autopilot.drag_adaptation_gain", self.drag_adaptation_gain),
+                ("autopilot.roll_adaptation_gain", self.roll_adaptation_gain),
+                (
+                    "autopilot.pitch_adaptation_gain",
+                    self.pitch_adaptation_gain,
+                ),
+                ("autopilot.yaw_adaptation_gain", self.yaw_adaptation_gain),
+            ],
+            0.0,
+            1e4,
+        )?;
         check::in_closed("autopilot.drag_weight_max", self.drag_weight_max, 0.0, 1e4)?;
         check::in_closed(
             "autopilot.moment_weight_max",
@@ -285,6 +315,14 @@ impl AutopilotSection {
         )?;
         check::in_closed("autopilot.weight_epsilon", self.weight_epsilon, 1e-6, 1e4)
     }
+}
+
+/// Every `(key, value)` in [lo, hi], checked in order (the first failure is reported).
+fn all_in_closed(keyed_values: &[(&str, f64)], lo: f64, hi: f64) -> Check {
+    for &(key, value) in keyed_values {
+        check::in_closed(key, value, lo, hi)?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -78,11 +78,19 @@ impl ComponentLabeller {
         height: usize,
         link_radius_px: usize,
     ) {
-        let radius = link_radius_px.max(1);
         let n = width * height;
-        if self.labels.len() != n {
+        self.reset(mask, n);
+        self.provisional_labels(mask, width, link_radius_px.max(1));
+        self.final_blobs(mask, width);
+        debug_assert!(height == 0 || self.labels.len() == n);
+    }
+
+    /// Clears the last frame's labels (sparsely when the image size is unchanged), the
+    /// forest and the blobs, and remembers `mask` as the pixels to clear next time.
+    fn reset(&mut self, mask: &[u32], pixel_count: usize) {
+        if self.labels.len() != pixel_count {
             self.labels.clear();
-            self.labels.resize(n, 0);
+            self.labels.resize(pixel_count, 0);
         } else {
             for &i in &self.labelled {
                 self.labels[i as usize] = 0;
@@ -92,9 +100,12 @@ impl ComponentLabeller {
         self.labelled.extend_from_slice(mask);
         self.parents.clear();
         self.blobs.clear();
+    }
+
+    /// Pass 1: provisional labels (1-based), unions with the already visited neighbours
+    /// within `radius` (W, NW, N, NE for a radius of 1).
+    fn provisional_labels(&mut self, mask: &[u32], width: usize, radius: usize) {
         let w = width;
-        // Pass 1: provisional labels (1-based), unions with the already visited neighbours
-        // W, NW, N, NE.
         for &i in mask {
             let i = i as usize;
             let (u, v) = (i % w, i / w);
@@ -126,7 +137,12 @@ impl ComponentLabeller {
             }
             self.labels[i] = label;
         }
-        // Pass 2: final blob indices and statistics.
+    }
+
+    /// Pass 2: final blob indices (in raster order of each blob's first pixel) and the
+    /// blobs' counts, bounding boxes and mean pixel centres.
+    fn final_blobs(&mut self, mask: &[u32], width: usize) {
+        let w = width;
         self.root_to_blob.clear();
         self.root_to_blob.resize(self.parents.len(), u32::MAX);
         self.sums.clear();
@@ -164,7 +180,6 @@ impl ComponentLabeller {
             blob.mean_u_px = su / n;
             blob.mean_v_px = sv / n;
         }
-        debug_assert!(height == 0 || self.labels.len() == n);
     }
 }
 
