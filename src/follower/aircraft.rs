@@ -36,11 +36,11 @@ const BODY_RATES: usize = crate::world::aircraft::state::BODY_RATES_RPS;
 pub const DRYDEN_SEED_SALT: u64 = 0x0000_6472_7964_656e;
 
 /// Why the 6-DOF follower could not be set up.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum AircraftSetupError {
     /// The built-in aircraft data file is invalid.
     #[error("{0}")]
-    AircraftData(String),
+    AircraftData(#[from] AircraftFileError),
     /// A value the plant, the controller or the atmosphere rejected.
     #[error("{0}")]
     Invalid(InvalidValue),
@@ -50,12 +50,6 @@ pub enum AircraftSetupError {
     /// The trimmed state has no air data (cannot happen with a valid trim).
     #[error("the trimmed state has no valid attitude")]
     TrimState,
-}
-
-impl From<AircraftFileError> for AircraftSetupError {
-    fn from(e: AircraftFileError) -> Self {
-        Self::AircraftData(e.to_string())
-    }
 }
 
 impl From<InvalidValue> for AircraftSetupError {

@@ -90,10 +90,4 @@ impl FlightEnvelope {
         l.rudder += u64::from(s.rudder);
         self.flight_path_limited_ticks += u64::from(a.autopilot.flight_path_limited);
     }
-
-    /// Ticks at which any surface (not the throttle) was commanded beyond its limit.
-    pub fn surface_limit_ticks(&self) -> u64 {
-        let l = &self.limit_ticks;
-        l.elevator + l.aileron + l.rudder
-    }
 }

@@ -126,10 +126,10 @@ pub enum ObserverGainSource {
     /// The Riccati design (6.62), which met l_i1 ≥ λ_i and l_i2 > 0 on every axis.
     Riccati,
     /// The Riccati design was asked for but failed or broke the conditions; the fixed gain is
-    /// used. The reason says which axis and why.
+    /// used.
     FallbackToFixed {
         /// What went wrong, for the log.
-        reason: String,
+        reason: ObserverGainRejected,
     },
 }
 
@@ -186,6 +186,22 @@ impl ObserverGainDesign {
     }
 }
 
+/// Why the Riccati observer gain (6.62) cannot be used.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ObserverGainRejected {
+    /// The Riccati equation has no stabilising solution.
+    #[error("{0}")]
+    NoSolution(#[from] crate::linalg::LinalgError),
+    /// The gain breaks the conditions of (5.13).
+    #[error("L = [{:.4}, {:.4}] breaks l1 >= lambda = {lambda_rps}, l2 > 0", gain[0], gain[1])]
+    Conditions {
+        /// The gain L = [l_1, l_2].
+        gain: [f64; 2],
+        /// λ of the axis, rad/s.
+        lambda_rps: f64,
+    },
+}
+
 /// The steady-state Kalman gain of one axis from (6.62) with a process-noise term:
 /// 0 = A_m X + X A_mᵀ - X Cᵀ r⁻¹ C X + q B̄ B̄ᵀ, L = X Cᵀ / r. Without the q term (as the
 /// seed prints (6.62)) the stabilising solution for a Hurwitz A_m is X = 0, L = 0, which
@@ -195,22 +211,22 @@ pub fn riccati_observer_gain(
     axis: &AxisGains,
     process_psd: f64,
     noise_psd: f64,
-) -> Result<[f64; 2], String> {
+) -> Result<[f64; 2], ObserverGainRejected> {
     let a_m = axis.a_m();
     let a = DMatrix::from_fn(2, 2, |i, j| a_m[(i, j)]);
     let c = DMatrix::from_row_slice(1, 2, &[1.0, 0.0]);
     let b_bar = axis.b_bar();
     let q = DMatrix::from_fn(2, 2, |i, j| process_psd * b_bar[i] * b_bar[j]);
     let r = DMatrix::from_element(1, 1, noise_psd);
-    let solution = solve_continuous_are(&a, &c, &q, &r).map_err(|e| e.to_string())?;
+    let solution = solve_continuous_are(&a, &c, &q, &r)?;
     let l = [solution.gain[(0, 0)], solution.gain[(1, 0)]];
     if l[0] >= axis.lambda_rps && l[1] > 0.0 {
         Ok(l)
     } else {
-        Err(format!(
-            "L = [{:.4}, {:.4}] breaks l1 >= lambda = {}, l2 > 0",
-            l[0], l[1], axis.lambda_rps
-        ))
+        Err(ObserverGainRejected::Conditions {
+            gain: l,
+            lambda_rps: axis.lambda_rps,
+        })
     }
 }
 

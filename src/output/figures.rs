@@ -9,7 +9,8 @@
 //! [`super::aircraft_figures`].
 
 use super::plots::{
-    EXTRA, HIGHLIGHT, Panel, PlotError, REFERENCE, Series, TRUTH, draw_figure, moving_mean,
+    EXTRA, HIGHLIGHT, Panel, PlotError, REFERENCE, Series, TRUTH, draw_error, draw_figure,
+    moving_mean,
 };
 use crate::frames::Vec3;
 use crate::scenario::{FollowerModel, GuidanceLawKind, Mission, NoiseOn, Scenario, SensorMode};
@@ -89,10 +90,7 @@ impl FigureNumbers {
 
 /// Draws every figure that applies to this run into `dir`.
 pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<(), PlotError> {
-    std::fs::create_dir_all(dir).map_err(|e| PlotError::Draw {
-        path: dir.display().to_string(),
-        reason: e.to_string(),
-    })?;
+    std::fs::create_dir_all(dir).map_err(draw_error(dir))?;
     let t: Vec<f64> = logged.iter().map(|s| s.t_s).collect();
     let numbers = FigureNumbers::of(scenario);
     draw_figure(

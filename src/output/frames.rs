@@ -1,11 +1,38 @@
 //! `frames/NNNNNN.png`: camera frames as the follower saw them, with an optional overlay of
 //! the measurement (centroid cross, maximal-length segment, status line).
 
-use crate::render::frame::Frame;
+use crate::render::frame::{Frame, FrameSaveError};
 use crate::sensing::CameraSensor;
-use crate::vision::BlobMeasurement;
 use crate::vision::overlay::draw_measurement_overlay;
+use crate::vision::{BlobMeasurement, FrameError};
 use std::path::{Path, PathBuf};
+
+/// Why a frame could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum FrameWriteError {
+    /// The folder could not be created.
+    #[error("cannot create {}: {source}", path.display())]
+    CreateDir {
+        /// The folder.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// The overlay could not be drawn on the frame.
+    #[error("cannot draw the overlay: {0}")]
+    Overlay(#[from] FrameError),
+    /// The PNG could not be written.
+    #[error(transparent)]
+    Save(#[from] FrameSaveError),
+}
+
+/// Creates a folder and its parents.
+fn create_dir(path: &Path) -> Result<(), FrameWriteError> {
+    std::fs::create_dir_all(path).map_err(|source| FrameWriteError::CreateDir {
+        path: path.to_path_buf(),
+        source,
+    })
+}
 
 /// Saves every N-th frame of a camera into a directory.
 #[derive(Debug)]
@@ -28,7 +55,7 @@ impl FrameSaver {
     }
 
     /// Saves the camera's last frame if it is new and its index is a multiple of N.
-    pub fn offer(&mut self, camera: &CameraSensor) -> Result<(), String> {
+    pub fn offer(&mut self, camera: &CameraSensor) -> Result<(), FrameWriteError> {
         let Some((frame, record, blob)) = camera.last_frame() else {
             return Ok(());
         };
@@ -36,8 +63,7 @@ impl FrameSaver {
             return Ok(());
         }
         self.last_index = Some(record.index);
-        std::fs::create_dir_all(&self.dir)
-            .map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
+        create_dir(&self.dir)?;
         let path = self.dir.join(format!("{:06}.png", record.index));
         write_frame(&path, frame, self.overlay.then_some(blob))
     }
@@ -48,14 +74,13 @@ pub fn write_frame(
     path: &Path,
     frame: &Frame,
     overlay: Option<&BlobMeasurement>,
-) -> Result<(), String> {
+) -> Result<(), FrameWriteError> {
     match overlay {
-        None => frame.save_png(path).map_err(|e| e.to_string()),
+        None => Ok(frame.save_png(path)?),
         Some(blob) => {
             let mut copy = frame.clone();
-            draw_measurement_overlay(&mut copy.rgba, copy.width_px, copy.height_px, blob)
-                .map_err(|e| e.to_string())?;
-            copy.save_png(path).map_err(|e| e.to_string())
+            draw_measurement_overlay(&mut copy.rgba, copy.width_px, copy.height_px, blob)?;
+            Ok(copy.save_png(path)?)
         }
     }
 }
@@ -69,9 +94,12 @@ pub enum RenderFrameError {
     /// The camera could not be set up or the frame not taken.
     #[error("{0}")]
     Camera(#[from] crate::sensing::SensorError),
+    /// The camera took no frame (cannot happen once a frame was captured).
+    #[error("no frame was taken")]
+    NoFrame,
     /// The PNG could not be written.
     #[error("{0}")]
-    Write(String),
+    Write(#[from] FrameWriteError),
 }
 
 /// Runs `scenario` to `t_s` (no outputs), takes one camera frame of the geometry there with the
@@ -94,22 +122,17 @@ pub fn render_frame_at(
     let geometry = sim.capture_geometry();
     camera.capture_now(sim.time_s(), &geometry)?;
     let Some((frame, record, blob)) = camera.last_frame() else {
-        return Err(RenderFrameError::Write("no frame was taken".to_string()));
+        return Err(RenderFrameError::NoFrame);
     };
     let mut copy = frame.clone();
     let intrinsics = *camera.intrinsics();
     if let Some(truth) = camera.last_truth() {
         crate::vision::overlay::draw_truth_overlay(&mut copy.rgba, &intrinsics, &truth)
-            .map_err(|e| RenderFrameError::Write(e.to_string()))?;
+            .map_err(FrameWriteError::from)?;
     }
-    draw_measurement_overlay(&mut copy.rgba, copy.width_px, copy.height_px, blob)
-        .map_err(|e| RenderFrameError::Write(e.to_string()))?;
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| {
-            RenderFrameError::Write(format!("cannot create {}: {e}", dir.display()))
-        })?;
+        create_dir(dir)?;
     }
-    copy.save_png(path)
-        .map_err(|e| RenderFrameError::Write(e.to_string()))?;
+    write_frame(path, &copy, Some(blob))?;
     Ok(*record)
 }

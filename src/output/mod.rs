@@ -19,12 +19,12 @@ use telemetry::{TelemetryWriter, row_of};
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
     /// An output file could not be written.
-    #[error("cannot write {path}: {reason}")]
+    #[error("cannot write {}: {source}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
-        /// The OS's reason.
-        reason: String,
+        /// What the operating system said.
+        source: std::io::Error,
     },
     /// The simulation stopped; telemetry up to that point and a summary were written.
     #[error("{0} (telemetry up to that point is in {1})")]
@@ -43,9 +43,9 @@ pub struct RunReport {
 }
 
 fn io_error(path: &Path) -> impl Fn(std::io::Error) -> RunError + '_ {
-    move |e| RunError::Io {
+    move |source| RunError::Io {
         path: path.to_path_buf(),
-        reason: e.to_string(),
+        source,
     }
 }
 

@@ -2,23 +2,33 @@
 
 use plotters::prelude::*;
 use plotters::style::FontStyle;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 /// Why a figure could not be drawn.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum PlotError {
     /// No TrueType font to label axes with.
     #[error("plots need a TrueType font; install one: apt-get install -y fonts-dejavu-core")]
     NoFont,
     /// Drawing or writing the PNG failed.
-    #[error("cannot draw {path}: {reason}")]
+    #[error("cannot draw {}: {source}", path.display())]
     Draw {
-        /// The file.
-        path: String,
-        /// The backend's reason.
-        reason: String,
+        /// The file (or the folder it goes in).
+        path: PathBuf,
+        /// What the drawing backend or the file system said.
+        source: Box<dyn std::error::Error + Send + Sync>,
     },
+}
+
+/// Wraps a drawing or file-system error of the file (or folder) `path`.
+pub fn draw_error<E: std::error::Error + Send + Sync + 'static>(
+    path: &Path,
+) -> impl Fn(E) -> PlotError + '_ {
+    move |e| PlotError::Draw {
+        path: path.to_path_buf(),
+        source: Box::new(e),
+    }
 }
 
 /// One curve of a panel.
@@ -108,16 +118,12 @@ pub fn draw_figure(
     if !font_available() {
         return Err(PlotError::NoFont);
     }
-    let draw_error = |e: &dyn std::fmt::Display| PlotError::Draw {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    };
     let height = 60 + 260 * panels.len() as u32;
     let root = BitMapBackend::new(path, (1000, height)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| draw_error(&e))?;
+    root.fill(&WHITE).map_err(draw_error(path))?;
     let root = root
         .titled(title, ("sans-serif", 24))
-        .map_err(|e| draw_error(&e))?;
+        .map_err(draw_error(path))?;
     let areas = root.split_evenly((panels.len(), 1));
     let t_end = t_s.last().copied().unwrap_or(1.0).max(1e-6);
     for (panel, area) in panels.iter().zip(areas.iter()) {
@@ -127,14 +133,14 @@ pub fn draw_figure(
             .x_label_area_size(35)
             .y_label_area_size(70)
             .build_cartesian_2d(0.0..t_end, lo..hi)
-            .map_err(|e| draw_error(&e))?;
+            .map_err(draw_error(path))?;
         chart
             .configure_mesh()
             .x_desc("t, s")
             .y_desc(panel.y_label.as_str())
             .light_line_style(WHITE.mix(0.0))
             .draw()
-            .map_err(|e| draw_error(&e))?;
+            .map_err(draw_error(path))?;
         for series in &panel.series {
             let color = series.color;
             let points = t_s
@@ -144,7 +150,7 @@ pub fn draw_figure(
                 .map(|(t, v)| (*t, *v));
             chart
                 .draw_series(LineSeries::new(points, color.stroke_width(2)))
-                .map_err(|e| draw_error(&e))?
+                .map_err(draw_error(path))?
                 .label(series.label.as_str())
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
@@ -156,9 +162,9 @@ pub fn draw_figure(
             .border_style(BLACK)
             .position(SeriesLabelPosition::UpperRight)
             .draw()
-            .map_err(|e| draw_error(&e))?;
+            .map_err(draw_error(path))?;
     }
-    root.present().map_err(|e| draw_error(&e))
+    root.present().map_err(draw_error(path))
 }
 
 /// The panel's finite value range with a 5% margin (and a minimum span).

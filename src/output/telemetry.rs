@@ -3,26 +3,89 @@
 
 use crate::estimation::TargetMotionEstimate;
 use crate::follower::AircraftActuation;
-use crate::frames::wrap_angle_rad;
+use crate::frames::{EulerAngles, Vec3, wrap_angle_rad};
 use crate::guidance::acceleration::AccelerationGuidanceOutput;
 use crate::guidance::signals::FollowerCommand;
 use crate::sim::Snapshot;
-use crate::vision::BlobStatus;
+use crate::vision::{BlobStatus, ImageMeasurement};
 use std::fs::File;
-use std::io::{BufWriter, Write};
 use std::path::Path;
 
+/// One telemetry row: column names and values, in column order.
+pub type Row = Vec<(&'static str, f64)>;
+
+/// Appends a 3-vector under three names.
+fn push3(row: &mut Row, names: [&'static str; 3], v: &Vec3) {
+    row.extend(names.into_iter().zip(v.iter().copied()));
+}
+
 /// The named values of one telemetry row, in column order.
-pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
-    let v = |x: &crate::frames::Vec3| [x.x, x.y, x.z];
-    let [rel_n, rel_e, rel_d] = v(&s.relative_ned_ft);
-    let [tvn, tve, tvd] = v(&s.target.velocity_ned_fps);
-    let [tan, tae, tad] = v(&s.target.accel_ned_fps2);
-    let [fvn, fve, fvd] = v(&s.follower_velocity_ned_fps);
-    let [fn_, fe, fd] = v(&s.follower_position_ned_ft);
-    let [cn, ce, cd] = v(&s.command_ned_ft);
-    let [xn, xe, xd] = v(&s.excited_command_ned_ft);
-    let [dx, dy, dz] = v(&s.target_motion.vector());
+pub fn row_of(s: &Snapshot) -> Row {
+    let mut row = Vec::with_capacity(96);
+    truth_columns(s, &mut row);
+    guidance_columns(s, &mut row);
+    camera_columns(s, &mut row);
+    if let FollowerCommand::Acceleration(_) = s.guidance.command {
+        row.extend(acceleration_columns(s.guidance.acceleration.as_ref()));
+    }
+    if let Some(aircraft) = &s.aircraft {
+        row.extend(aircraft_columns(aircraft));
+    }
+    row
+}
+
+/// Time, relative position, target and follower states.
+fn truth_columns(s: &Snapshot, row: &mut Row) {
+    row.push(("t_s", s.t_s));
+    push3(
+        row,
+        ["rel_n_ft", "rel_e_ft", "rel_d_ft"],
+        &s.relative_ned_ft,
+    );
+    let target = &s.target;
+    push3(
+        row,
+        ["tgt_vn_fps", "tgt_ve_fps", "tgt_vd_fps"],
+        &target.velocity_ned_fps,
+    );
+    push3(
+        row,
+        ["tgt_an_fps2", "tgt_ae_fps2", "tgt_ad_fps2"],
+        &target.accel_ned_fps2,
+    );
+    let attitude = |a: &EulerAngles| Vec3::new(a.phi_rad, a.theta_rad, a.psi_rad);
+    push3(
+        row,
+        ["tgt_phi_rad", "tgt_theta_rad", "tgt_psi_rad"],
+        &attitude(&target.attitude),
+    );
+    push3(
+        row,
+        ["fol_n_ft", "fol_e_ft", "fol_d_ft"],
+        &s.follower_position_ned_ft,
+    );
+    push3(
+        row,
+        ["fol_vn_fps", "fol_ve_fps", "fol_vd_fps"],
+        &s.follower_velocity_ned_fps,
+    );
+    push3(
+        row,
+        ["phi_rad", "theta_rad", "psi_rad"],
+        &attitude(&s.follower_attitude),
+    );
+}
+
+/// Command, excitation, estimates, the r the guidance was given and the scaled command.
+fn guidance_columns(s: &Snapshot, row: &mut Row) {
+    push3(row, ["cmd_n_ft", "cmd_e_ft", "cmd_d_ft"], &s.command_ned_ft);
+    push3(
+        row,
+        ["cmd_exc_n_ft", "cmd_exc_e_ft", "cmd_exc_d_ft"],
+        &s.excited_command_ned_ft,
+    );
+    row.push(("excitation_amp", s.excitation_amplitude));
+    row.push(("b_hat_ft", s.b_hat_ft));
     // d̂ is a scaled velocity (1/s) in the velocity law, a filtered acceleration bound (ft/s)
     // in the acceleration law: the column names carry the law's unit.
     let d_names = match s.target_motion {
@@ -33,73 +96,37 @@ pub fn row_of(s: &Snapshot) -> Vec<(&'static str, f64)> {
             ["d_hat_x_fps", "d_hat_y_fps", "d_hat_z_fps"]
         }
     };
-    let [rx, ry, rz] = s.r_measured.map_or([f64::NAN; 3], |r| v(&r));
-    let [rcx, rcy, rcz] = v(&s.guidance.r_command);
-    let image = |m: Option<crate::vision::ImageMeasurement>| {
-        m.map_or([f64::NAN; 3], |m| [m.y_i_px, m.z_i_px, m.b_i_px])
+    push3(row, d_names, &s.target_motion.vector());
+    let none = Vec3::repeat(f64::NAN);
+    push3(
+        row,
+        ["r_meas_x", "r_meas_y", "r_meas_z"],
+        &s.r_measured.unwrap_or(none),
+    );
+    push3(
+        row,
+        ["r_cmd_x", "r_cmd_y", "r_cmd_z"],
+        &s.guidance.r_command,
+    );
+}
+
+/// The last camera frame: its time, measurement, status and truth (empty cells without one).
+fn camera_columns(s: &Snapshot, row: &mut Row) {
+    let image = |m: Option<ImageMeasurement>| {
+        m.map_or(Vec3::repeat(f64::NAN), |m| {
+            Vec3::new(m.y_i_px, m.z_i_px, m.b_i_px)
+        })
     };
-    let [yi, zi, bi] = image(s.frame.and_then(|f| f.measured));
-    let [yt, zt, bt] = image(s.frame.and_then(|f| f.truth));
+    row.push(("frame_t_s", s.frame.map_or(f64::NAN, |f| f.t_s)));
+    push3(
+        row,
+        ["y_i_px", "z_i_px", "b_i_px"],
+        &image(s.frame.and_then(|f| f.measured)),
+    );
     let status = s.frame.map_or(f64::NAN, |f| status_code(f.status));
-    let frame_t = s.frame.map_or(f64::NAN, |f| f.t_s);
-    let mut row = vec![
-        ("t_s", s.t_s),
-        ("rel_n_ft", rel_n),
-        ("rel_e_ft", rel_e),
-        ("rel_d_ft", rel_d),
-        ("tgt_vn_fps", tvn),
-        ("tgt_ve_fps", tve),
-        ("tgt_vd_fps", tvd),
-        ("tgt_an_fps2", tan),
-        ("tgt_ae_fps2", tae),
-        ("tgt_ad_fps2", tad),
-        ("tgt_phi_rad", s.target.attitude.phi_rad),
-        ("tgt_theta_rad", s.target.attitude.theta_rad),
-        ("tgt_psi_rad", s.target.attitude.psi_rad),
-        ("fol_n_ft", fn_),
-        ("fol_e_ft", fe),
-        ("fol_d_ft", fd),
-        ("fol_vn_fps", fvn),
-        ("fol_ve_fps", fve),
-        ("fol_vd_fps", fvd),
-        ("phi_rad", s.follower_attitude.phi_rad),
-        ("theta_rad", s.follower_attitude.theta_rad),
-        ("psi_rad", s.follower_attitude.psi_rad),
-        ("cmd_n_ft", cn),
-        ("cmd_e_ft", ce),
-        ("cmd_d_ft", cd),
-        ("cmd_exc_n_ft", xn),
-        ("cmd_exc_e_ft", xe),
-        ("cmd_exc_d_ft", xd),
-        ("excitation_amp", s.excitation_amplitude),
-        ("b_hat_ft", s.b_hat_ft),
-        (d_names[0], dx),
-        (d_names[1], dy),
-        (d_names[2], dz),
-        ("r_meas_x", rx),
-        ("r_meas_y", ry),
-        ("r_meas_z", rz),
-        ("r_cmd_x", rcx),
-        ("r_cmd_y", rcy),
-        ("r_cmd_z", rcz),
-    ];
-    row.extend([
-        ("frame_t_s", frame_t),
-        ("y_i_px", yi),
-        ("z_i_px", zi),
-        ("b_i_px", bi),
-        ("meas_status", status),
-        ("y_i_true_px", yt),
-        ("z_i_true_px", zt),
-        ("b_i_true_px", bt),
-    ]);
-    if let FollowerCommand::Acceleration(_) = s.guidance.command {
-        row.extend(acceleration_columns(s.guidance.acceleration.as_ref()));
-    }
-    if let Some(aircraft) = &s.aircraft {
-        row.extend(aircraft_columns(aircraft));
-    }
-    row
+    row.push(("meas_status", status));
+    let truth = image(s.frame.and_then(|f| f.truth));
+    push3(row, ["y_i_true_px", "z_i_true_px", "b_i_true_px"], &truth);
 }
 
 /// The 6-DOF follower's columns (appended to its runs' rows): air data, body rates, actuator
@@ -191,10 +218,10 @@ pub fn status_code(status: BlobStatus) -> f64 {
     }
 }
 
-/// Streams rows to a CSV file; the header is the first row's names.
+/// Streams rows to a CSV file (through the `csv` crate); the header is the first row's names.
 #[derive(Debug)]
 pub struct TelemetryWriter {
-    out: BufWriter<File>,
+    out: csv::Writer<File>,
     columns: usize,
 }
 
@@ -202,7 +229,7 @@ impl TelemetryWriter {
     /// Creates (truncates) the file.
     pub fn create(path: &Path) -> std::io::Result<Self> {
         Ok(Self {
-            out: BufWriter::new(File::create(path)?),
+            out: csv::Writer::from_writer(File::create(path)?),
             columns: 0,
         })
     }
@@ -211,8 +238,7 @@ impl TelemetryWriter {
     /// as empty cells.
     pub fn write(&mut self, row: &[(&'static str, f64)]) -> std::io::Result<()> {
         if self.columns == 0 {
-            let header: Vec<&str> = row.iter().map(|(name, _)| *name).collect();
-            writeln!(self.out, "{}", header.join(","))?;
+            self.out.write_record(row.iter().map(|(name, _)| *name))?;
             self.columns = row.len();
         }
         if row.len() != self.columns {
@@ -226,16 +252,14 @@ impl TelemetryWriter {
                 ),
             ));
         }
-        let mut line = String::with_capacity(row.len() * 12);
-        for (i, (_, value)) in row.iter().enumerate() {
-            if i > 0 {
-                line.push(',');
-            }
+        let cells = row.iter().map(|(_, value)| {
             if value.is_finite() {
-                line.push_str(&format!("{value}"));
+                value.to_string()
+            } else {
+                String::new()
             }
-        }
-        writeln!(self.out, "{line}")
+        });
+        Ok(self.out.write_record(cells)?)
     }
 
     /// Flushes buffered rows to disk.

@@ -23,6 +23,11 @@ impl Display for InvalidValue {
     }
 }
 
+/// A parser's message on one line (TOML errors span several, with a source excerpt).
+pub fn one_line(message: &impl Display) -> String {
+    message.to_string().trim_end().replace('\n', " ")
+}
+
 /// Result of a check.
 pub type Check = Result<(), InvalidValue>;
 

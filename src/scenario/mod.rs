@@ -22,30 +22,30 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
     /// The file could not be read.
-    #[error("{path}: cannot read scenario file: {reason}")]
+    #[error("{}: cannot read scenario file: {source}", path.display())]
     Unreadable {
         /// The file.
         path: PathBuf,
-        /// The OS's reason.
-        reason: String,
+        /// What the operating system said.
+        source: std::io::Error,
     },
     /// TOML syntax error or a key/value the schema does not accept.
-    #[error("{path}: {message}")]
+    #[error("{}: {}", path.display(), check::one_line(source))]
     Schema {
         /// The file.
         path: PathBuf,
-        /// The parser's message (key and line included).
-        message: String,
+        /// The parser's error (key and line included).
+        source: toml::de::Error,
     },
     /// A `--set` override that is not `section.key=value`, or names an unknown key.
-    #[error("{path}: bad override `{text}`: {reason}")]
+    #[error("{}: bad override `{text}`: {reason}", path.display())]
     Override {
         /// The file being overridden.
         path: PathBuf,
         /// The override as given.
         text: String,
         /// What is wrong with it.
-        reason: String,
+        reason: OverrideError,
     },
     /// A value out of its allowed range.
     #[error("{path}: {invalid}")]
@@ -60,9 +60,9 @@ pub enum ScenarioError {
 impl Scenario {
     /// Reads, overrides, parses and validates a scenario file.
     pub fn load(path: &Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Unreadable {
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Unreadable {
             path: path.to_path_buf(),
-            reason: e.to_string(),
+            source,
         })?;
         let mut scenario = Self::from_toml_str(&text, path, overrides)?;
         scenario.resolve_mesh_path(path);
@@ -91,13 +91,11 @@ impl Scenario {
         path: &Path,
         overrides: &[String],
     ) -> Result<Scenario, ScenarioError> {
-        let schema_error = |message: String| ScenarioError::Schema {
+        let schema_error = |source| ScenarioError::Schema {
             path: path.to_path_buf(),
-            message: message.trim_end().replace('\n', " "),
+            source,
         };
-        let mut table: toml::Table = text
-            .parse()
-            .map_err(|e: toml::de::Error| schema_error(e.to_string()))?;
+        let mut table: toml::Table = text.parse().map_err(schema_error)?;
         for text in overrides {
             apply_override(&mut table, text).map_err(|reason| ScenarioError::Override {
                 path: path.to_path_buf(),
@@ -105,9 +103,7 @@ impl Scenario {
                 reason,
             })?;
         }
-        let scenario: Scenario = toml::Value::Table(table)
-            .try_into()
-            .map_err(|e: toml::de::Error| schema_error(e.to_string()))?;
+        let scenario: Scenario = toml::Value::Table(table).try_into().map_err(schema_error)?;
         scenario
             .validate()
             .map_err(|invalid| ScenarioError::Invalid {
@@ -123,18 +119,24 @@ impl Scenario {
     }
 }
 
+/// Why a `--set` override could not be applied.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum OverrideError {
+    /// Not of the form `section.key=value`.
+    #[error("expected section.key=value")]
+    Form,
+    /// The section named is a value in the file, not a section.
+    #[error("`{0}` is not a section")]
+    NotASection(String),
+}
+
 /// Applies `section.key=value`; the value is read as a TOML value (number, boolean, array, quoted
 /// string) and, failing that, as a bare string.
-fn apply_override(table: &mut toml::Table, text: &str) -> Result<(), String> {
-    let (key, value_text) = text
-        .split_once('=')
-        .ok_or_else(|| "expected section.key=value".to_string())?;
-    let (section, field) = key
-        .trim()
-        .split_once('.')
-        .ok_or_else(|| "expected section.key=value".to_string())?;
+fn apply_override(table: &mut toml::Table, text: &str) -> Result<(), OverrideError> {
+    let (key, value_text) = text.split_once('=').ok_or(OverrideError::Form)?;
+    let (section, field) = key.trim().split_once('.').ok_or(OverrideError::Form)?;
     if section.is_empty() || field.is_empty() || field.contains('.') {
-        return Err("expected section.key=value".to_string());
+        return Err(OverrideError::Form);
     }
     let value_text = value_text.trim();
     let value = format!("v = {value_text}")
@@ -147,7 +149,7 @@ fn apply_override(table: &mut toml::Table, text: &str) -> Result<(), String> {
         .or_insert_with(|| toml::Value::Table(toml::Table::new()));
     let section_table = entry
         .as_table_mut()
-        .ok_or_else(|| format!("`{section}` is not a section"))?;
+        .ok_or_else(|| OverrideError::NotASection(section.to_string()))?;
     section_table.insert(field.to_string(), value);
     Ok(())
 }

@@ -8,31 +8,40 @@ use super::transform::scaled_relative_position;
 use crate::frames::{EulerAngles, Vec3};
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use crate::render::frame::Frame;
-use crate::render::gpu::GpuContext;
-use crate::render::mesh::TargetMesh;
-use crate::render::renderer::{PendingFrame, RenderTimings, Renderer};
+use crate::render::gpu::{GpuContext, GpuError};
+use crate::render::mesh::{MeshError, TargetMesh};
+use crate::render::renderer::{PendingFrame, RenderError, RenderTimings, Renderer};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
 use crate::scenario::{BlobChoice, CameraSection, Scenario, SkyKind};
 use crate::vision::{
-    BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ImageTruth, TruthProjector,
-    VisionConfig, VisionPipeline,
+    BlobMeasurement, BlobSelection, BlobStatus, FrameError, ImageMeasurement, ImageTruth,
+    TruthProjector, VisionConfig, VisionConfigError, VisionPipeline,
 };
 use std::collections::VecDeque;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 /// Why the camera could not be set up or a frame not taken.
 #[derive(Debug, thiserror::Error)]
 pub enum SensorError {
-    /// No GPU adapter (the message says what to install).
+    /// No GPU adapter or device (the message says what to install).
     #[error("{0}")]
-    Gpu(String),
+    Gpu(#[from] GpuError),
     /// The target mesh could not be loaded.
     #[error("camera.mesh: {0}")]
-    Mesh(String),
-    /// The renderer or the image pipeline rejected its settings, or a frame failed.
+    Mesh(#[from] MeshError),
+    /// The target mesh has no extent to scale to the target's size.
+    #[error("camera.mesh: {}: the mesh has no extent", .0.display())]
+    MeshWithoutExtent(PathBuf),
+    /// The renderer rejected its settings, or a frame failed.
     #[error("camera: {0}")]
-    Camera(String),
+    Render(#[from] RenderError),
+    /// The image pipeline rejected its settings.
+    #[error("camera: {0}")]
+    VisionSettings(#[from] VisionConfigError),
+    /// A read-back frame did not fit its stated size.
+    #[error("camera: {0}")]
+    Frame(#[from] FrameError),
 }
 
 /// Where the follower and target are when a frame is taken.
@@ -210,16 +219,12 @@ pub fn intrinsics(camera: &CameraSection) -> CameraIntrinsics {
 /// Loads the scenario's target mesh, scaled so that its maximal dimension is `target.size_ft`.
 pub fn load_target_mesh(scenario: &Scenario) -> Result<TargetMesh, SensorError> {
     let path = Path::new(&scenario.camera.mesh);
-    let unscaled = TargetMesh::load_obj(path, 1.0).map_err(|e| SensorError::Mesh(e.to_string()))?;
+    let unscaled = TargetMesh::load_obj(path, 1.0)?;
     let span = unscaled.max_dimension_ft();
     if !(span.is_finite() && span > 0.0) {
-        return Err(SensorError::Mesh(format!(
-            "{}: the mesh has no extent",
-            path.display()
-        )));
+        return Err(SensorError::MeshWithoutExtent(path.to_path_buf()));
     }
-    TargetMesh::load_obj(path, scenario.target.size_ft / span)
-        .map_err(|e| SensorError::Mesh(e.to_string()))
+    Ok(TargetMesh::load_obj(path, scenario.target.size_ft / span)?)
 }
 
 impl CameraSensor {
@@ -227,19 +232,17 @@ impl CameraSensor {
     pub fn new(scenario: &Scenario) -> Result<Self, SensorError> {
         let camera = &scenario.camera;
         let mesh = load_target_mesh(scenario)?;
-        let gpu = GpuContext::new().map_err(|e| SensorError::Gpu(e.to_string()))?;
+        let gpu = GpuContext::new()?;
         let adapter = gpu.description();
         let settings = render_settings(camera, scenario.run.seed);
-        let renderer =
-            Renderer::new(&gpu, settings, &mesh).map_err(|e| SensorError::Camera(e.to_string()))?;
+        let renderer = Renderer::new(&gpu, settings, &mesh)?;
         let mut vision_config = VisionConfig {
             min_pixel_count: camera.min_pixel_count as usize,
             ..VisionConfig::default()
         };
         vision_config.segmentation.mask_coverage = camera.mask_coverage;
         vision_config.link_radius_px = camera.link_radius_px as usize;
-        let vision =
-            VisionPipeline::new(vision_config).map_err(|e| SensorError::Camera(e.to_string()))?;
+        let vision = VisionPipeline::new(vision_config)?;
         Ok(Self {
             intrinsics: settings.intrinsics,
             renderer,
@@ -326,18 +329,14 @@ impl CameraSensor {
             geometry: *geometry,
         };
         self.frames += 1;
-        let pending = self
-            .renderer
-            .begin_frame(&geometry.pose())
-            .map_err(|e| SensorError::Camera(e.to_string()))?;
+        let pending = self.renderer.begin_frame(&geometry.pose())?;
         Ok((exposure, pending))
     }
 
     /// Reads frame `index` back into its buffer.
     fn finish(&mut self, pending: PendingFrame, index: u64) -> Result<(), SensorError> {
         self.renderer
-            .finish_frame(pending, index, &mut self.pixels[buffer_of(index)])
-            .map_err(|e| SensorError::Camera(e.to_string()))?;
+            .finish_frame(pending, index, &mut self.pixels[buffer_of(index)])?;
         self.timings.add_render(self.renderer.last_timings());
         Ok(())
     }
@@ -352,8 +351,7 @@ impl CameraSensor {
         let frame = &self.pixels[buffer_of(exposure.index)];
         let blob = self
             .vision
-            .measure(&frame.rgba, frame.width_px, frame.height_px, selection)
-            .map_err(|e| SensorError::Camera(e.to_string()))?;
+            .measure(&frame.rgba, frame.width_px, frame.height_px, selection)?;
         self.timings.vision += vision_started.elapsed();
 
         let truth_started = Instant::now();

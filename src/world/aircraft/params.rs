@@ -373,20 +373,20 @@ pub struct AircraftParams {
 #[derive(Debug, thiserror::Error)]
 pub enum AircraftFileError {
     /// The file could not be read.
-    #[error("{path}: cannot read aircraft file: {reason}")]
+    #[error("{}: cannot read aircraft file: {source}", path.display())]
     Unreadable {
         /// The file.
         path: PathBuf,
-        /// The OS's reason.
-        reason: String,
+        /// What the operating system said.
+        source: std::io::Error,
     },
     /// TOML syntax error, a missing key, or a key the schema does not accept.
-    #[error("{path}: {message}")]
+    #[error("{}: {}", path.display(), check::one_line(source))]
     Schema {
         /// The file.
         path: PathBuf,
-        /// The parser's message (key and line included).
-        message: String,
+        /// The parser's error (key and line included).
+        source: toml::de::Error,
     },
     /// A value out of its allowed range.
     #[error("{path}: {invalid}")]
@@ -401,19 +401,20 @@ pub enum AircraftFileError {
 impl AircraftParams {
     /// Reads, parses and validates an aircraft data file.
     pub fn load(path: &Path) -> Result<Self, AircraftFileError> {
-        let text = std::fs::read_to_string(path).map_err(|e| AircraftFileError::Unreadable {
-            path: path.to_path_buf(),
-            reason: e.to_string(),
-        })?;
+        let text =
+            std::fs::read_to_string(path).map_err(|source| AircraftFileError::Unreadable {
+                path: path.to_path_buf(),
+                source,
+            })?;
         Self::from_toml_str(&text, path)
     }
 
     /// Parses aircraft data as if read from `path` (used in messages only).
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Self, AircraftFileError> {
         let file: AircraftFile =
-            toml::from_str(text).map_err(|e: toml::de::Error| AircraftFileError::Schema {
+            toml::from_str(text).map_err(|source| AircraftFileError::Schema {
                 path: path.to_path_buf(),
-                message: e.to_string().trim_end().replace('\n', " "),
+                source,
             })?;
         Self::from_file(file).map_err(|invalid| AircraftFileError::Invalid {
             path: path.to_path_buf(),
