@@ -5,7 +5,7 @@ use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use wingman::output::frames::render_frame_at;
+use wingman::output::frame_images::render_frame_at;
 use wingman::output::{RunError, run_to_directory};
 use wingman::scenario::Scenario;
 

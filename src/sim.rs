@@ -53,7 +53,7 @@ pub enum SimError {
     Follower(#[from] AircraftSetupError),
     /// The sensor could not be built from the scenario.
     #[error("cannot set up the simulation: {0}")]
-    Sensor(#[source] SensorError),
+    Sensor(#[source] Box<SensorError>),
     /// The camera failed to take or measure a frame.
     #[error("camera failure at t = {t_s:.3} s: {source}")]
     Camera {
@@ -61,7 +61,7 @@ pub enum SimError {
         t_s: f64,
         /// What failed.
         #[source]
-        source: SensorError,
+        source: Box<SensorError>,
     },
 }
 
@@ -239,7 +239,8 @@ impl Simulation {
         })?;
         let compensate = scenario.follower.model == FollowerModel::Aircraft;
         let (guidance, notes) = GuidanceLaw::new(g, &scenario.acceleration, compensate)?;
-        let mut sensor = Sensor::new(scenario, g.command_length_ft()).map_err(SimError::Sensor)?;
+        let mut sensor = Sensor::new(scenario, g.command_length_ft())
+            .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let hold = MeasurementHold::new(sensor.is_continuous(), scenario.camera.compensate_delay);
         let target = TargetMotionModel::from_section(&scenario.target);
         let geometry = capture_geometry(&target, &follower, &follower_x, 0.0);
@@ -357,10 +358,13 @@ impl Simulation {
     fn sense(&mut self) -> Result<(), SimError> {
         let t_s = self.time_s();
         let geometry = self.capture_geometry();
-        let delivered = self
-            .sensor
-            .sample(self.tick, t_s, &geometry)
-            .map_err(|source| SimError::Camera { t_s, source })?;
+        let delivered =
+            self.sensor
+                .sample(self.tick, t_s, &geometry)
+                .map_err(|e| SimError::Camera {
+                    t_s,
+                    source: Box::new(e),
+                })?;
         if let Some(first) = delivered.and_then(|record| self.hold.deliver(&record)) {
             let r0 = self.held_measurement(&first, t_s, &self.state);
             let (_, _, guidance_x) = self.layout.split_mut(&mut self.state);

@@ -6,7 +6,7 @@ mod render_support;
 
 use render_support::*;
 use wingman::render::camera::CameraIntrinsics;
-use wingman::render::{Background, Frame, PixelNoise, RenderSettings, Renderer, Sky};
+use wingman::render::{Background, CameraImage, PixelNoise, RenderSettings, Renderer, Sky};
 
 fn renderer(settings: RenderSettings) -> Renderer {
     match Renderer::new(gpu(), settings, &aircraft()) {
@@ -30,7 +30,11 @@ fn noisy_settings(std_grey_levels: f64, seed: u64) -> RenderSettings {
     s
 }
 
-fn frame_of(r: &mut Renderer, p: &wingman::render::camera::TargetPoseInCamera, k: u64) -> Frame {
+fn frame_of(
+    r: &mut Renderer,
+    p: &wingman::render::camera::TargetPoseInCamera,
+    k: u64,
+) -> CameraImage {
     match r.render(p, k) {
         Ok(f) => f.clone(),
         Err(e) => panic!("{e}"),
@@ -59,7 +63,7 @@ fn two_threads_sharing_the_device_agree() {
     let p = pose([25.0, 1.0, 0.5], [0.1, 0.2, -0.4]);
     let settings = noisy_settings(6.0, 42);
     let reference = frame_of(&mut renderer(settings), &p, 7);
-    let frames: Vec<Frame> = std::thread::scope(|scope| {
+    let frames: Vec<CameraImage> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..2)
             .map(|_| {
                 scope.spawn(|| {

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use render_support::*;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use wingman::render::{Background, Frame, PixelNoise, RenderSettings, Renderer, Sky};
+use wingman::render::{Background, CameraImage, PixelNoise, RenderSettings, Renderer, Sky};
 
 fn golden_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -22,7 +22,7 @@ fn golden_path(name: &str) -> PathBuf {
         .join(name)
 }
 
-fn render(settings: RenderSettings, p: &TargetPoseInCamera) -> Frame {
+fn render(settings: RenderSettings, p: &TargetPoseInCamera) -> CameraImage {
     let mut renderer = match Renderer::new(gpu(), settings, &aircraft()) {
         Ok(r) => r,
         Err(e) => panic!("{e}"),
@@ -33,7 +33,7 @@ fn render(settings: RenderSettings, p: &TargetPoseInCamera) -> Frame {
     }
 }
 
-fn assert_matches_golden(frame: &Frame, name: &str) {
+fn assert_matches_golden(frame: &CameraImage, name: &str) {
     let path = golden_path(name);
     if std::env::var_os("WINGMAN_UPDATE_GOLDEN").is_some() {
         frame.save_png(&path).expect("golden written");
@@ -60,7 +60,7 @@ fn assert_matches_golden(frame: &Frame, name: &str) {
         path.display(),
         keep()
     );
-    let expected = Frame {
+    let expected = CameraImage {
         width_px: golden.width(),
         height_px: golden.height(),
         rgba: golden.into_raw(),

@@ -16,14 +16,14 @@ use std::f64::consts::FRAC_PI_2;
 use render_support::*;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::settings::DEFAULT_SKY_RGB;
-use wingman::render::{Frame, RenderSettings, Renderer};
+use wingman::render::{CameraImage, RenderSettings, Renderer};
 
 /// Rasteriser snapping margin, px (see the module docs).
 const EPS_PX: f64 = 0.07;
 /// Grey between the target's brightest face (100) and the sky (196).
 const DARK_BELOW: u8 = 148;
 
-fn render(cam: CameraIntrinsics, msaa: u32, p: &TargetPoseInCamera) -> Frame {
+fn render(cam: CameraIntrinsics, msaa: u32, p: &TargetPoseInCamera) -> CameraImage {
     let mut settings = RenderSettings::new(cam);
     settings.msaa_samples = msaa;
     let mut renderer = match Renderer::new(gpu(), settings, &aircraft()) {
@@ -197,7 +197,7 @@ fn four_samples_give_fractional_edge_pixels() {
     let p = pose([40.0, 2.0, 1.0], [0.3, 0.2, 0.5]);
     // Greys strictly between the brightest target face (100) and the sky (196), with a margin
     // of 2 levels for rounding: only a pixel partly covered can have them.
-    let between = |f: &Frame| {
+    let between = |f: &CameraImage| {
         f.grey_levels()
             .iter()
             .filter(|&&g| g > 102 && g < 194)

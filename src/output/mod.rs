@@ -3,7 +3,7 @@
 
 pub mod aircraft_figures;
 pub mod figures;
-pub mod frames;
+pub mod frame_images;
 pub mod plots;
 pub mod summary;
 pub mod telemetry;
@@ -28,7 +28,7 @@ pub enum RunError {
     },
     /// The simulation stopped; telemetry up to that point and a summary were written.
     #[error("{0} (telemetry up to that point is in {1})")]
-    Sim(SimError, PathBuf),
+    Sim(Box<SimError>, PathBuf),
 }
 
 /// What a finished run reports.
@@ -65,13 +65,13 @@ pub fn run_to_directory(
         TelemetryWriter::create(&telemetry_path).map_err(io_error(&telemetry_path))?;
 
     let started = Instant::now();
-    let mut sim =
-        Simulation::new(scenario).map_err(|e| RunError::Sim(e, telemetry_path.clone()))?;
+    let mut sim = Simulation::new(scenario)
+        .map_err(|e| RunError::Sim(Box::new(e), telemetry_path.clone()))?;
     let mut logged: Vec<Snapshot> = Vec::new();
     let log_every = u64::from(scenario.run.log_every);
     let progress_every = (sim.total_ticks() / 100).max(1);
     let mut frame_saver = (scenario.output.frames_every > 0).then(|| {
-        frames::FrameSaver::new(
+        frame_images::FrameSaver::new(
             &out_dir.join("frames"),
             scenario.output.frames_every,
             scenario.output.overlay,
@@ -123,7 +123,7 @@ pub fn run_to_directory(
         warnings.push(format!("plots not drawn: {e}"));
     }
     match failure {
-        Some(e) => Err(RunError::Sim(e, telemetry_path)),
+        Some(e) => Err(RunError::Sim(Box::new(e), telemetry_path)),
         None => Ok(RunReport {
             summary,
             warnings,

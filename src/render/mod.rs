@@ -7,8 +7,8 @@
 
 pub mod aircraft_mesh;
 pub mod camera;
-pub mod frame;
 pub mod gpu;
+pub mod image;
 pub mod mesh;
 pub mod noise;
 pub mod projection;
@@ -16,8 +16,8 @@ pub mod renderer;
 pub mod settings;
 pub mod window;
 
-pub use frame::Frame;
 pub use gpu::{GpuContext, GpuError};
+pub use image::CameraImage;
 pub use mesh::{MeshError, TargetMesh};
 pub use renderer::{ReadbackError, RenderError, RenderTimings, Renderer};
 pub use settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};

@@ -7,7 +7,7 @@
 //! Φ⁻¹((k + ½) / 65 536) (so samples reach ±4.3σ). On lavapipe this is about 8x cheaper than
 //! hashing and Box-Muller in the fragment shader.
 
-use crate::render::frame::Frame;
+use crate::render::image::CameraImage;
 
 /// Number of table entries: one per 16-bit draw.
 const TABLE_LEN: usize = 1 << 16;
@@ -37,7 +37,7 @@ impl NoiseGenerator {
     }
 
     /// Adds this frame's noise to `frame` in place; `frame_index` selects the draw.
-    pub fn apply(&self, frame: &mut Frame, frame_index: u64) {
+    pub fn apply(&self, frame: &mut CameraImage, frame_index: u64) {
         let key = splitmix64(self.seed_hash ^ frame_index);
         let add = |c: u8, n: i16| i16::from(c).saturating_add(n).clamp(0, 255) as u8;
         for (block, pixels) in frame.rgba.chunks_mut(16).enumerate() {
@@ -145,7 +145,7 @@ mod tests {
     #[test]
     fn noise_is_grey_deterministic_and_keyed_by_frame() {
         let g = NoiseGenerator::new(10.0, 3);
-        let base = Frame::filled(33, 7, [100, 120, 140, 255]);
+        let base = CameraImage::filled(33, 7, [100, 120, 140, 255]);
         let (mut a, mut b, mut c) = (base.clone(), base.clone(), base.clone());
         g.apply(&mut a, 1);
         g.apply(&mut b, 1);
@@ -163,8 +163,8 @@ mod tests {
     #[test]
     fn zero_noise_changes_nothing() {
         let g = NoiseGenerator::new(0.0, 9);
-        let mut f = Frame::filled(5, 5, [0, 128, 255, 255]);
+        let mut f = CameraImage::filled(5, 5, [0, 128, 255, 255]);
         g.apply(&mut f, 4);
-        assert_eq!(f, Frame::filled(5, 5, [0, 128, 255, 255]));
+        assert_eq!(f, CameraImage::filled(5, 5, [0, 128, 255, 255]));
     }
 }

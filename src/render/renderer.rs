@@ -17,8 +17,8 @@ use wgpu::util::DeviceExt;
 
 use crate::frames::Vec3;
 use crate::render::camera::TargetPoseInCamera;
-use crate::render::frame::Frame;
 use crate::render::gpu::GpuContext;
+use crate::render::image::CameraImage;
 use crate::render::mesh::TargetMesh;
 use crate::render::noise::NoiseGenerator;
 use crate::render::projection::{
@@ -148,7 +148,7 @@ pub struct Renderer {
     clear_color: wgpu::Color,
     noise: Option<NoiseGenerator>,
     /// The frame [`Renderer::render`] reads back into and returns.
-    frame: Frame,
+    frame: CameraImage,
     timings: RenderTimings,
 }
 
@@ -242,7 +242,7 @@ impl Renderer {
                 .background
                 .noise
                 .map(|n| NoiseGenerator::new(n.std_grey_levels, n.seed)),
-            frame: Frame::filled(cam.width_px, cam.height_px, [0, 0, 0, 255]),
+            frame: CameraImage::filled(cam.width_px, cam.height_px, [0, 0, 0, 255]),
             timings: RenderTimings::default(),
         }
     }
@@ -259,7 +259,7 @@ impl Renderer {
         &mut self,
         pose: &TargetPoseInCamera,
         frame_index: u64,
-    ) -> Result<&Frame, RenderError> {
+    ) -> Result<&CameraImage, RenderError> {
         let pending = self.begin_frame(pose)?;
         let mut frame = std::mem::take(&mut self.frame);
         let finished = self.finish_frame(pending, frame_index, &mut frame);
@@ -283,7 +283,7 @@ impl Renderer {
         &mut self,
         pending: PendingFrame,
         frame_index: u64,
-        frame: &mut Frame,
+        frame: &mut CameraImage,
     ) -> Result<(), RenderError> {
         let start = Instant::now();
         self.read_back(pending, frame)?;
@@ -522,7 +522,11 @@ impl Renderer {
 
     /// Waits for the frame's submission and mapping, and unpads the staging buffer's rows
     /// into `frame` (resized to the camera).
-    fn read_back(&mut self, pending: PendingFrame, frame: &mut Frame) -> Result<(), ReadbackError> {
+    fn read_back(
+        &mut self,
+        pending: PendingFrame,
+        frame: &mut CameraImage,
+    ) -> Result<(), ReadbackError> {
         self.device.poll(wgpu::PollType::Wait {
             submission_index: Some(pending.submission),
             timeout: None,

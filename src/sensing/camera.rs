@@ -7,14 +7,14 @@
 use super::transform::scaled_relative_position;
 use crate::frames::{EulerAngles, Vec3};
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use crate::render::frame::Frame;
 use crate::render::gpu::{GpuContext, GpuError};
+use crate::render::image::CameraImage;
 use crate::render::mesh::{MeshError, TargetMesh};
 use crate::render::renderer::{PendingFrame, RenderError, RenderTimings, Renderer};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
 use crate::scenario::{BlobChoice, CameraSection, Scenario, SkyKind};
 use crate::vision::{
-    BlobMeasurement, BlobSelection, BlobStatus, FrameError, ImageMeasurement, ImageTruth,
+    BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ImageSizeError, ImageTruth,
     TruthProjector, VisionConfig, VisionConfigError, VisionPipeline,
 };
 use std::collections::VecDeque;
@@ -41,7 +41,7 @@ pub enum SensorError {
     VisionSettings(#[from] VisionConfigError),
     /// A read-back frame did not fit its stated size.
     #[error("camera: {0}")]
-    Frame(#[from] FrameError),
+    Frame(#[from] ImageSizeError),
 }
 
 /// Where the follower and target are when a frame is taken.
@@ -163,7 +163,7 @@ pub struct CameraSensor {
     last_truth: Option<ImageTruth>,
     previous_centroid_px: Option<(f64, f64)>,
     /// Pixels of the even and the odd frames: one is measured while the other is drawn.
-    pixels: [Frame; 2],
+    pixels: [CameraImage; 2],
     /// The frame read back but not measured yet (latency of a frame or more).
     unmeasured: Option<Exposure>,
     frames: u64,
@@ -258,7 +258,7 @@ impl CameraSensor {
             last_measurement: None,
             last_truth: None,
             previous_centroid_px: None,
-            pixels: [Frame::default(), Frame::default()],
+            pixels: [CameraImage::default(), CameraImage::default()],
             unmeasured: None,
             frames: 0,
             lost_frames: 0,
@@ -400,7 +400,7 @@ impl CameraSensor {
     }
 
     /// The last frame taken and its measurement record.
-    pub fn last_frame(&self) -> Option<(&Frame, &FrameRecord, &BlobMeasurement)> {
+    pub fn last_frame(&self) -> Option<(&CameraImage, &FrameRecord, &BlobMeasurement)> {
         match (&self.last_frame, &self.last_measurement) {
             (Some(record), Some(blob)) => {
                 Some((&self.pixels[buffer_of(record.index)], record, blob))

@@ -33,7 +33,7 @@ pub enum Sensor {
         size_ft: f64,
     },
     /// r* with held noise.
-    Noisy(NoisySensor),
+    Noisy(Box<NoisySensor>),
     /// The camera in the loop.
     Camera(Box<CameraSensor>),
 }
@@ -46,7 +46,7 @@ impl Sensor {
             SensorMode::Perfect => Self::Perfect {
                 size_ft: scenario.target.size_ft,
             },
-            SensorMode::Noisy => Self::Noisy(NoisySensor::new(scenario, command_norm_ft)),
+            SensorMode::Noisy => Self::Noisy(Box::new(NoisySensor::new(scenario, command_norm_ft))),
             SensorMode::Camera => Self::Camera(Box::new(CameraSensor::new(scenario)?)),
         })
     }

@@ -9,7 +9,7 @@
 use nalgebra::{Matrix6, Vector6};
 
 use super::config::BackgroundSource;
-use super::frame::RgbaFrame;
+use super::image_view::RgbaView;
 
 /// Median of the χ distribution with 3 degrees of freedom: the median Euclidean RGB distance of
 /// a pixel with independent N(0, σ²) noise per channel is this times σ.
@@ -155,7 +155,7 @@ fn median(values: &mut [f64]) -> f64 {
 
 impl BackgroundFitter {
     /// The background model of `frame` according to `source`.
-    pub fn fit(&mut self, frame: &RgbaFrame<'_>, source: BackgroundSource) -> BackgroundModel {
+    pub fn fit(&mut self, frame: &RgbaView<'_>, source: BackgroundSource) -> BackgroundModel {
         let border_px = match source {
             BackgroundSource::BorderFit { border_px } => border_px as usize,
             BackgroundSource::Fixed { .. } => 1,
@@ -203,7 +203,7 @@ impl BackgroundFitter {
     /// Gathers the pixels within `border_px` of the image edge as samples, every `stride`-th
     /// of them when there are more than [`MAX_BORDER_SAMPLES`] (an odd stride, so that it
     /// cycles through both sides of the rows that contribute 2 x `border_px` pixels).
-    fn collect_border(&mut self, frame: &RgbaFrame<'_>, border_px: usize, model: &BackgroundModel) {
+    fn collect_border(&mut self, frame: &RgbaView<'_>, border_px: usize, model: &BackgroundModel) {
         self.samples.clear();
         let (w, h) = (frame.width, frame.height);
         let full_row = |v: usize| v < border_px || v + border_px >= h || 2 * border_px >= w;
@@ -316,7 +316,7 @@ mod tests {
 
     fn fit(scene: &SyntheticScene) -> BackgroundModel {
         let rgba = scene.render();
-        let frame = RgbaFrame::new(&rgba, scene.width_px, scene.height_px).unwrap();
+        let frame = RgbaView::new(&rgba, scene.width_px, scene.height_px).unwrap();
         BackgroundFitter::default().fit(&frame, BackgroundSource::BorderFit { border_px: 2 })
     }
 

@@ -12,7 +12,7 @@
 use super::components::PixelBox;
 use super::edge_points::{CoverageGrid, EdgePointFinder};
 use super::feret::{FeretDiameter, FeretFinder, PixelPoint};
-use super::frame::RgbaFrame;
+use super::image_view::RgbaView;
 use super::segment::CoverageModel;
 
 /// Ring pixels on the image border with at least this coverage mean the target crosses the
@@ -91,7 +91,7 @@ impl Region {
 
 impl BlobMeasurer {
     /// Measures `blob` in `frame`.
-    pub fn measure(&mut self, frame: &RgbaFrame<'_>, blob: &BlobToMeasure<'_>) -> BlobGeometry {
+    pub fn measure(&mut self, frame: &RgbaView<'_>, blob: &BlobToMeasure<'_>) -> BlobGeometry {
         let (w, h) = (frame.width, frame.height);
         // Weights live on the bbox + 2 (ring + one more for the gradient stencil).
         let region = Region::around(blob.bbox, 2, w, h);

@@ -24,8 +24,8 @@ mod config;
 mod edge_points;
 mod feret;
 mod font;
-mod frame;
 mod image_measurement;
+mod image_view;
 mod measure;
 pub mod overlay;
 mod pipeline;
@@ -43,7 +43,7 @@ pub use config::{
     VisionConfig, VisionConfigError,
 };
 pub use feret::{FeretDiameter, FeretFinder, PixelPoint, convex_hull_into, max_feret_diameter};
-pub use frame::FrameError;
 pub use image_measurement::ImageMeasurement;
+pub use image_view::ImageSizeError;
 pub use pipeline::{BlobMeasurement, BlobStatus, VisionPipeline};
 pub use truth::{ImageTruth, TruthProjector, image_truth};

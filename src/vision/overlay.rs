@@ -8,7 +8,7 @@ use std::cmp::Ordering;
 use crate::render::camera::CameraIntrinsics;
 
 use super::font::{GLYPH_HEIGHT, GLYPH_WIDTH, glyph};
-use super::frame::{FrameError, check_rgba_len};
+use super::image_view::{ImageSizeError, check_rgba_len};
 use super::pipeline::{BlobMeasurement, BlobStatus};
 use super::truth::ImageTruth;
 
@@ -62,7 +62,7 @@ struct Canvas<'a> {
 }
 
 impl<'a> Canvas<'a> {
-    fn new(rgba: &'a mut [u8], width_px: u32, height_px: u32) -> Result<Self, FrameError> {
+    fn new(rgba: &'a mut [u8], width_px: u32, height_px: u32) -> Result<Self, ImageSizeError> {
         check_rgba_len(rgba.len(), width_px, height_px)?;
         Ok(Self {
             rgba,
@@ -159,7 +159,7 @@ pub fn draw_measurement_overlay(
     width_px: u32,
     height_px: u32,
     measurement: &BlobMeasurement,
-) -> Result<(), FrameError> {
+) -> Result<(), ImageSizeError> {
     let mut canvas = Canvas::new(rgba, width_px, height_px)?;
     let rgb = status_rgb(measurement.status);
     if let Some(f) = measurement.feret {
@@ -187,7 +187,7 @@ pub fn draw_truth_overlay(
     rgba: &mut [u8],
     camera: &CameraIntrinsics,
     truth: &ImageTruth,
-) -> Result<(), FrameError> {
+) -> Result<(), ImageSizeError> {
     let mut canvas = Canvas::new(rgba, camera.width_px, camera.height_px)?;
     let f = truth.feret;
     canvas.line(

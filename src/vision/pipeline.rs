@@ -9,7 +9,7 @@ use super::background::BackgroundFitter;
 use super::components::{BlobSummary, ComponentLabeller, PixelBox};
 use super::config::{BlobSelection, VisionConfig, VisionConfigError};
 use super::feret::FeretDiameter;
-use super::frame::{FrameError, RgbaFrame};
+use super::image_view::{ImageSizeError, RgbaView};
 use super::measure::{BlobMeasurer, BlobToMeasure};
 use super::segment::{CoverageModel, Segmenter};
 
@@ -145,8 +145,8 @@ impl VisionPipeline {
         width_px: u32,
         height_px: u32,
         selection: BlobSelection,
-    ) -> Result<BlobMeasurement, FrameError> {
-        let frame = RgbaFrame::new(rgba, width_px, height_px)?;
+    ) -> Result<BlobMeasurement, ImageSizeError> {
+        let frame = RgbaView::new(rgba, width_px, height_px)?;
         if frame.pixel_count() == 0 {
             self.labeller.label(&[], 0, 0);
             return Ok(BlobMeasurement::not_found(0, f64::NAN));

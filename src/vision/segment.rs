@@ -10,7 +10,7 @@
 
 use super::background::BackgroundModel;
 use super::config::{DetectionThreshold, SegmentationConfig, TargetColour};
-use super::frame::RgbaFrame;
+use super::image_view::RgbaView;
 
 /// Without core pixels, the target colour is the median of this fraction of the candidates,
 /// those farthest from the background.
@@ -36,7 +36,7 @@ pub(crate) struct CoverageModel {
 
 impl CoverageModel {
     /// Coverage α in [0, 1] of pixel (u, v) = index `idx` of `frame`.
-    pub fn coverage(&self, frame: &RgbaFrame<'_>, idx: usize, u: usize, v: usize) -> f64 {
+    pub fn coverage(&self, frame: &RgbaView<'_>, idx: usize, u: usize, v: usize) -> f64 {
         let p = frame.rgb(idx);
         let b = self.background.colour_at(u as f64 + 0.5, v as f64 + 0.5);
         let mut d2 = 0.0;
@@ -96,7 +96,7 @@ fn detection_threshold(detection: DetectionThreshold, noise_sigma: f64) -> f64 {
 
 /// Per-channel median colour of the pixels `indices` of `frame` (0 when there are none).
 fn median_colour(
-    frame: &RgbaFrame<'_>,
+    frame: &RgbaView<'_>,
     indices: impl Iterator<Item = usize>,
     histogram: &mut [[u32; 256]; 3],
 ) -> [f64; 3] {
@@ -127,7 +127,7 @@ impl Segmenter {
     /// `None` when no pixel is a candidate.
     pub fn segment(
         &mut self,
-        frame: &RgbaFrame<'_>,
+        frame: &RgbaView<'_>,
         background: BackgroundModel,
         config: &SegmentationConfig,
     ) -> Option<CoverageModel> {
@@ -152,7 +152,7 @@ impl Segmenter {
     }
 
     /// Pass over every pixel: flags and lists the candidates.
-    fn find_candidates(&mut self, frame: &RgbaFrame<'_>, bg: &BackgroundModel, threshold: f64) {
+    fn find_candidates(&mut self, frame: &RgbaView<'_>, bg: &BackgroundModel, threshold: f64) {
         let (w, h) = (frame.width, frame.height);
         // Every flag is overwritten below: no need to clear.
         self.class.resize(w * h, 0);
@@ -222,7 +222,7 @@ impl Segmenter {
     /// every edge pixel look fully covered.
     fn estimate_target_colour(
         &mut self,
-        frame: &RgbaFrame<'_>,
+        frame: &RgbaView<'_>,
         background: &BackgroundModel,
         core_count: usize,
     ) -> [f64; 3] {
@@ -261,7 +261,7 @@ impl Segmenter {
     }
 
     /// Flags and lists the mask pixels: core, or candidates covered at least `mask_coverage`.
-    fn mark_mask(&mut self, frame: &RgbaFrame<'_>, model: &CoverageModel, mask_coverage: f64) {
+    fn mark_mask(&mut self, frame: &RgbaView<'_>, model: &CoverageModel, mask_coverage: f64) {
         self.mask.clear();
         let w = frame.width;
         for &i in &self.candidates {
@@ -292,7 +292,7 @@ mod tests {
         // 25% covered.
         scene.add_rectangle((20.125, 24.0), (20.25, 20.0), 0.0, [50.0, 60.0, 80.0]);
         let rgba = scene.render();
-        let frame = RgbaFrame::new(&rgba, 64, 48).unwrap();
+        let frame = RgbaView::new(&rgba, 64, 48).unwrap();
         let bg =
             BackgroundFitter::default().fit(&frame, BackgroundSource::BorderFit { border_px: 2 });
         let mut seg = Segmenter::default();

@@ -6,7 +6,7 @@ use std::sync::OnceLock;
 
 use wingman::frames::{EulerAngles, Vec3};
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use wingman::render::{Frame, GpuContext, TargetMesh};
+use wingman::render::{CameraImage, GpuContext, TargetMesh};
 
 /// The shared GPU context. Panics (fails the test) with the install hint when there is no
 /// adapter: a skipped GPU test would hide a broken set-up (DESIGN §3).
@@ -39,7 +39,7 @@ pub fn pose(position_body_ft: [f64; 3], attitude_rad: [f64; 3]) -> TargetPoseInC
 }
 
 /// Grey levels of `frame` below `threshold`: the target's silhouette.
-pub fn dark_mask(frame: &Frame, threshold: u8) -> Vec<bool> {
+pub fn dark_mask(frame: &CameraImage, threshold: u8) -> Vec<bool> {
     frame.grey_levels().iter().map(|&g| g < threshold).collect()
 }
 

@@ -22,7 +22,7 @@ use super::air_data::AirData;
 use super::params::AircraftParams;
 use super::state::{
     ATTITUDE_QUATERNION, AircraftState, BODY_RATES_RPS, Controls, POSITION_NED_FT, STATE_LEN,
-    VELOCITY_BODY_FPS, actuators_at, raw_quaternion, vec3_at,
+    VELOCITY_BODY_FPS, actuators_at, raw_quaternion,
 };
 
 /// The follower's plant: validated data plus precomputed inertia.
@@ -155,7 +155,8 @@ impl Aircraft {
         };
         let ned_from_body = rotation_matrix(&qn);
         let wind_body = ned_from_body.transpose() * air.wind_ned_fps + air.gust_body_fps;
-        let air_velocity_body_fps = vec3_at(x, VELOCITY_BODY_FPS) - wind_body;
+        let air_velocity_body_fps =
+            Vec3::from_column_slice(&x[VELOCITY_BODY_FPS..VELOCITY_BODY_FPS + 3]) - wind_body;
         Kinematics {
             ned_from_body,
             air: AirAngles::from_air_velocity_body(&air_velocity_body_fps),
@@ -188,8 +189,8 @@ impl Aircraft {
         air: &AtmosphereSample,
     ) -> RigidBodyRates {
         let kin = self.kinematics(x, air);
-        let velocity = vec3_at(x, VELOCITY_BODY_FPS);
-        let omega = vec3_at(x, BODY_RATES_RPS);
+        let velocity = Vec3::from_column_slice(&x[VELOCITY_BODY_FPS..VELOCITY_BODY_FPS + 3]);
+        let omega = Vec3::from_column_slice(&x[BODY_RATES_RPS..BODY_RATES_RPS + 3]);
         let loads = self.loads(&kin, &omega, controls, air);
         let mass = self.params.mass.mass_slug;
         let gravity_body = kin.ned_from_body.transpose() * Vec3::new(0.0, 0.0, GRAVITY_FPS2);

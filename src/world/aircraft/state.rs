@@ -107,10 +107,12 @@ impl AircraftState {
             return None;
         }
         Some(Self {
-            position_ned_ft: vec3_at(x, POSITION_NED_FT),
-            velocity_body_fps: vec3_at(x, VELOCITY_BODY_FPS),
+            position_ned_ft: Vec3::from_column_slice(&x[POSITION_NED_FT..POSITION_NED_FT + 3]),
+            velocity_body_fps: Vec3::from_column_slice(
+                &x[VELOCITY_BODY_FPS..VELOCITY_BODY_FPS + 3],
+            ),
             attitude: UnitQuaternion::new_normalize(q),
-            body_rates_rps: vec3_at(x, BODY_RATES_RPS),
+            body_rates_rps: Vec3::from_column_slice(&x[BODY_RATES_RPS..BODY_RATES_RPS + 3]),
             actuators: actuators_at(x),
         })
     }
@@ -134,10 +136,6 @@ impl AircraftState {
 /// The quaternion of 3-2-1 Euler angles: q = q_z(ψ) q_y(θ) q_x(φ), so R(q) = L_BEᵀ.
 pub fn attitude_from_euler(euler: &EulerAngles) -> UnitQuaternion<f64> {
     UnitQuaternion::from_euler_angles(euler.phi_rad, euler.theta_rad, euler.psi_rad)
-}
-
-pub(super) fn vec3_at(x: &[f64; STATE_LEN], start: usize) -> Vec3 {
-    Vec3::new(x[start], x[start + 1], x[start + 2])
 }
 
 pub(super) fn raw_quaternion(x: &[f64; STATE_LEN]) -> Quaternion<f64> {

@@ -4,7 +4,7 @@ use thiserror::Error;
 
 /// A frame buffer whose length does not match its stated size.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
-pub enum FrameError {
+pub enum ImageSizeError {
     /// `rgba.len()` is not `width * height * 4`.
     #[error(
         "RGBA frame of {width_px}x{height_px} px needs {expected_bytes} bytes, got {actual_bytes}"
@@ -30,14 +30,18 @@ pub enum FrameError {
 }
 
 /// Expected byte length of a tightly packed RGBA8 frame, or an error naming the mismatch.
-pub(crate) fn check_rgba_len(len: usize, width_px: u32, height_px: u32) -> Result<(), FrameError> {
+pub(crate) fn check_rgba_len(
+    len: usize,
+    width_px: u32,
+    height_px: u32,
+) -> Result<(), ImageSizeError> {
     let expected = (width_px as usize)
         .checked_mul(height_px as usize)
         .and_then(|n| n.checked_mul(4));
     if expected == Some(len) {
         Ok(())
     } else {
-        Err(FrameError::BufferSize {
+        Err(ImageSizeError::BufferSize {
             width_px,
             height_px,
             expected_bytes: expected.unwrap_or(usize::MAX),
@@ -48,7 +52,7 @@ pub(crate) fn check_rgba_len(len: usize, width_px: u32, height_px: u32) -> Resul
 
 /// A read-only RGBA8 frame whose buffer length has been checked.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct RgbaFrame<'a> {
+pub(crate) struct RgbaView<'a> {
     rgba: &'a [u8],
     /// Width, px.
     pub width: usize,
@@ -56,13 +60,13 @@ pub(crate) struct RgbaFrame<'a> {
     pub height: usize,
 }
 
-impl<'a> RgbaFrame<'a> {
+impl<'a> RgbaView<'a> {
     /// Wraps `rgba` after checking its length.
     /// Also rejects frames with more than `u32::MAX` pixels (pixel lists hold u32 indices).
-    pub fn new(rgba: &'a [u8], width_px: u32, height_px: u32) -> Result<Self, FrameError> {
+    pub fn new(rgba: &'a [u8], width_px: u32, height_px: u32) -> Result<Self, ImageSizeError> {
         check_rgba_len(rgba.len(), width_px, height_px)?;
         if u64::from(width_px) * u64::from(height_px) > u64::from(u32::MAX) {
-            return Err(FrameError::TooLarge {
+            return Err(ImageSizeError::TooLarge {
                 width_px,
                 height_px,
             });
@@ -99,12 +103,12 @@ mod tests {
     /// and reports overflowing sizes instead of wrapping.
     #[test]
     fn length_check() {
-        assert!(RgbaFrame::new(&[0; 24], 3, 2).is_ok());
-        assert!(RgbaFrame::new(&[], 0, 0).is_ok());
-        assert!(RgbaFrame::new(&[], 0, 5).is_ok());
+        assert!(RgbaView::new(&[0; 24], 3, 2).is_ok());
+        assert!(RgbaView::new(&[], 0, 0).is_ok());
+        assert!(RgbaView::new(&[], 0, 5).is_ok());
         assert!(matches!(
-            RgbaFrame::new(&[0; 23], 3, 2),
-            Err(FrameError::BufferSize {
+            RgbaView::new(&[0; 23], 3, 2),
+            Err(ImageSizeError::BufferSize {
                 expected_bytes: 24,
                 actual_bytes: 23,
                 ..

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 /// Why a frame could not be saved.
 #[derive(Debug, thiserror::Error)]
 #[error("cannot write frame {path}: {source}")]
-pub struct FrameSaveError {
+pub struct ImageSaveError {
     /// The PNG file.
     pub path: PathBuf,
     /// What the encoder or the file system said.
@@ -14,7 +14,7 @@ pub struct FrameSaveError {
 
 /// An RGBA8 image, tightly packed (4 bytes a pixel, no row padding), top row first.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct Frame {
+pub struct CameraImage {
     /// Width, px.
     pub width_px: u32,
     /// Height, px.
@@ -23,7 +23,7 @@ pub struct Frame {
     pub rgba: Vec<u8>,
 }
 
-impl Frame {
+impl CameraImage {
     /// A frame of the given size filled with one colour.
     pub fn filled(width_px: u32, height_px: u32, rgba: [u8; 4]) -> Self {
         let n = width_px as usize * height_px as usize;
@@ -56,7 +56,7 @@ impl Frame {
     }
 
     /// Writes the frame as an 8-bit RGBA PNG.
-    pub fn save_png(&self, path: &Path) -> Result<(), FrameSaveError> {
+    pub fn save_png(&self, path: &Path) -> Result<(), ImageSaveError> {
         image::save_buffer(
             path,
             &self.rgba,
@@ -64,7 +64,7 @@ impl Frame {
             self.height_px,
             image::ExtendedColorType::Rgba8,
         )
-        .map_err(|source| FrameSaveError {
+        .map_err(|source| ImageSaveError {
             path: path.to_path_buf(),
             source,
         })
@@ -77,13 +77,13 @@ mod tests {
 
     #[test]
     fn pixel_indexing_is_row_major_top_first() {
-        let mut f = Frame::filled(3, 2, [1, 2, 3, 255]);
+        let mut f = CameraImage::filled(3, 2, [1, 2, 3, 255]);
         f.rgba[4 * (3 + 2)] = 9;
         assert_eq!(f.pixel(2, 1), Some([9, 2, 3, 255]));
         assert_eq!(f.pixel(3, 0), None);
         assert_eq!(f.grey_levels().len(), 6);
         assert_eq!(
-            Frame::filled(1, 1, [200, 200, 200, 255]).grey_levels(),
+            CameraImage::filled(1, 1, [200, 200, 200, 255]).grey_levels(),
             vec![200]
         );
     }

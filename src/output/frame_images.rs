@@ -1,10 +1,10 @@
 //! `frames/NNNNNN.png`: camera frames as the follower saw them, with an optional overlay of
 //! the measurement (centroid cross, maximal-length segment, status line).
 
-use crate::render::frame::{Frame, FrameSaveError};
+use crate::render::image::{CameraImage, ImageSaveError};
 use crate::sensing::CameraSensor;
 use crate::vision::overlay::draw_measurement_overlay;
-use crate::vision::{BlobMeasurement, FrameError};
+use crate::vision::{BlobMeasurement, ImageSizeError};
 use std::path::{Path, PathBuf};
 
 /// Why a frame could not be written.
@@ -20,10 +20,10 @@ pub enum FrameWriteError {
     },
     /// The overlay could not be drawn on the frame.
     #[error("cannot draw the overlay: {0}")]
-    Overlay(#[from] FrameError),
+    Overlay(#[from] ImageSizeError),
     /// The PNG could not be written.
     #[error(transparent)]
-    Save(#[from] FrameSaveError),
+    Save(#[from] ImageSaveError),
 }
 
 /// Creates a folder and its parents.
@@ -72,7 +72,7 @@ impl FrameSaver {
 /// Writes a frame as PNG, with the measurement drawn on a copy when given.
 pub fn write_frame(
     path: &Path,
-    frame: &Frame,
+    frame: &CameraImage,
     overlay: Option<&BlobMeasurement>,
 ) -> Result<(), FrameWriteError> {
     match overlay {
@@ -87,7 +87,7 @@ pub fn write_frame(
 
 /// Why `wingman render` could not write its frame.
 #[derive(Debug, thiserror::Error)]
-pub enum RenderFrameError {
+pub enum RenderImageSizeError {
     /// The simulation stopped before the requested time.
     #[error("{0}")]
     Sim(#[from] crate::sim::SimError),
@@ -109,7 +109,7 @@ pub fn render_frame_at(
     scenario: &crate::scenario::Scenario,
     t_s: f64,
     path: &Path,
-) -> Result<crate::sensing::FrameRecord, RenderFrameError> {
+) -> Result<crate::sensing::FrameRecord, RenderImageSizeError> {
     let mut sim = crate::sim::Simulation::new(scenario)?;
     let target_tick = (t_s / scenario.run.dt_s).round() as u64;
     while sim.tick() < target_tick.min(sim.total_ticks()) {
@@ -122,7 +122,7 @@ pub fn render_frame_at(
     let geometry = sim.capture_geometry();
     camera.capture_now(sim.time_s(), &geometry)?;
     let Some((frame, record, blob)) = camera.last_frame() else {
-        return Err(RenderFrameError::NoFrame);
+        return Err(RenderImageSizeError::NoFrame);
     };
     let mut copy = frame.clone();
     let intrinsics = *camera.intrinsics();
