@@ -25,7 +25,7 @@
 //! a_F (the 6-DOF aircraft): the law then runs on y - ℓ/b̂.
 
 use super::compensation::ShortfallCompensation;
-use super::projection::{BallBound, IntervalBound};
+use super::projection::{BallBound, EstimateBounds, IntervalBound};
 use super::shaping::{CommandShaping, ShapedCommand};
 use super::signals::GuidanceInput;
 use crate::frames::Vec3;
@@ -264,8 +264,7 @@ pub struct AccelerationGuidance {
     rho: f64,
     gamma_d: f64,
     sign_filter_pole_rps: f64,
-    b_bound: IntervalBound,
-    d_bound: BallBound,
+    bounds: EstimateBounds,
     shaping: CommandShaping,
     b0_ft: f64,
     observer: ObserverGainDesign,
@@ -302,14 +301,16 @@ impl AccelerationGuidance {
             rho: section.rho,
             gamma_d: section.gamma_d,
             sign_filter_pole_rps: section.sign_filter_pole_rps,
-            b_bound: IntervalBound {
-                min: guidance.b_min_ft,
-                max: guidance.b_max_ft,
-                epsilon: guidance.b_epsilon_ft2,
-            },
-            d_bound: BallBound {
-                max_norm: section.d_hat_max_fps,
-                epsilon: section.d_hat_epsilon_fps2,
+            bounds: EstimateBounds {
+                b: IntervalBound {
+                    min: guidance.b_min_ft,
+                    max: guidance.b_max_ft,
+                    epsilon: guidance.b_epsilon_ft2,
+                },
+                d: BallBound {
+                    max_norm: section.d_hat_max_fps,
+                    epsilon: section.d_hat_epsilon_fps2,
+                },
             },
             shaping: CommandShaping {
                 pole_rps: guidance.shaping_pole_rps,
@@ -448,7 +449,7 @@ impl AccelerationGuidance {
         let cmd = self.shaping.command(&state.shaping_filter, b_hat, input);
         let axes = self.axis_outputs(&state, &cmd.value);
         let y_a = y * 2.0 - axes.y_model - axes.y_observer;
-        let b_hat_rate = self.rho * self.b_bound.project(b_hat, -y_a.dot(&axes.h));
+        let b_hat_rate = self.rho * self.bounds.b.project(b_hat, -y_a.dot(&axes.h));
         let y_c_rate = cmd.rate(b_hat_rate);
         let mut rates = self.model_and_observer_rates(&state, &y, &cmd);
         let h_rate = Vec3::from(
@@ -458,7 +459,7 @@ impl AccelerationGuidance {
         let s_chi = y_a.map(|v| smooth_sign(v, self.chi));
         let s_f_rate = (state.sign_filter - s_chi) * self.sign_filter_pole_rps;
         // S(y_a) y_a = |y_a| componentwise (5.41).
-        let d_rate = self.d_bound.project(&state.d_hat_fps, &y_a.abs()) * self.gamma_d;
+        let d_rate = self.bounds.d.project(&state.d_hat_fps, &y_a.abs()) * self.gamma_d;
         let s_f = state.sign_filter;
         let w_f = axes.h * b_hat - s_f.component_mul(&state.d_hat_fps);
         let w_f_rate = axes.h * b_hat_rate + h_rate * b_hat
@@ -527,13 +528,9 @@ impl AccelerationGuidance {
 
     /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`super::projection`]).
     pub fn enforce_bounds(&self, x: &mut [f64]) {
-        let state = self.unpack(x);
-        AccelerationState {
-            b_hat_ft: self.b_bound.clamp(state.b_hat_ft),
-            d_hat_fps: self.d_bound.clamp(&state.d_hat_fps),
-            ..state
-        }
-        .pack(x);
+        let mut state = self.unpack(x);
+        (state.b_hat_ft, state.d_hat_fps) = self.bounds.clamp(state.b_hat_ft, &state.d_hat_fps);
+        state.pack(x);
     }
 }
 

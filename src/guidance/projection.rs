@@ -120,6 +120,22 @@ impl BallBound {
     }
 }
 
+/// The projection bounds of a law's parameter estimates: b̂ in an interval, d̂ in a ball.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EstimateBounds {
+    /// Bound of b̂.
+    pub b: IntervalBound,
+    /// Bound of d̂.
+    pub d: BallBound,
+}
+
+impl EstimateBounds {
+    /// b̂ and d̂ clamped back into Ω_1 (after an integration step).
+    pub fn clamp(&self, b_hat: f64, d_hat: &Vec3) -> (f64, Vec3) {
+        (self.b.clamp(b_hat), self.d.clamp(d_hat))
+    }
+}
+
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }

@@ -8,7 +8,7 @@
 //! compensation)]`.
 
 use super::compensation::VelocityLagCompensation;
-use super::projection::{BallBound, IntervalBound};
+use super::projection::{BallBound, EstimateBounds, IntervalBound};
 use super::shaping::{CommandShaping, ShapedCommand};
 use super::signals::{ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput};
 use super::velocity_estimator::VelocityEstimator;
@@ -51,8 +51,7 @@ pub struct VelocityGuidance {
     k: f64,
     sigma: f64,
     gamma_d: f64,
-    b_bound: IntervalBound,
-    d_bound: BallBound,
+    bounds: EstimateBounds,
     shaping: CommandShaping,
     b0_ft: f64,
     d0: Vec3,
@@ -72,14 +71,16 @@ impl VelocityGuidance {
             k: section.k,
             sigma: section.sigma,
             gamma_d: section.gamma_d,
-            b_bound: IntervalBound {
-                min: section.b_min_ft,
-                max: section.b_max_ft,
-                epsilon: section.b_epsilon_ft2,
-            },
-            d_bound: BallBound {
-                max_norm: section.d_max_per_s,
-                epsilon: section.d_epsilon,
+            bounds: EstimateBounds {
+                b: IntervalBound {
+                    min: section.b_min_ft,
+                    max: section.b_max_ft,
+                    epsilon: section.b_epsilon_ft2,
+                },
+                d: BallBound {
+                    max_norm: section.d_max_per_s,
+                    epsilon: section.d_epsilon,
+                },
             },
             shaping: CommandShaping {
                 pole_rps: section.shaping_pole_rps,
@@ -175,7 +176,10 @@ impl VelocityGuidance {
         let g_a = realised.unwrap_or(g);
         let rates = VelocityState {
             b_hat_ft: b_hat_rate,
-            d_hat_per_s: self.d_bound.project(&state.d_hat_per_s, &adaptation_signal)
+            d_hat_per_s: self
+                .bounds
+                .d
+                .project(&state.d_hat_per_s, &adaptation_signal)
                 * self.gamma_d,
             shaping_filter: command.filter_rate,
             r_hat: self.estimator.as_ref().map(|est| {
@@ -243,7 +247,8 @@ impl VelocityGuidance {
             let g_a = realised.unwrap_or(*g);
             self.sigma
                 * self
-                    .b_bound
+                    .bounds
+                    .b
                     .project(state.b_hat_ft, g_a.dot(adaptation_signal))
         };
         let g = guidance(b_rate_of(&guidance(0.0)));
@@ -252,13 +257,9 @@ impl VelocityGuidance {
 
     /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`super::projection`]).
     pub fn enforce_bounds(&self, x: &mut [f64]) {
-        let state = self.unpack(x);
-        VelocityState {
-            b_hat_ft: self.b_bound.clamp(state.b_hat_ft),
-            d_hat_per_s: self.d_bound.clamp(&state.d_hat_per_s),
-            ..state
-        }
-        .pack(x);
+        let mut state = self.unpack(x);
+        (state.b_hat_ft, state.d_hat_per_s) = self.bounds.clamp(state.b_hat_ft, &state.d_hat_per_s);
+        state.pack(x);
     }
 }
 

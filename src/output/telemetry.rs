@@ -37,43 +37,21 @@ pub fn row_of(s: &Snapshot) -> Row {
 /// Time, relative position, target and follower states.
 fn truth_columns(s: &Snapshot, row: &mut Row) {
     row.push(("t_s", s.t_s));
-    push3(
-        row,
-        ["rel_n_ft", "rel_e_ft", "rel_d_ft"],
-        &s.relative_ned_ft,
-    );
-    let target = &s.target;
-    push3(
-        row,
-        ["tgt_vn_fps", "tgt_ve_fps", "tgt_vd_fps"],
-        &target.velocity_ned_fps,
-    );
-    push3(
-        row,
-        ["tgt_an_fps2", "tgt_ae_fps2", "tgt_ad_fps2"],
-        &target.accel_ned_fps2,
-    );
     let attitude = |a: &EulerAngles| Vec3::new(a.phi_rad, a.theta_rad, a.psi_rad);
-    push3(
-        row,
-        ["tgt_phi_rad", "tgt_theta_rad", "tgt_psi_rad"],
-        &attitude(&target.attitude),
-    );
-    push3(
-        row,
-        ["fol_n_ft", "fol_e_ft", "fol_d_ft"],
-        &s.follower_position_ned_ft,
-    );
-    push3(
-        row,
-        ["fol_vn_fps", "fol_ve_fps", "fol_vd_fps"],
-        &s.follower_velocity_ned_fps,
-    );
-    push3(
-        row,
-        ["phi_rad", "theta_rad", "psi_rad"],
-        &attitude(&s.follower_attitude),
-    );
+    let target = &s.target;
+    #[rustfmt::skip]
+    let groups: [([&'static str; 3], Vec3); 7] = [
+        (["rel_n_ft", "rel_e_ft", "rel_d_ft"], s.relative_ned_ft),
+        (["tgt_vn_fps", "tgt_ve_fps", "tgt_vd_fps"], target.velocity_ned_fps),
+        (["tgt_an_fps2", "tgt_ae_fps2", "tgt_ad_fps2"], target.accel_ned_fps2),
+        (["tgt_phi_rad", "tgt_theta_rad", "tgt_psi_rad"], attitude(&target.attitude)),
+        (["fol_n_ft", "fol_e_ft", "fol_d_ft"], s.follower_position_ned_ft),
+        (["fol_vn_fps", "fol_ve_fps", "fol_vd_fps"], s.follower_velocity_ned_fps),
+        (["phi_rad", "theta_rad", "psi_rad"], attitude(&s.follower_attitude)),
+    ];
+    for (names, v) in groups {
+        push3(row, names, &v);
+    }
 }
 
 /// Command, excitation, estimates, the r the guidance was given and the scaled command.
