@@ -1,17 +1,34 @@
 //! # wingman — vision-in-the-loop aerial tracking
 //!
 //! A follower aircraft keeps station on (or intercepts) an unknown, manoeuvring target using only
-//! a monocular camera. One simulation tick: the target's pose comes from its motion model and the
-//! follower's from its plant; on camera ticks an off-screen renderer draws the target as the
-//! follower's camera sees it and the image pipeline measures its centroid and maximal length in
-//! pixels; the sensing transform turns (yI, zI, bI) and the follower's attitude into the scaled
-//! relative position r; the adaptive guidance law (with its estimator and excitation) turns r
-//! into a velocity or acceleration command; the follower realises that command (kinematically,
-//! or through a flight controller on a 6-DOF aircraft); the recorder logs every stage.
+//! a monocular camera.
 //!
-//! Modules, in the order data flows: [`frames`], [`scenario`], [`world`], [`sensing`],
-//! [`noisy_sensor`], [`sensor`], [`guidance`], [`control`], [`follower`], [`integrate`], [`sim`],
-//! [`output`].
+//! ## The loop and its seams
+//!
+//! Five stages, each a plain struct that owns its slice of the simulation's state and gets its
+//! own configuration; [`sim::Simulation`] builds them, decides every mode that spans stages
+//! (which command the follower flies, whether the laws compensate for a follower that does
+//! not realise it, where the guidance's measurement comes from) and wires one tick:
+//!
+//! 1. **sensor** ([`sensing`]): `perfect` r = R/b, `noisy` r*, or the `camera`: an off-screen
+//!    renderer ([`render`]) draws the target as the follower's camera sees it and the image
+//!    pipeline ([`vision`]) measures its centroid and maximal length; the sensing transform
+//!    turns (yI, zI, bI) and the follower's attitude into r*.
+//! 2. **estimator** ([`estimation`]): what the guidance is given: the continuous measurement,
+//!    or the camera's latest frame held and brought forward by the follower's own motion.
+//! 3. **guidance** ([`guidance`]): the velocity or acceleration law turns r (with its own
+//!    adaptive estimates, the command frame, the shaping filter and the excitation) into a
+//!    [`guidance::FollowerCommand`].
+//! 4. **follower** ([`follower`]): realises the command exactly (kinematic), or flies it with
+//!    the Chapter 7 flight controller ([`control`]) on the 6-DOF aircraft of [`world`].
+//! 5. **recorder** ([`output`]): telemetry, summary, frames and plots.
+//!
+//! Every continuous state is integrated by one RK4 ([`integrate`]) over one vector; each stage
+//! reads and writes its slice through a typed block ([`state_block`]).
+//!
+//! Modules, in the order data flows (each imports only those before it): [`frames`],
+//! [`state_block`], [`linalg`], [`integrate`], [`scenario`], [`world`], [`render`], [`vision`],
+//! [`sensing`], [`estimation`], [`guidance`], [`control`], [`follower`], [`sim`], [`output`].
 #![warn(missing_docs)]
 
 pub mod control;

@@ -2,7 +2,7 @@
 //! one place that reads modes across stages: [`Simulation::new`] decides them and hands each
 //! stage its own configuration.
 //!
-//! Continuous state, integrated as one vector by RK4 ([`StateLayout`]):
+//! Continuous state, integrated as one vector by RK4 (one slice per stage):
 //! `[follower | command frame | guidance law]`. The target's motion is closed-form.
 //!
 //! One tick (the sensors have already acted for it, see below): (1) the aircraft's turbulence

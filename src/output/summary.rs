@@ -254,7 +254,7 @@ impl Summary {
 }
 
 /// The target size a camera run's frames imply, ‖R‖ / aI (see
-/// [`crate::sensing::ImageMeasurement::apparent_size_ft`]), averaged over the measured frames:
+/// [`crate::vision::ImageMeasurement::apparent_size_ft`]), averaged over the measured frames:
 /// what the guidance's r* says the target's size is, to set beside b̂ and the true b.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ApparentSize {

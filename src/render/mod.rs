@@ -3,7 +3,7 @@
 //! [`gpu::GpuContext`] opens a headless wgpu device once; [`mesh::TargetMesh`] holds the
 //! target's triangles (the seed aircraft is built by [`aircraft_mesh`] and committed as
 //! `assets/target_aircraft.obj`); [`renderer::Renderer`] draws it with the exact pinhole
-//! projection of [`camera::CameraIntrinsics`] ([`projection`]) and reads back a [`frame::Frame`].
+//! projection of [`camera::CameraIntrinsics`] ([`projection`]) and reads back a [`image::CameraImage`].
 
 pub mod aircraft_mesh;
 pub mod camera;

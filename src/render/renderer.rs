@@ -1,11 +1,11 @@
 //! Off-screen renderer: draws the target mesh, as the follower's camera sees it, into an RGBA8
-//! texture (optionally 4x multisampled and resolved) and reads it back into a [`Frame`].
+//! texture (optionally 4x multisampled and resolved) and reads it back into a [`CameraImage`].
 //!
 //! Per frame only a 192-byte uniform block changes; the mesh is uploaded once. Readback copies
 //! the texture into a persistent staging buffer whose rows are padded to
 //! [`wgpu::COPY_BYTES_PER_ROW_ALIGNMENT`], maps it, waits for the exact submission (DESIGN §6:
 //! another thread's poll may run the map callback, so the callback reports on a channel) and
-//! unpads the rows into a reusable [`Frame`]. Pixel noise is then added on the CPU
+//! unpads the rows into a reusable [`CameraImage`]. Pixel noise is then added on the CPU
 //! ([`crate::render::noise`]).
 
 use std::sync::mpsc;
