@@ -12,9 +12,9 @@
 //! (`guidance.k_aircraft`) and, with the follower's realised velocity V_a (its own
 //! navigation), runs its adaptation on a compensated error, as command-filtered backstepping
 //! does (Farrell, Polycarpou, Sharma and Dong, "Command filtered backstepping", IEEE TAC
-//! 54(6), 2009). The lag error χ_v obeys
+//! 54(6), 2009). The lag error η obeys
 //! ```text
-//! χ_v' = -k χ_v + (k - k_F) e + (g - g_a),   ē = e - χ_v   ⇒   ē' = -k ē + d̃ - (b̃/b) g_a
+//! η' = -k η + (k - k_F) e + (g - g_a),   ē = e - η   ⇒   ē' = -k ē + d̃ - (b̃/b) g_a
 //! ```
 //! (e the error the law feeds back: r̂ - r_c with the estimator, whose k r̃ term then also
 //! follows (6.15)). ē has exactly the error dynamics, with the seed's k, that (4.5) and (6.16)
@@ -43,7 +43,7 @@ pub struct VelocityLagCompensation {
 }
 
 impl VelocityLagCompensation {
-    /// χ_v' = -k χ_v + (k - k_F) e + (g - g_a), for the lag error χ_v, the fed-back error e,
+    /// η' = -k η + (k - k_F) e + (g - g_a), for the lag error η, the fed-back error e,
     /// the commanded scaled velocity g and the realised one g_a = V_a / b̂.
     pub fn lag_error_rate(
         &self,
@@ -102,7 +102,7 @@ mod tests {
 
     /// One axis of ṙ = d - V_a/b with b̂ = b and d̂ = d known, r_c = 0: the law flies
     /// V_F = b (k_F e + d) and the follower's velocity lags it by a second. The error e decays
-    /// at whatever rate the lag allows, but ē = e - χ_v decays exactly as e^{-k t}, the error
+    /// at whatever rate the lag allows, but ē = e - η decays exactly as e^{-k t}, the error
     /// dynamics the seed's adaptation is written for.
     #[test]
     fn compensated_error_has_the_seeds_dynamics_behind_a_lag() {
@@ -111,7 +111,7 @@ mod tests {
             feedback_gain_per_s: 0.5,
         };
         let (b, d, lag_s) = (8.0, 6.25, 1.0);
-        // State [e, V_a, χ_v] on the x axis.
+        // State [e, V_a, η] on the x axis.
         let f = |x: [f64; 3]| -> [f64; 3] {
             let [e, v_a, chi] = x;
             let g = c.feedback_gain_per_s * e + d;

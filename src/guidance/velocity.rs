@@ -2,9 +2,9 @@
 //! size b̂ and scaled velocity d̂, the command shaping of [`super::shaping`], and optionally
 //! the state estimator of Chapter 6 ((6.10)-(6.17)) for noisy measurements. For a follower
 //! that does not realise V_F (the 6-DOF aircraft) the law carries the lag compensation of
-//! [`super::compensation`]: it feeds the error back with k_F and adapts on ē = e - χ_v.
+//! [`super::compensation`]: it feeds the error back with k_F and adapts on ē = e - η.
 //!
-//! State: [`VelocityState`], `[b̂, d̂ (3), r_cf (3), r̂ (3, with the estimator), χ_v (3, with
+//! State: [`VelocityState`], `[b̂, d̂ (3), r_cf (3), r̂ (3, with the estimator), η (3, with
 //! compensation)]`.
 
 use super::compensation::VelocityLagCompensation;
@@ -28,7 +28,7 @@ pub struct VelocityState {
     pub shaping_filter: Vec3,
     /// r̂, the Chapter 6 estimator's state (6.10), with the estimator.
     pub r_hat: Option<Vec3>,
-    /// χ_v, the lag error of [`super::compensation`], with compensation.
+    /// η, the lag error of [`super::compensation`], with compensation.
     pub lag_error: Option<Vec3>,
 }
 
@@ -207,8 +207,8 @@ impl VelocityGuidance {
         }
     }
 
-    /// The vector the adaptation (4.5) or (6.16) runs on: ē = e - χ_v, or B_vᵀ P_v ξ*_v with
-    /// ξ*_v = [r* - r_c - χ_v; r* - r̂] with the estimator; zero while the target is lost.
+    /// The vector the adaptation (4.5) or (6.16) runs on: ē = e - η, or B_vᵀ P_v ξ*_v with
+    /// ξ*_v = [r* - r_c - η; r* - r̂] with the estimator; zero while the target is lost.
     fn adaptation_signal(
         &self,
         state: &VelocityState,
@@ -263,7 +263,7 @@ impl VelocityGuidance {
     }
 }
 
-/// ē = e - χ_v with compensation, e without.
+/// ē = e - η with compensation, e without.
 fn compensated(error: Vec3, lag_error: Option<Vec3>) -> Vec3 {
     lag_error.map_or(error, |chi| error - chi)
 }
