@@ -15,17 +15,21 @@
 //! tick: the noisy sensor may draw its noise, the camera may take a frame and deliver one to
 //! the guidance. A snapshot between ticks therefore shows what the guidance works with.
 
-use crate::estimation::{HeldFrame, MeasurementHold, MeasurementSource, TargetMotionEstimate};
+use crate::estimation::{
+    Estimator, GuidanceMeasurement, LawEstimates, TargetEstimate, TargetMotionEstimate,
+};
 use crate::follower::AircraftSetupError;
 use crate::follower::aircraft::DRYDEN_SEED_SALT;
 use crate::follower::{Actuation, AircraftActuation, FlightEnvelope, Follower, FollowerConfig};
-use crate::frames::{EulerAngles, Vec3};
-use crate::guidance::command::{self, FormationCommand};
+use crate::frames::{EulerAngles, Mat3, Vec3};
+use crate::guidance::command::{self, CommandInput, FormationCommand};
 use crate::guidance::excitation::Excitation;
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
 use crate::guidance::signals::{CommandKind, FollowerCommand, GuidanceInput, GuidanceOutput};
 use crate::integrate::Rk4;
-use crate::scenario::{FollowerModel, GuidanceLawKind, Mission, Scenario};
+use crate::scenario::{
+    ExcitationUnits, FollowerModel, GuidanceLawKind, Mission, Scenario, SensorMode,
+};
 use crate::sensing::{
     CameraSensor, CaptureGeometry, FrameRecord, NoisySensor, Sensor, SensorError,
 };
@@ -106,6 +110,9 @@ pub struct Snapshot {
     pub b_hat_ft: f64,
     /// d̂, in the law's own terms.
     pub target_motion: TargetMotionEstimate,
+    /// The Kalman filter's estimate now, when the run has a filter (flying on it or beside the
+    /// adaptive law): `Some(None)` before its first measurement.
+    pub filter: Option<Option<TargetEstimate>>,
     /// Guidance output.
     pub guidance: GuidanceOutput,
     /// The last camera frame's measurement and truth (camera runs).
@@ -130,6 +137,9 @@ impl Snapshot {
 pub struct StageTimes {
     /// Measurement, formation command, excitation and guidance law.
     pub guidance: Duration,
+    /// The estimator's work at frames and samples (the Kalman filter's prediction and
+    /// update); its prediction between them is in `guidance`.
+    pub estimator: Duration,
     /// Flight controller (nothing for the kinematic follower).
     pub control: Duration,
     /// Follower's equations of motion.
@@ -144,15 +154,6 @@ pub struct StageTimes {
 struct Evaluation {
     guidance: GuidanceOutput,
     actuation: Actuation,
-}
-
-/// What the guidance is given at one instant.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum GuidanceMeasurement {
-    /// No measurement has arrived yet: the law idles.
-    NotYet,
-    /// r, or None while the target is lost.
-    Now(Option<Vec3>),
 }
 
 /// Where each stage's slice lies in the state vector.
@@ -202,7 +203,9 @@ pub struct Simulation {
     guidance: GuidanceLaw,
     excitation: Excitation,
     sensor: Sensor,
-    hold: MeasurementHold,
+    /// The camera's fixed mount, L_CB.
+    camera_from_body: Mat3,
+    estimator: Estimator,
     layout: StateLayout,
     /// What the stages' set-up had to say (estimator gain, observer-gain fallback).
     notes: Vec<String>,
@@ -238,21 +241,20 @@ impl Simulation {
             command_kind,
         })?;
         let compensate = scenario.follower.model == FollowerModel::Aircraft;
-        let (guidance, notes) = GuidanceLaw::new(g, &scenario.acceleration, compensate)?;
+        let kind = scenario.estimator.kind;
+        let (guidance, notes) = GuidanceLaw::new(g, &scenario.acceleration, kind, compensate)?;
         let mut sensor = Sensor::new(scenario, g.command_length_ft())
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
-        let hold = MeasurementHold::new(sensor.is_continuous(), scenario.camera.compensate_delay);
+        let estimator = Estimator::new(scenario, sensor.is_continuous());
         let target = TargetMotionModel::from_section(&scenario.target);
-        let geometry = capture_geometry(&target, &follower, &follower_x, 0.0);
+        let camera_from_body = scenario.camera.camera_from_body();
+        let geometry = capture_geometry(&target, &follower, &follower_x, 0.0, &camera_from_body);
         // The filters start at the first measurement: r*(0) with a noisy sensor, the true
         // r(0) otherwise (a camera restarts them at its first frame).
         sensor.draw_initial_noise(&geometry);
         let r0 = geometry.relative_ned_ft / scenario.target.size_ft;
         let r_first = sensor
-            .continuous_measurement(
-                &geometry.relative_ned_ft,
-                &geometry.follower_attitude.body_from_ned(),
-            )
+            .continuous_measurement(&geometry.relative_ned_ft, &geometry.camera_from_ned())
             .unwrap_or(r0);
         let layout = StateLayout::new(follower_x.len(), command::STATE_LEN, guidance.state_len());
         let mut state = follower_x;
@@ -267,9 +269,14 @@ impl Simulation {
             follower,
             command: FormationCommand::new(g),
             guidance,
-            excitation: Excitation::new(&scenario.excitation, scenario.run.dt_s),
+            excitation: Excitation::new(
+                &scenario.excitation,
+                scenario.run.dt_s,
+                excitation_cap(scenario),
+            ),
             sensor,
-            hold,
+            camera_from_body,
+            estimator,
             layout,
             notes,
             stage_times: Cell::new(StageTimes::default()),
@@ -321,6 +328,11 @@ impl Simulation {
         self.sensor.camera()
     }
 
+    /// The estimator stage.
+    pub fn estimator(&self) -> &Estimator {
+        &self.estimator
+    }
+
     /// The noisy sensor, in noisy runs.
     pub fn noisy_sensor(&self) -> Option<&NoisySensor> {
         self.sensor.noisy()
@@ -350,11 +362,18 @@ impl Simulation {
     /// Where follower and target are now, as a camera frame would see them.
     pub fn capture_geometry(&self) -> CaptureGeometry {
         let (follower_x, _, _) = self.layout.split(&self.state);
-        capture_geometry(&self.target, &self.follower, follower_x, self.time_s())
+        capture_geometry(
+            &self.target,
+            &self.follower,
+            follower_x,
+            self.time_s(),
+            &self.camera_from_body,
+        )
     }
 
-    /// The sensors act at the current tick; a camera frame that reaches the guidance is held
-    /// from now on, and the first one starts the guidance's filters.
+    /// The sensors act at the current tick: a camera frame that reaches the guidance goes to
+    /// the estimator (the first starts the law's filters), a continuous sensor's new sample
+    /// to the Kalman filter when there is one.
     fn sense(&mut self) -> Result<(), SimError> {
         let t_s = self.time_s();
         let geometry = self.capture_geometry();
@@ -365,69 +384,135 @@ impl Simulation {
                     t_s,
                     source: Box::new(e),
                 })?;
-        if let Some(first) = delivered.and_then(|record| self.hold.deliver(&record)) {
-            let r0 = self.held_measurement(&first, t_s, &self.state);
+        let started = Instant::now();
+        let (follower_x, _, _) = self.layout.split(&self.state);
+        let velocity = self.follower.track_ned_fps(follower_x);
+        let first = match delivered {
+            Some(record) => self.estimator.deliver(&record, &velocity),
+            None => {
+                self.sample_continuous(&geometry, &velocity);
+                false
+            }
+        };
+        if first
+            && let GuidanceMeasurement::Now { r: Some(r0), .. } =
+                self.guidance_measurement(t_s, &self.state)
+        {
             let (_, _, guidance_x) = self.layout.split_mut(&mut self.state);
             self.guidance.start_at(guidance_x, &r0);
         }
+        let mut times = self.stage_times.get();
+        times.estimator += started.elapsed();
+        self.stage_times.set(times);
         Ok(())
     }
 
-    /// A held frame's measurement as the guidance is given it at (t, x).
-    fn held_measurement(&self, frame: &HeldFrame, t_s: f64, x: &[f64]) -> Vec3 {
-        let (follower_x, _, guidance_x) = self.layout.split(x);
-        let estimates = self.guidance.estimates(guidance_x);
-        self.hold.held_measurement(
-            frame,
-            t_s,
-            &self.follower.position_ned_ft(follower_x),
-            estimates.b_hat_ft,
-            &estimates.target_motion,
-        )
+    /// A continuous sensor's sample for the Kalman filter, when this tick draws one.
+    fn sample_continuous(&mut self, geometry: &CaptureGeometry, follower_velocity_ned_fps: &Vec3) {
+        if self.estimator.tracker().is_none() || !self.sensor.is_sample_tick(self.tick) {
+            return;
+        }
+        let body_from_ned = geometry.camera_from_ned();
+        let relative = &geometry.relative_ned_ft;
+        if let Some(r_star) = self.sensor.continuous_measurement(relative, &body_from_ned) {
+            let variance = self.sensor.continuous_variance(relative, &body_from_ned);
+            self.estimator.sample(
+                self.time_s(),
+                &r_star,
+                variance,
+                &geometry.follower_position_ned_ft,
+                follower_velocity_ned_fps,
+            );
+        }
     }
 
     /// The measurement the estimator stage gives the guidance at (t, x).
     fn guidance_measurement(&self, t_s: f64, x: &[f64]) -> GuidanceMeasurement {
-        match self.hold.source() {
-            MeasurementSource::Continuous => {
-                let (follower_x, _, _) = self.layout.split(x);
-                let relative =
-                    self.target.position_ned_ft(t_s) - self.follower.position_ned_ft(follower_x);
-                let body_from_ned = self.follower.attitude(follower_x).body_from_ned();
-                GuidanceMeasurement::Now(
-                    self.sensor
-                        .continuous_measurement(&relative, &body_from_ned),
-                )
-            }
-            MeasurementSource::Held(frame) => {
-                GuidanceMeasurement::Now(frame.map(|f| self.held_measurement(&f, t_s, x)))
-            }
-            MeasurementSource::AwaitingFirst => GuidanceMeasurement::NotYet,
-        }
-    }
-
-    /// The user's command R_c and Ṙ_c (NED, ft and ft/s) for the follower and command
-    /// slices of a state (see [`FormationCommand`]).
-    fn command(&self, x: &[f64]) -> (Vec3, Vec3) {
-        let (follower_x, command_x, _) = self.layout.split(x);
-        self.command.command(
-            command_x,
-            &self.follower.attitude(follower_x),
-            &self.follower.body_rates(follower_x),
+        let (follower_x, _, guidance_x) = self.layout.split(x);
+        let position = self.follower.position_ned_ft(follower_x);
+        self.estimator.guidance_measurement(
+            t_s,
+            &position,
+            self.guidance.estimates(guidance_x),
+            || {
+                let relative = self.target.position_ned_ft(t_s) - position;
+                let body_from_ned =
+                    self.camera_from_body * self.follower.attitude(follower_x).body_from_ned();
+                self.sensor
+                    .continuous_measurement(&relative, &body_from_ned)
+            },
         )
     }
 
-    /// The guidance input at (t, x) for a measurement: command, its rate, the excitation and
-    /// the follower's navigation.
-    fn guidance_input(&self, t_s: f64, x: &[f64], r_measured: Option<Vec3>) -> GuidanceInput {
-        let (command_ned_ft, command_rate_ned_fps) = self.command(x);
+    /// The estimates b̂ and d̂ the guidance flies on at (t, x): the adaptive law's own, or the
+    /// Kalman filter's (`None` before its first measurement).
+    fn estimates(&self, x: &[f64], measurement: &GuidanceMeasurement) -> Option<LawEstimates> {
+        let (_, _, guidance_x) = self.layout.split(x);
+        self.guidance.estimates(guidance_x).or(match measurement {
+            GuidanceMeasurement::Now {
+                estimate: Some(e), ..
+            } => Some(LawEstimates {
+                b_hat_ft: e.b_hat_ft,
+                target_motion: TargetMotionEstimate::ScaledVelocity(e.d_per_s),
+            }),
+            _ => None,
+        })
+    }
+
+    /// What the command frames follow at (t, x): the follower's attitude and rates, and the
+    /// track of the target frame: the target's estimated velocity once it is trusted (the
+    /// Kalman filter knows its heading; or the adaptive velocity law's d̂), none before (the
+    /// frame holds). With the Kalman estimate the track leads by the frame's lag, d̂ + â τ, so that
+    /// the frame does not trail a steadily turning target by its turn rate times τ.
+    fn command_input(&self, x: &[f64], measurement: &GuidanceMeasurement) -> CommandInput {
         let (follower_x, _, _) = self.layout.split(x);
+        let g = &self.scenario.guidance;
+        let heading_gate_rad = g.command_target_heading_sigma_deg.to_radians();
+        let track_ned = match (measurement, self.estimator.tracker()) {
+            (
+                GuidanceMeasurement::Now {
+                    estimate: Some(e), ..
+                },
+                Some(tracker),
+            ) if tracker.heading_sigma_rad() < heading_gate_rad => {
+                Some(e.d_per_s + e.a_per_s2 * g.command_target_lead_s)
+            }
+            (_, None) => match self.estimates(x, measurement) {
+                Some(LawEstimates {
+                    target_motion: TargetMotionEstimate::ScaledVelocity(d),
+                    ..
+                }) => Some(d),
+                _ => None,
+            },
+            _ => None,
+        };
+        CommandInput {
+            attitude: self.follower.attitude(follower_x),
+            body_rates_rps: self.follower.body_rates(follower_x),
+            track_ned,
+        }
+    }
+
+    /// The guidance input at (t, x) for a measurement: command, its rate, the excitation, the
+    /// follower's navigation and the Kalman estimate.
+    fn guidance_input(
+        &self,
+        t_s: f64,
+        x: &[f64],
+        command: &CommandInput,
+        r_measured: Option<Vec3>,
+        estimate: Option<TargetEstimate>,
+    ) -> GuidanceInput {
+        let (follower_x, command_x, _) = self.layout.split(x);
+        let (command_ned_ft, command_rate_ned_fps) = self.command.command(command_x, command);
         GuidanceInput {
             r_measured,
             command_ned_ft,
             command_rate_ned_fps,
+            command_frame_rate_rps: self.command.shaping_frame_rate_rps(command_x, command),
             excitation: self.excitation.command_offset(t_s),
             follower: self.follower.feedback(follower_x),
+            estimate,
         }
     }
 
@@ -437,12 +522,13 @@ impl Simulation {
         let started = Instant::now();
         let (follower_x, command_x, guidance_x) = self.layout.split(x);
         let (follower_dx, command_dx, guidance_dx) = self.layout.split_mut(dx);
-        self.command
-            .derivative(command_x, &self.follower.attitude(follower_x), command_dx);
-        let out = match self.guidance_measurement(t_s, x) {
+        let measurement = self.guidance_measurement(t_s, x);
+        let command = self.command_input(x, &measurement);
+        self.command.derivative(command_x, &command, command_dx);
+        let out = match measurement {
             GuidanceMeasurement::NotYet => self.guidance.idle(guidance_x, guidance_dx),
-            GuidanceMeasurement::Now(r_measured) => {
-                let input = self.guidance_input(t_s, x, r_measured);
+            GuidanceMeasurement::Now { r, estimate } => {
+                let input = self.guidance_input(t_s, x, &command, r, estimate);
                 self.guidance.derivative(guidance_x, &input, guidance_dx)
             }
         };
@@ -477,11 +563,20 @@ impl Simulation {
             guidance: out,
             actuation,
         } = self.derivative(t_s, &self.state, &mut dx);
-        let (follower_x, _, guidance_x) = self.layout.split(&self.state);
+        let (follower_x, command_x, _) = self.layout.split(&self.state);
         let follower = self.follower.position_ned_ft(follower_x);
         let target = self.target.state(t_s);
-        let (command, _) = self.command(&self.state);
-        let estimates = self.guidance.estimates(guidance_x);
+        let measurement = self.guidance_measurement(t_s, &self.state);
+        let (command, _) = self
+            .command
+            .command(command_x, &self.command_input(&self.state, &measurement));
+        let g = &self.scenario.guidance;
+        let estimates = self
+            .estimates(&self.state, &measurement)
+            .unwrap_or(LawEstimates {
+                b_hat_ft: g.b0_ft,
+                target_motion: TargetMotionEstimate::ScaledVelocity(Vec3::from(g.d0_per_s)),
+            });
         let excitation = self.excitation.command_offset(t_s);
         Snapshot {
             t_s,
@@ -493,12 +588,16 @@ impl Simulation {
             command_ned_ft: command,
             excited_command_ned_ft: command + excitation.in_ft(estimates.b_hat_ft),
             excitation_amplitude: self.excitation.amplitude(),
-            r_measured: match self.guidance_measurement(t_s, &self.state) {
-                GuidanceMeasurement::Now(r) => r,
+            r_measured: match measurement {
+                GuidanceMeasurement::Now { r, .. } => r,
                 GuidanceMeasurement::NotYet => None,
             },
             b_hat_ft: estimates.b_hat_ft,
             target_motion: estimates.target_motion,
+            filter: self
+                .estimator
+                .tracker()
+                .map(|t| t.estimate_at(t_s, &follower)),
             guidance: out,
             frame: self.camera().and_then(CameraSensor::last_record),
             aircraft: actuation.aircraft().copied(),
@@ -565,8 +664,13 @@ impl Simulation {
         if let (Some(envelope), Some(aircraft)) = (self.envelope.as_mut(), actuation.aircraft()) {
             envelope.record(t_end_s, aircraft);
         }
+        let size_sigma_ft = self
+            .estimator
+            .tracker()
+            .and_then(|t| t.posterior())
+            .map(|e| e.b_sigma_ft);
         self.excitation
-            .record_errors(t_end_s, &out.excitation_errors);
+            .record_errors(t_end_s, &out.excitation_errors, size_sigma_ft);
         let g = &self.scenario.guidance;
         if g.mission == Mission::Intercept && range_ft < g.intercept_radius_ft {
             self.intercept_time_s = Some(t_end_s);
@@ -580,18 +684,49 @@ impl Simulation {
     }
 }
 
+/// The cap the field of view puts on the excitation's amplitude with a camera
+/// (`excitation.fov_fraction` of the half field of view along the excitation's direction at
+/// the commanded range), in the excitation's units.
+fn excitation_cap(scenario: &Scenario) -> Option<f64> {
+    let e = &scenario.excitation;
+    if scenario.sensor.mode != SensorMode::Camera || e.fov_fraction <= 0.0 {
+        return None;
+    }
+    let camera = &scenario.camera;
+    let focal_px = camera.focal_length_px();
+    let direction = Vec3::from(e.direction).normalize();
+    // The tangent of the half field of view the direction moves the target across: vertical
+    // for its down part, horizontal for its level part (whatever the heading), the tighter.
+    let tan_half_vertical = f64::from(camera.height_px) * 0.5 / focal_px;
+    let tan_half_horizontal = f64::from(camera.width_px) * 0.5 / focal_px;
+    let vertical = direction.z.abs();
+    let level = direction.x.hypot(direction.y);
+    let tan_allowed = [(vertical, tan_half_vertical), (level, tan_half_horizontal)]
+        .iter()
+        .filter(|(part, _)| *part > 1e-9)
+        .map(|(part, tan_half)| tan_half / part)
+        .fold(f64::INFINITY, f64::min);
+    let cap_ft = e.fov_fraction * scenario.guidance.command_length_ft() * tan_allowed;
+    Some(match e.units {
+        ExcitationUnits::Ft => cap_ft,
+        ExcitationUnits::Scaled => cap_ft / scenario.guidance.b0_ft,
+    })
+}
+
 /// Where follower and target are at `t_s` for a follower slice.
 fn capture_geometry(
     target: &TargetMotionModel,
     follower: &Follower,
     follower_x: &[f64],
     t_s: f64,
+    camera_from_body: &Mat3,
 ) -> CaptureGeometry {
     let follower_position_ned_ft = follower.position_ned_ft(follower_x);
     CaptureGeometry {
         relative_ned_ft: target.position_ned_ft(t_s) - follower_position_ned_ft,
         follower_position_ned_ft,
         follower_attitude: follower.attitude(follower_x),
+        camera_from_body: *camera_from_body,
         target_attitude: target.state(t_s).attitude,
     }
 }

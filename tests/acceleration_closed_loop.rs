@@ -101,6 +101,7 @@ impl ClosedLoop {
             ),
             command_ned_ft: self.command_ned_ft,
             command_rate_ned_fps: Vec3::zeros(),
+            command_frame_rate_rps: Vec3::zeros(),
             excitation: ExcitationOffset {
                 ned_ft: e * ft,
                 rate_ned_fps: e * ft_rate,
@@ -108,6 +109,7 @@ impl ClosedLoop {
                 scaled_rate_per_s: e * scaled_rate,
             },
             follower: None,
+            estimate: None,
         }
     }
 

@@ -29,6 +29,7 @@ fn run() -> [Vec<(f64, f64, f64)>; 3] {
     let smooth = SmoothIntegralPrefilter {
         omega_rps: 1.5,
         zeta: 0.9,
+        follows_ramps: true,
     };
     let rate = SecondOrderFilter {
         omega_rps: 30.0,
@@ -90,6 +91,7 @@ fn integral_prefilters_follow_ramps_without_lag() {
     let smooth = SmoothIntegralPrefilter {
         omega_rps: omega,
         zeta,
+        follows_ramps: true,
     };
     let plain = SecondOrderFilter {
         omega_rps: omega,
@@ -131,6 +133,7 @@ fn heading_reference_is_continuous_through_south() {
     let filter = SmoothIntegralPrefilter {
         omega_rps: 1.5,
         zeta: 0.9,
+        follows_ramps: true,
     };
     let course_rate = 0.2;
     let mut x = SmoothIntegralPrefilter::initial_state(0.0).to_vec();

@@ -330,14 +330,17 @@ impl Autopilot {
             roll_filter: SmoothIntegralPrefilter {
                 omega_rps: section.roll_prefilter_omega_rps,
                 zeta: section.roll_prefilter_zeta,
+                follows_ramps: section.attitude_prefilters_follow_ramps,
             },
             pitch_filter: SmoothIntegralPrefilter {
                 omega_rps: section.pitch_prefilter_omega_rps,
                 zeta: section.pitch_prefilter_zeta,
+                follows_ramps: section.attitude_prefilters_follow_ramps,
             },
             heading_filter: SmoothIntegralPrefilter {
                 omega_rps: section.heading_prefilter_omega_rps,
                 zeta: section.heading_prefilter_zeta,
+                follows_ramps: section.attitude_prefilters_follow_ramps,
             },
             rate_filter: SecondOrderFilter {
                 omega_rps: section.rate_filter_omega_rps,

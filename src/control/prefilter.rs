@@ -67,12 +67,20 @@ impl IntegralPrefilter {
 /// follows constant and ramp commands without steady error, but ẋ_m is a state, so the
 /// derivative handed to the control law is continuous even when the command jumps (the seed's
 /// (7.33) passes a jump in x_c straight into ẋ_m). State `[x_I, x_m, ẋ_m]`.
+///
+/// The zero at -a₃/a₂ = -ω/(1 + 2ζ) that follows ramps also makes a step in x_c overshoot
+/// (by about half at ζ = 0.9). With `follows_ramps` off the filter is the low-pass
+/// ẍ_m = ω² (x_c - x_m) - 2 ζ ω ẋ_m (x_I stays 0): no overshoot, a lag of 2ζ/ω behind a ramp.
+/// An outer loop that closes on the aircraft's response (guidance on a camera's estimates)
+/// wants the latter: its commands change at every frame, and each overshoot comes back to it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SmoothIntegralPrefilter {
     /// ω, rad/s.
     pub omega_rps: f64,
     /// ζ of the complex pole pair.
     pub zeta: f64,
+    /// Follow ramps without lag (the integral form) or low-pass only.
+    pub follows_ramps: bool,
 }
 
 impl SmoothIntegralPrefilter {
@@ -89,11 +97,16 @@ impl SmoothIntegralPrefilter {
     pub fn derivative(&self, x: &[f64], command: f64, dx: &mut [f64]) -> FilteredCommand {
         let (integral, value, rate) = (x[0], x[1], x[2]);
         let w = self.omega_rps;
-        let k = 1.0 + 2.0 * self.zeta;
         let error = value - command;
-        dx[0] = error;
         dx[1] = rate;
-        dx[2] = -k * w * rate - k * w * w * error - w * w * w * integral;
+        if self.follows_ramps {
+            let k = 1.0 + 2.0 * self.zeta;
+            dx[0] = error;
+            dx[2] = -k * w * rate - k * w * w * error - w * w * w * integral;
+        } else {
+            dx[0] = 0.0;
+            dx[2] = -2.0 * self.zeta * w * rate - w * w * error;
+        }
         FilteredCommand { value, rate }
     }
 }

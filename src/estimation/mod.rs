@@ -1,19 +1,27 @@
 //! The estimator stage, between sensing and guidance (DESIGN §1): what the guidance law is
-//! given as its measurement at each instant.
+//! given at each instant.
 //!
-//! With the seed's adaptive laws (`adaptive`) the law estimates b and d itself; this stage
-//! hands it r: from a continuous sensor (perfect, noisy) at every integration stage, or from
-//! the camera's latest delivered frame, held until the next and brought forward to the present
-//! by the follower's own motion ([`HeldFrame::brought_forward`]). Before the camera's first
-//! measurement the law idles.
+//! - `adaptive` (the seed's, [`hold`]): the law estimates b and d itself; this stage hands it
+//!   r, continuous or the camera's held frame brought forward by the follower's own motion.
+//!   The Kalman filter may run beside it for comparison (`estimator.log_kalman`).
+//! - `kalman` ([`tracker`], [`kalman`], SPEC §9): a Kalman filter infers r, d, a and 1/b from
+//!   the measurements and the follower's own velocity; the law flies on its estimate.
+
+pub mod hold;
+pub mod kalman;
+pub mod tracker;
+
+pub use hold::{HeldFrame, MeasurementHold, MeasurementSource};
+pub use tracker::KalmanTracker;
 
 use crate::frames::Vec3;
+use crate::scenario::{EstimatorKind, Scenario};
 use crate::sensing::FrameRecord;
 
 /// An estimate of how the target moves, in the estimating law's own terms.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TargetMotionEstimate {
-    /// d̂ = V_T/b, the scaled target velocity, 1/s (velocity law, (4.5)).
+    /// d̂ = V_T/b, the scaled target velocity, 1/s (velocity law, (4.5); the Kalman filter).
     ScaledVelocity(Vec3),
     /// d̂, the adaptive bound of the filtered target acceleration, ft/s (acceleration law,
     /// (5.41)).
@@ -29,168 +37,167 @@ impl TargetMotionEstimate {
     }
 }
 
-/// A camera measurement as the guidance holds it.
+/// A law's own estimates b̂ and d̂ (the adaptive laws carry them in their state).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct HeldFrame {
-    /// r* of the frame.
+pub struct LawEstimates {
+    /// b̂, ft.
+    pub b_hat_ft: f64,
+    /// d̂, in the law's own terms.
+    pub target_motion: TargetMotionEstimate,
+}
+
+/// What the guidance is given at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GuidanceMeasurement {
+    /// No measurement has arrived yet: the law idles.
+    NotYet,
+    /// The measurement r the law is given (None while the target is lost) and, for the law
+    /// on the Kalman estimate, the estimate (its r̂ is then the r given).
+    Now {
+        /// r, or r̂.
+        r: Option<Vec3>,
+        /// The Kalman estimate.
+        estimate: Option<TargetEstimate>,
+    },
+}
+
+/// The Kalman estimator's estimate at one instant, as the guidance flies on it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TargetEstimate {
+    /// r̂ = R̂/b.
     pub r: Vec3,
-    /// When the frame was taken, s.
-    pub t_s: f64,
-    /// Where the follower was then, NED, ft.
-    pub follower_position_ned_ft: Vec3,
+    /// d̂ = V̂_T/b, 1/s.
+    pub d_per_s: Vec3,
+    /// â = â_T/b, 1/s².
+    pub a_per_s2: Vec3,
+    /// b̂ = 1/β̂ within the guidance's bounds, ft.
+    pub b_hat_ft: f64,
+    /// σ of b̂, ft.
+    pub b_sigma_ft: f64,
 }
 
-impl HeldFrame {
-    /// The frame's measurement, when it has one.
-    pub fn of(record: &FrameRecord) -> Option<Self> {
-        record.r_measured.map(|r| Self {
-            r,
-            t_s: record.t_s,
-            follower_position_ned_ft: record.follower_position_ned_ft,
-        })
-    }
-
-    /// The measurement brought forward to time `t_s`: the frame is a frame period plus the
-    /// latency old, and in that time r has moved by the follower's own displacement, known
-    /// from its navigation, over b̂, and by the target's drift d̂ (t - t_k) when the law
-    /// estimates the scaled target velocity (velocity law):
-    /// r ≈ r*(t_k) - (R_F(t) - R_F(t_k))/b̂ + d̂ (t - t_k). The seed assumed continuous,
-    /// instantaneous measurements; without this the stale r* biases the adaptation every
-    /// frame.
-    pub fn brought_forward(
-        &self,
-        t_s: f64,
-        follower_position_ned_ft: &Vec3,
-        b_hat_ft: f64,
-        target_motion: &TargetMotionEstimate,
-    ) -> Vec3 {
-        let own = (follower_position_ned_ft - self.follower_position_ned_ft) / b_hat_ft;
-        let drift = match target_motion {
-            TargetMotionEstimate::ScaledVelocity(d_hat) => *d_hat,
-            TargetMotionEstimate::FilteredAccelerationBound(_) => Vec3::zeros(),
-        };
-        self.r - own + drift * (t_s - self.t_s)
-    }
-}
-
-/// Where the guidance's measurement comes from now.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum MeasurementSource {
-    /// The continuous sensor, evaluated at every integration stage (seed Chapters 4-6).
-    Continuous,
-    /// A camera frame held until the next arrives; `None` while the target is lost.
-    Held(Option<HeldFrame>),
-    /// No measurement has arrived yet: the guidance has not started.
-    AwaitingFirst,
-}
-
-/// The estimator stage of the seed's adaptive laws: the measurement hold and its delay
-/// compensation.
+/// The estimator of a run.
 #[derive(Debug, Clone, PartialEq)]
-pub struct MeasurementHold {
-    source: MeasurementSource,
-    compensate_delay: bool,
+pub enum Estimator {
+    /// The seed's adaptive laws, fed by the measurement hold; the Kalman filter beside them
+    /// when it is logged.
+    Adaptive {
+        /// The measurement hold.
+        hold: MeasurementHold,
+        /// The Kalman filter run for comparison.
+        beside: Option<KalmanTracker>,
+    },
+    /// The Kalman filter; the law flies on its estimate.
+    Kalman(KalmanTracker),
 }
 
-impl MeasurementHold {
-    /// A hold for a continuous sensor, or for a camera (`continuous` false) whose frames are
-    /// brought forward when `compensate_delay`.
-    pub fn new(continuous: bool, compensate_delay: bool) -> Self {
-        Self {
-            source: if continuous {
-                MeasurementSource::Continuous
-            } else {
-                MeasurementSource::AwaitingFirst
-            },
-            compensate_delay,
-        }
-    }
-
-    /// Where the measurement comes from now.
-    pub fn source(&self) -> MeasurementSource {
-        self.source
-    }
-
-    /// A frame's record reached the guidance: it is held from now on (a lost frame holds
-    /// nothing). Returns the frame when it is the first measurement, for the guidance to
-    /// start on.
-    pub fn deliver(&mut self, record: &FrameRecord) -> Option<HeldFrame> {
-        let frame = HeldFrame::of(record);
-        let first = match (self.source, frame) {
-            (MeasurementSource::AwaitingFirst, Some(first)) => Some(first),
-            _ => None,
+impl Estimator {
+    /// The estimator a scenario asks for, fed by a continuous sensor or a camera.
+    pub fn new(scenario: &Scenario, continuous_sensor: bool) -> Self {
+        let e = &scenario.estimator;
+        let g = &scenario.guidance;
+        let tracker = || {
+            KalmanTracker::new(
+                e,
+                scenario.camera.focal_length_px(),
+                g.b0_ft,
+                (g.b_min_ft, g.b_max_ft),
+            )
         };
-        if frame.is_some() || self.source != MeasurementSource::AwaitingFirst {
-            self.source = MeasurementSource::Held(frame);
+        match e.kind {
+            EstimatorKind::Adaptive => Self::Adaptive {
+                hold: MeasurementHold::new(continuous_sensor, scenario.camera.compensate_delay),
+                beside: e.log_kalman.then(tracker),
+            },
+            EstimatorKind::Kalman => Self::Kalman(tracker()),
         }
-        first
     }
 
-    /// The held frame's measurement as the guidance is given it at `t_s` (brought forward
-    /// when the hold compensates the delay, see [`HeldFrame::brought_forward`]).
-    pub fn held_measurement(
+    /// A camera frame reached the guidance, the follower flying at `follower_velocity_ned_fps`.
+    /// Returns true when it is the guidance's first measurement, for the law's filters to
+    /// start on.
+    pub fn deliver(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) -> bool {
+        let started = self.tracker().is_some_and(|t| t.fused() > 0);
+        if let Some(tracker) = self.tracker_mut() {
+            tracker.fuse_frame(record, follower_velocity_ned_fps);
+        }
+        match self {
+            Self::Adaptive { hold, .. } => hold.deliver(record).is_some(),
+            Self::Kalman(tracker) => !started && tracker.fused() > 0,
+        }
+    }
+
+    /// A continuous sensor's measurement r* of per-axis variance `variance` was taken now:
+    /// the Kalman filter fuses it (the adaptive law reads the sensor itself).
+    pub fn sample(
+        &mut self,
+        t_s: f64,
+        r_star: &Vec3,
+        variance: f64,
+        follower_position_ned_ft: &Vec3,
+        follower_velocity_ned_fps: &Vec3,
+    ) {
+        if let Some(tracker) = self.tracker_mut() {
+            tracker.fuse_sample(
+                t_s,
+                r_star,
+                variance,
+                follower_position_ned_ft,
+                follower_velocity_ned_fps,
+            );
+        }
+    }
+
+    /// What the guidance is given at `t_s` with the follower at `follower_position_ned_ft`:
+    /// the adaptive law's measurement (`continuous` evaluates a continuous sensor; a held
+    /// frame is brought forward with the law's own estimates `law`), or the Kalman estimate.
+    pub fn guidance_measurement(
         &self,
-        frame: &HeldFrame,
         t_s: f64,
         follower_position_ned_ft: &Vec3,
-        b_hat_ft: f64,
-        target_motion: &TargetMotionEstimate,
-    ) -> Vec3 {
-        if self.compensate_delay {
-            frame.brought_forward(t_s, follower_position_ned_ft, b_hat_ft, target_motion)
-        } else {
-            frame.r
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::vision::BlobStatus;
-
-    fn record(r: Option<Vec3>) -> FrameRecord {
-        FrameRecord {
-            index: 0,
-            t_s: 1.0,
-            status: if r.is_some() {
-                BlobStatus::Ok
-            } else {
-                BlobStatus::NotFound
+        law: Option<LawEstimates>,
+        continuous: impl FnOnce() -> Option<Vec3>,
+    ) -> GuidanceMeasurement {
+        match self {
+            Self::Adaptive { hold, .. } => match (hold.source(), law) {
+                (MeasurementSource::AwaitingFirst, _) => GuidanceMeasurement::NotYet,
+                (MeasurementSource::Continuous, _) => GuidanceMeasurement::Now {
+                    r: continuous(),
+                    estimate: None,
+                },
+                (MeasurementSource::Held(frame), Some(law)) => GuidanceMeasurement::Now {
+                    r: frame
+                        .map(|f| hold.held_measurement(&f, t_s, follower_position_ned_ft, &law)),
+                    estimate: None,
+                },
+                (MeasurementSource::Held(frame), None) => GuidanceMeasurement::Now {
+                    r: frame.map(|f| f.r),
+                    estimate: None,
+                },
             },
-            measured: None,
-            truth: None,
-            r_measured: r,
-            follower_position_ned_ft: Vec3::new(10.0, 0.0, 0.0),
-            range_ft: 200.0,
+            Self::Kalman(tracker) => match tracker.estimate_at(t_s, follower_position_ned_ft) {
+                None => GuidanceMeasurement::NotYet,
+                Some(estimate) => GuidanceMeasurement::Now {
+                    r: Some(estimate.r),
+                    estimate: Some(estimate),
+                },
+            },
         }
     }
 
-    /// A follower that flew 16 ft north since the frame, with b̂ = 8 ft and a target drifting
-    /// at d̂ = [6, 0, 0] 1/s for 0.5 s: r moved by -2 + 3 on x.
-    #[test]
-    fn brought_forward_by_own_motion_and_drift() {
-        let frame = HeldFrame::of(&record(Some(Vec3::new(25.0, 6.0, 4.0)))).expect("measured");
-        let drift = TargetMotionEstimate::ScaledVelocity(Vec3::new(6.0, 0.0, 0.0));
-        let now = frame.brought_forward(1.5, &Vec3::new(26.0, 0.0, 0.0), 8.0, &drift);
-        assert_eq!(now, Vec3::new(26.0, 6.0, 4.0));
-        let no_drift = TargetMotionEstimate::FilteredAccelerationBound(Vec3::new(6.0, 0.0, 0.0));
-        let now = frame.brought_forward(1.5, &Vec3::new(26.0, 0.0, 0.0), 8.0, &no_drift);
-        assert_eq!(now, Vec3::new(23.0, 6.0, 4.0));
+    /// The Kalman filter, when the run has one (flying on it, or beside the adaptive law).
+    pub fn tracker(&self) -> Option<&KalmanTracker> {
+        match self {
+            Self::Adaptive { beside, .. } => beside.as_ref(),
+            Self::Kalman(tracker) => Some(tracker),
+        }
     }
 
-    /// Lost frames before the first measurement keep the guidance waiting; the first
-    /// measured frame starts it; a lost frame afterwards holds nothing.
-    #[test]
-    fn first_measurement_starts_the_guidance() {
-        let mut hold = MeasurementHold::new(false, true);
-        assert_eq!(hold.deliver(&record(None)), None);
-        assert_eq!(hold.source(), MeasurementSource::AwaitingFirst);
-        let first = hold.deliver(&record(Some(Vec3::new(1.0, 2.0, 3.0))));
-        assert!(first.is_some());
-        assert!(matches!(hold.source(), MeasurementSource::Held(Some(_))));
-        assert_eq!(hold.deliver(&record(Some(Vec3::new(1.0, 2.0, 3.0)))), None);
-        hold.deliver(&record(None));
-        assert_eq!(hold.source(), MeasurementSource::Held(None));
+    /// The Kalman filter, mutable.
+    pub fn tracker_mut(&mut self) -> Option<&mut KalmanTracker> {
+        match self {
+            Self::Adaptive { beside, .. } => beside.as_mut(),
+            Self::Kalman(tracker) => Some(tracker),
+        }
     }
 }

@@ -128,6 +128,16 @@ impl Follower {
         }
     }
 
+    /// The velocity the follower's track follows, from its own navigation, NED, ft/s: the
+    /// aircraft's inertial velocity, or the kinematic follower's v (the velocity its
+    /// attitude turns to).
+    pub fn track_ned_fps(&self, x: &[f64]) -> Vec3 {
+        match self {
+            Self::Kinematic(_) => KinematicFollower::heading_velocity_ned_fps(x),
+            Self::Aircraft(_) => AircraftFollower::velocity_ned_fps(x),
+        }
+    }
+
     /// How the follower flies its command, from its own navigation, when it does not simply
     /// realise it (the aircraft); `None` for the kinematic follower, whose velocity is the
     /// command.

@@ -312,9 +312,7 @@ impl AccelerationGuidance {
                     epsilon: section.d_hat_epsilon_fps2,
                 },
             },
-            shaping: CommandShaping {
-                pole_rps: guidance.shaping_pole_rps,
-            },
+            shaping: CommandShaping::of(guidance),
             b0_ft: guidance.b0_ft,
             observer,
             compensation,

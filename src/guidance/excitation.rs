@@ -40,6 +40,7 @@ pub struct Excitation {
     k1: f64,
     k2: f64,
     k3: f64,
+    k_sigma: f64,
     direction: Vec3,
     dt_s: f64,
     /// Continuous mode: eᵀe samples of the last period, oldest first.
@@ -55,18 +56,23 @@ pub struct Excitation {
 }
 
 impl Excitation {
-    /// Excitation from its scenario section for a simulation with step `dt_s`.
-    pub fn new(section: &ExcitationSection, dt_s: f64) -> Self {
+    /// Excitation from its scenario section for a simulation with step `dt_s`, its amplitude
+    /// capped at `cap` (in its units; the field of view's, see
+    /// [`ExcitationSection::fov_fraction`]) when given.
+    pub fn new(section: &ExcitationSection, dt_s: f64, cap: Option<f64>) -> Self {
         let direction = Vec3::from(section.direction);
+        let k1 = cap.map_or(section.k1, |c| section.k1.min(c));
+        let k3 = section.k3.min(k1);
         Self {
             mode: section.mode,
             units: section.units,
             error: section.error,
             period_s: section.period_s,
             omega_rps: 2.0 * std::f64::consts::PI / section.period_s,
-            k1: section.k1,
+            k1,
             k2: section.k2,
-            k3: section.k3,
+            k3,
+            k_sigma: section.k_sigma,
             direction: direction / direction.norm(),
             dt_s,
             window: VecDeque::new(),
@@ -76,15 +82,28 @@ impl Excitation {
             amplitude: if section.mode == ExcitationMode::Off {
                 0.0
             } else {
-                section.k1
+                k1
             },
             amplitude_rate: 0.0,
         }
     }
 
-    /// Records the energy eᵀe of the error the section asks for (measured or estimated) at
-    /// the end of the step that ends at `t_end_s`.
-    pub fn record_errors(&mut self, t_end_s: f64, errors: &ExcitationErrors) {
+    /// Records what the amplitude follows at the end of the step that ends at `t_end_s`: the
+    /// energy eᵀe of the error the section asks for (measured or estimated), or the
+    /// estimator's σ_b, ft (`uncertainty` mode; none before the filter starts: a = k1).
+    pub fn record_errors(
+        &mut self,
+        t_end_s: f64,
+        errors: &ExcitationErrors,
+        size_sigma_ft: Option<f64>,
+    ) {
+        if self.mode == ExcitationMode::Uncertainty {
+            self.amplitude = size_sigma_ft.map_or(self.k1, |sigma| {
+                (self.k_sigma * sigma).min(self.k1 - self.k3) + self.k3
+            });
+            self.amplitude_rate = 0.0;
+            return;
+        }
         let error = match self.error {
             ExcitationError::Measured => errors.measured,
             ExcitationError::Estimated => errors.estimated,
@@ -95,7 +114,7 @@ impl Excitation {
     /// Records eᵀe over the step that ends at `t_end_s` and updates a(t) and ȧ(t).
     pub fn record(&mut self, t_end_s: f64, error_sq: f64) {
         match self.mode {
-            ExcitationMode::Off => {}
+            ExcitationMode::Off | ExcitationMode::Uncertainty => {}
             ExcitationMode::Continuous => self.record_continuous(t_end_s, error_sq),
             ExcitationMode::PerPeriod => self.record_per_period(t_end_s, error_sq),
         }
@@ -194,7 +213,7 @@ mod tests {
     /// During the first period the amplitude is k1.
     #[test]
     fn first_period_is_k1() {
-        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), 0.01);
+        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), 0.01, None);
         for i in 1..290 {
             ex.record(i as f64 * 0.01, 0.0);
             assert_eq!(ex.amplitude(), 0.5);
@@ -205,7 +224,7 @@ mod tests {
     #[test]
     fn continuous_amplitude_follows_window_integral() {
         let dt = 0.001;
-        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), dt);
+        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), dt, None);
         let c = 0.01;
         for i in 1..=5000 {
             ex.record(i as f64 * dt, c);
@@ -232,7 +251,7 @@ mod tests {
     #[test]
     fn per_period_amplitude_is_held() {
         let dt = 0.01;
-        let mut ex = Excitation::new(&section(ExcitationMode::PerPeriod), dt);
+        let mut ex = Excitation::new(&section(ExcitationMode::PerPeriod), dt, None);
         let mut values = Vec::new();
         for i in 1..=900 {
             ex.record(i as f64 * dt, 0.001);
@@ -251,7 +270,7 @@ mod tests {
     /// The offset's derivative is the time derivative of the offset (a held).
     #[test]
     fn offset_rate_is_derivative() {
-        let ex = Excitation::new(&section(ExcitationMode::Continuous), 0.001);
+        let ex = Excitation::new(&section(ExcitationMode::Continuous), 0.001, None);
         let t = 1.3;
         let h = 1e-6;
         let fd = (ex.offset(t + h).0 - ex.offset(t - h).0) / (2.0 * h);

@@ -6,13 +6,16 @@
 
 use super::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
 use super::compensation::{ShortfallCompensation, VelocityLagCompensation};
+use super::on_estimate::{self, VelocityOnEstimate};
 use super::signals::{ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput};
 use super::velocity::VelocityGuidance;
 use super::velocity_estimator::{VelocityEstimator, steady_state_estimator_gain};
-use crate::estimation::TargetMotionEstimate;
+use crate::estimation::{LawEstimates, TargetMotionEstimate};
 use crate::frames::{Mat3, Vec3};
 use crate::linalg::LinalgError;
-use crate::scenario::{AccelerationSection, EstimatorGainMode, GuidanceLawKind, GuidanceSection};
+use crate::scenario::{
+    AccelerationSection, EstimatorGainMode, EstimatorKind, GuidanceLawKind, GuidanceSection,
+};
 
 /// Why a guidance law could not be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -29,28 +32,27 @@ pub enum GuidanceLaw {
     Velocity(VelocityGuidance),
     /// Acceleration guidance (5.2)-(5.41), (6.39)-(6.42).
     Acceleration(AccelerationGuidance),
-}
-
-/// A law's estimates of the target at one instant.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LawEstimates {
-    /// b̂, ft.
-    pub b_hat_ft: f64,
-    /// d̂, in the law's own terms.
-    pub target_motion: TargetMotionEstimate,
+    /// The velocity law flown on the Kalman estimator's estimates (SPEC §9).
+    VelocityOnEstimate(VelocityOnEstimate),
 }
 
 impl GuidanceLaw {
-    /// The law of a `[guidance]` (and `[acceleration]`) section, compensating for a follower
-    /// that does not realise the command when `compensate`, and the notes its design leaves
-    /// for the run's log (the estimator gain in use; a Riccati observer gain that fell back to
-    /// the fixed one).
+    /// The law of a `[guidance]` (and `[acceleration]`) section, on the estimates of the
+    /// estimator `estimator`, compensating for a follower that does not realise the command
+    /// when `compensate`, and the notes its design leaves for the run's log (the estimator
+    /// gain in use; a Riccati observer gain that fell back to the fixed one).
     pub fn new(
         g: &GuidanceSection,
         acceleration: &AccelerationSection,
+        estimator: EstimatorKind,
         compensate: bool,
     ) -> Result<(Self, Vec<String>), GuidanceSetupError> {
         let mut notes = Vec::new();
+        if estimator == EstimatorKind::Kalman {
+            let gain = if compensate { g.k_aircraft } else { g.k };
+            let law = VelocityOnEstimate::new(g, gain);
+            return Ok((Self::VelocityOnEstimate(law), notes));
+        }
         match g.law {
             GuidanceLawKind::Velocity => {
                 let estimator = if g.estimator {
@@ -87,6 +89,7 @@ impl GuidanceLaw {
         match self {
             Self::Velocity(law) => law.state_len(),
             Self::Acceleration(law) => law.state_len(),
+            Self::VelocityOnEstimate(_) => on_estimate::STATE_LEN,
         }
     }
 
@@ -95,6 +98,7 @@ impl GuidanceLaw {
         match self {
             Self::Velocity(law) => law.initial_state(r0),
             Self::Acceleration(law) => law.initial_state(r0),
+            Self::VelocityOnEstimate(law) => law.initial_state(r0),
         }
     }
 
@@ -103,6 +107,7 @@ impl GuidanceLaw {
         match self {
             Self::Velocity(law) => law.start_at(x, r0),
             Self::Acceleration(law) => law.start_at(x, r0),
+            Self::VelocityOnEstimate(_) => x.copy_from_slice(r0.as_slice()),
         }
     }
 
@@ -112,6 +117,7 @@ impl GuidanceLaw {
         match self {
             Self::Velocity(law) => law.idle(x, dx),
             Self::Acceleration(law) => acceleration_output(law.idle(x, dx)),
+            Self::VelocityOnEstimate(law) => law.idle(x, dx),
         }
     }
 
@@ -120,6 +126,7 @@ impl GuidanceLaw {
         match self {
             Self::Velocity(law) => law.derivative(x, input, dx),
             Self::Acceleration(law) => acceleration_output(law.derivative(x, input, dx)),
+            Self::VelocityOnEstimate(law) => law.derivative(x, input, dx),
         }
     }
 
@@ -128,12 +135,14 @@ impl GuidanceLaw {
         match self {
             Self::Velocity(law) => law.enforce_bounds(x),
             Self::Acceleration(law) => law.enforce_bounds(x),
+            Self::VelocityOnEstimate(_) => {}
         }
     }
 
-    /// The law's estimates b̂ and d̂ in a state slice.
-    pub fn estimates(&self, x: &[f64]) -> LawEstimates {
-        match self {
+    /// The law's own estimates b̂ and d̂ in a state slice (`None` for the law on the
+    /// estimator's estimates).
+    pub fn estimates(&self, x: &[f64]) -> Option<LawEstimates> {
+        Some(match self {
             Self::Velocity(law) => {
                 let state = law.unpack(x);
                 LawEstimates {
@@ -148,7 +157,8 @@ impl GuidanceLaw {
                     target_motion: TargetMotionEstimate::FilteredAccelerationBound(state.d_hat_fps),
                 }
             }
-        }
+            Self::VelocityOnEstimate(_) => return None,
+        })
     }
 }
 
@@ -192,7 +202,7 @@ mod tests {
     use crate::scenario::ObserverGainMode;
 
     fn build(g: &GuidanceSection, a: &AccelerationSection) -> (GuidanceLaw, Vec<String>) {
-        GuidanceLaw::new(g, a, false).expect("builds")
+        GuidanceLaw::new(g, a, EstimatorKind::Adaptive, false).expect("builds")
     }
 
     /// The law follows `[guidance] law`; a Riccati observer gain that falls back leaves a
@@ -230,7 +240,7 @@ mod tests {
         for law in [GuidanceLawKind::Velocity, GuidanceLawKind::Acceleration] {
             g.law = law;
             let plain = build(&g, &a).0.state_len();
-            let compensated = GuidanceLaw::new(&g, &a, true)
+            let compensated = GuidanceLaw::new(&g, &a, EstimatorKind::Adaptive, true)
                 .expect("builds")
                 .0
                 .state_len();

@@ -10,6 +10,7 @@ pub mod command;
 pub mod compensation;
 pub mod excitation;
 pub mod law;
+pub mod on_estimate;
 pub mod projection;
 pub mod shaping;
 pub mod signals;

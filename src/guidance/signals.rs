@@ -4,6 +4,7 @@
 
 use super::acceleration::AccelerationGuidanceOutput;
 use super::excitation::ExcitationOffset;
+use crate::estimation::TargetEstimate;
 use crate::frames::Vec3;
 
 /// What a guidance law commands the follower with.
@@ -57,11 +58,17 @@ pub struct GuidanceInput {
     pub command_ned_ft: Vec3,
     /// Ṙ_c, ft/s.
     pub command_rate_ned_fps: Vec3,
+    /// The angular velocity of the frame the command is shaped in (the target frame's; zero
+    /// otherwise), NED, rad/s.
+    pub command_frame_rate_rps: Vec3,
     /// The excitation added to the command after the shaping filter (4.31).
     pub excitation: ExcitationOffset,
     /// How the follower flies the command (6-DOF follower); `None` for the kinematic
     /// follower, which realises it exactly.
     pub follower: Option<FollowerFeedback>,
+    /// The Kalman estimator's estimate, for the law that flies on it; `None` otherwise and
+    /// before the filter starts.
+    pub estimate: Option<TargetEstimate>,
 }
 
 #[cfg(test)]
@@ -73,8 +80,10 @@ impl GuidanceInput {
             r_measured: Some(r),
             command_ned_ft,
             command_rate_ned_fps: Vec3::zeros(),
+            command_frame_rate_rps: Vec3::zeros(),
             excitation: ExcitationOffset::default(),
             follower: None,
+            estimate: None,
         }
     }
 }

@@ -82,9 +82,7 @@ impl VelocityGuidance {
                     epsilon: section.d_epsilon,
                 },
             },
-            shaping: CommandShaping {
-                pole_rps: section.shaping_pole_rps,
-            },
+            shaping: CommandShaping::of(section),
             b0_ft: section.b0_ft,
             d0: Vec3::from(section.d0_per_s),
             estimator,

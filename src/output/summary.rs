@@ -1,7 +1,7 @@
 //! `summary.json`: the numbers a run is judged by (DESIGN §4).
 
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
-use crate::scenario::GuidanceLawKind;
+use crate::scenario::{EstimatorKind, GuidanceLawKind};
 use crate::sim::{SimError, Simulation, Snapshot, StageTimes};
 use crate::vision::BlobStatus;
 use crate::vision::ImageMeasurement;
@@ -44,6 +44,16 @@ pub struct Summary {
     pub b_hat_final_ft: f64,
     /// Guidance law: "velocity" or "acceleration".
     pub law: GuidanceLawKind,
+    /// The estimator the guidance flew on: "adaptive" or "kalman".
+    pub estimator: EstimatorKind,
+    /// The Kalman filter's b̂ at the end, ft (null without a filter; with `estimator.kind =
+    /// "kalman"` it is `b_hat_final_ft`).
+    pub kalman_b_hat_final_ft: Option<f64>,
+    /// The Kalman filter's σ of b̂ at the end, ft (null without a filter).
+    pub b_sigma_final_ft: Option<f64>,
+    /// When the Kalman filter's σ_b / b̂ first fell below `estimator.known_sigma_fraction`, s
+    /// (null without a filter or if it never did).
+    pub b_known_time_s: Option<f64>,
     /// ‖d̂‖ at the end, in the law's unit: 1/s (velocity law), ft/s (acceleration law).
     pub d_hat_norm_final: f64,
     /// Time of interception, s (null if none).
@@ -85,6 +95,8 @@ pub struct Summary {
 pub struct StageWall {
     /// Measurement hold, command, excitation and guidance law, at every RK4 stage.
     pub guidance: f64,
+    /// The estimator's work at frames and samples.
+    pub estimator: f64,
     /// Flight controller.
     pub control: f64,
     /// Follower's equations of motion.
@@ -98,6 +110,7 @@ impl From<StageTimes> for StageWall {
     fn from(t: StageTimes) -> Self {
         Self {
             guidance: t.guidance.as_secs_f64(),
+            estimator: t.estimator.as_secs_f64(),
             control: t.control.as_secs_f64(),
             plant: t.plant.as_secs_f64(),
             integration: t.integration.as_secs_f64(),
@@ -158,6 +171,8 @@ pub struct PerFrameCost {
     pub vision: f64,
     /// Ground truth and sensing transform.
     pub truth: f64,
+    /// The estimator's work on the frame (the Kalman filter's prediction and update).
+    pub estimator: f64,
     /// Measurement hold, command, excitation and guidance law over one frame period.
     pub guidance: f64,
     /// Flight controller over one frame period.
@@ -195,6 +210,7 @@ impl Summary {
                 readback: per(t.readback),
                 vision: per(t.vision),
                 truth: per(t.truth),
+                estimator: per(stages.estimator),
                 guidance: per(stages.guidance),
                 control: per(stages.control),
                 plant: per(stages.plant),
@@ -228,6 +244,10 @@ impl Summary {
             b_true_ft: sim.scenario().target.size_ft,
             b_hat_final_ft: last.map_or(f64::NAN, |s| s.b_hat_ft),
             law: sim.scenario().guidance.law,
+            estimator: sim.scenario().estimator.kind,
+            kalman_b_hat_final_ft: last.and_then(|s| s.filter.flatten()).map(|f| f.b_hat_ft),
+            b_sigma_final_ft: last.and_then(|s| s.filter.flatten()).map(|f| f.b_sigma_ft),
+            b_known_time_s: sim.estimator().tracker().and_then(|t| t.known_since_s()),
             d_hat_norm_final: last.map_or(f64::NAN, |s| s.target_motion.vector().norm()),
             intercept_time_s: sim.intercept_time_s(),
             min_range_ft: sim.min_range_ft(),

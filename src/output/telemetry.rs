@@ -1,7 +1,7 @@
 //! `telemetry.csv`: one row per logged tick, written as the run goes so that a run that stops
 //! early keeps what it logged.
 
-use crate::estimation::TargetMotionEstimate;
+use crate::estimation::{TargetEstimate, TargetMotionEstimate};
 use crate::follower::AircraftActuation;
 use crate::frames::{EulerAngles, Vec3, wrap_angle_rad};
 use crate::guidance::acceleration::AccelerationGuidanceOutput;
@@ -31,7 +31,27 @@ pub fn row_of(s: &Snapshot) -> Row {
     if let Some(aircraft) = &s.aircraft {
         row.extend(aircraft_columns(aircraft));
     }
+    if let Some(filter) = &s.filter {
+        filter_columns(filter, &mut row);
+    }
     row
+}
+
+/// The Kalman filter's estimate (runs with a filter, flying on it or beside the adaptive law;
+/// empty cells before its first measurement).
+fn filter_columns(f: &Option<TargetEstimate>, row: &mut Row) {
+    let none = Vec3::repeat(f64::NAN);
+    row.push(("kf_b_hat_ft", f.map_or(f64::NAN, |f| f.b_hat_ft)));
+    row.push(("kf_b_sigma_ft", f.map_or(f64::NAN, |f| f.b_sigma_ft)));
+    push3(
+        row,
+        ["kf_r_x", "kf_r_y", "kf_r_z"],
+        &f.map_or(none, |f| f.r),
+    );
+    let d = f.map_or(none, |f| f.d_per_s);
+    push3(row, ["kf_d_x_per_s", "kf_d_y_per_s", "kf_d_z_per_s"], &d);
+    let a = f.map_or(none, |f| f.a_per_s2);
+    push3(row, ["kf_a_x_per_s2", "kf_a_y_per_s2", "kf_a_z_per_s2"], &a);
 }
 
 /// Time, relative position, target and follower states.

@@ -24,6 +24,17 @@ pub enum BlobChoice {
     Nearest,
 }
 
+/// The point of the silhouette its bearing and elevation are measured to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BearingPoint {
+    /// The coverage-weighted centroid (the seed's (yI, zI)).
+    Centroid,
+    /// The midpoint of the maximal length's ends: for an aircraft seen from behind, the wing
+    /// tips' midpoint, at the depth of the points the length is measured between.
+    LengthMidpoint,
+}
+
 /// `[camera]` section.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -66,6 +77,18 @@ pub struct CameraSection {
     /// Bring each held measurement forward to the current time with the follower's own known
     /// displacement and the estimated target drift (see `sim`); false holds r* as measured.
     pub compensate_delay: bool,
+    /// The camera's fixed pitch on the body, deg, positive up (SPEC §1's optional mounting
+    /// rotation; 0: camera = body). A fixed camera on an aircraft that flies at an angle of
+    /// attack looks above its flight path by α; a camera pitched down by about the α of its
+    /// usual speeds keeps a target at its own level near the image's centre.
+    pub mount_pitch_deg: f64,
+    /// The point of the silhouette the bearing and elevation (yI, zI) are measured to. The
+    /// seed's is the centroid; an extended target's centroid is not at the depth of the points
+    /// its maximal length spans (the wing tips, seen from behind), and as the follower moves
+    /// it shifts by parallax a few percent more than the target's reference point (measured
+    /// on vision_ch4_formation: the centroid's elevation moved 3.3% more), which a filter that
+    /// learns the range from the follower's own motion reads as a 3-4% smaller target.
+    pub bearing_point: BearingPoint,
     /// A candidate pixel joins the target mask when at least this fraction of it is covered,
     /// in (0, 1]; lower keeps thin parts (a wing seen edge-on) connected.
     pub mask_coverage: f64,
@@ -91,16 +114,24 @@ impl Default for CameraSection {
             min_pixel_count: 4,
             mask_coverage: 0.5,
             compensate_delay: true,
+            mount_pitch_deg: 0.0,
+            bearing_point: BearingPoint::Centroid,
             link_radius_px: 2,
         }
     }
 }
 
 impl CameraSection {
+    /// L_CB of the fixed mount: the §0 DCM at (0, pitch, 0).
+    pub fn camera_from_body(&self) -> crate::frames::Mat3 {
+        crate::frames::EulerAngles::new(0.0, self.mount_pitch_deg.to_radians(), 0.0).body_from_ned()
+    }
+
     /// Checks every value; `dt_s` is the simulation step the frame period must divide.
     pub fn validate(&self, dt_s: f64) -> Check {
         self.validate_focal_length()?;
         check::int_in("camera.height_px", i64::from(self.height_px), 8, 8192)?;
+        check::in_closed("camera.mount_pitch_deg", self.mount_pitch_deg, -90.0, 90.0)?;
         check::in_closed("camera.rate_hz", self.rate_hz, 0.01, 10_000.0)?;
         let ticks = 1.0 / (self.rate_hz * dt_s);
         check::require(

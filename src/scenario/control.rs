@@ -46,6 +46,10 @@ pub struct AutopilotSection {
     pub heading_prefilter_omega_rps: f64,
     /// ζ of the heading prefilter.
     pub heading_prefilter_zeta: f64,
+    /// The roll, pitch and heading prefilters follow ramps without lag (true, the integral
+    /// form of (7.33), whose steps overshoot), or are plain low-passes (false: no overshoot, a
+    /// lag of 2ζ/ω behind a ramp; see `control::prefilter`).
+    pub attitude_prefilters_follow_ramps: bool,
     /// Natural frequency of the command filter that gives ṗ_c, q̇_c, ṙ_c, rad/s.
     pub rate_filter_omega_rps: f64,
     /// Damping ratio of the rate command filter.
@@ -126,6 +130,7 @@ impl Default for AutopilotSection {
             pitch_prefilter_zeta: 0.9,
             heading_prefilter_omega_rps: 1.5,
             heading_prefilter_zeta: 0.9,
+            attitude_prefilters_follow_ramps: true,
             rate_filter_omega_rps: 30.0,
             rate_filter_zeta: 0.8,
             alpha_feedforward: true,

@@ -6,6 +6,7 @@ mod atmosphere;
 mod camera;
 pub mod check;
 mod control;
+mod estimator;
 mod sections;
 mod sensor;
 
@@ -13,6 +14,7 @@ pub use acceleration::*;
 pub use atmosphere::*;
 pub use camera::*;
 pub use control::*;
+pub use estimator::*;
 pub use sections::*;
 pub use sensor::*;
 

@@ -221,6 +221,9 @@ pub enum CommandFrame {
     /// Range, bearing and elevation in a level frame that follows the follower's heading
     /// with the lag `command_heading_lag_s` (see `guidance::command`).
     Heading,
+    /// `command_ft` in the frame of the target's estimated velocity (x along it, y right, z
+    /// down), which follows the estimate with the lag `command_target_lag_s` (SPEC §11).
+    Target,
 }
 
 /// `[guidance]`: law, mission, gains and projection bounds.
@@ -233,7 +236,7 @@ pub struct GuidanceSection {
     pub mission: Mission,
     /// Frame of the formation command.
     pub command_frame: CommandFrame,
-    /// R_c in NED, ft (formation, inertial frame).
+    /// R_c, ft: in NED (inertial frame) or in the target's velocity frame (target frame).
     pub command_ft: [f64; 3],
     /// Commanded range, ft (formation, body frame).
     pub command_range_ft: f64,
@@ -243,6 +246,15 @@ pub struct GuidanceSection {
     pub command_elevation_deg: f64,
     /// Heading frame: time constant with which it follows the follower's heading, s.
     pub command_heading_lag_s: f64,
+    /// Target frame: time constant with which it follows the estimated target velocity's
+    /// heading and flight-path angle, s.
+    pub command_target_lag_s: f64,
+    /// Target frame with the Kalman estimate: it follows the velocity predicted this far
+    /// ahead, d̂ + â τ_lead, s (τ_lead = τ cancels the lag of a steady turn).
+    pub command_target_lead_s: f64,
+    /// Target frame with the Kalman estimate: it follows the estimated target velocity once
+    /// the σ of its heading is below this, deg, and holds still before.
+    pub command_target_heading_sigma_deg: f64,
     /// Drive the law with the Chapter 6 state estimator (6.10)-(6.17).
     pub estimator: bool,
     /// Fixed estimator gain L_v = estimator_gain I, 1/s (seed: 1.7).
@@ -265,6 +277,9 @@ pub struct GuidanceSection {
     /// error, see `guidance::velocity`). The seed's k = 3.5 through the aircraft's second of
     /// velocity lag oscillates; 0.5 is stable with margin (measured: 0.8 limit-cycles).
     pub k_aircraft: f64,
+    /// Beyond the seed, for the law on the Kalman estimate: the target's estimated
+    /// acceleration is fed forward over this lead, V_F += b̂ â τ, s (0: none).
+    pub velocity_lead_s: f64,
     /// Adaptation gain σ of b̂, (4.5).
     pub sigma: f64,
     /// Adaptation gain G of d̂ (G = gamma_d I), (4.5).
@@ -285,6 +300,9 @@ pub struct GuidanceSection {
     pub d_epsilon: f64,
     /// Pole of the command-shaping filter ṙ_cf = -p (r_cf - r̂_c), rad/s; 0 turns it off.
     pub shaping_pole_rps: f64,
+    /// The fastest the shaping filter may move the commanded point toward the slot, ft/s
+    /// (b̂ ‖p (R_c/b̂ - r_cf)‖); 0: no limit (the seed's filter).
+    pub approach_speed_max_fps: f64,
     /// Interception is declared when ‖R‖ falls below this, ft.
     pub intercept_radius_ft: f64,
 }
@@ -300,6 +318,9 @@ impl Default for GuidanceSection {
             command_bearing_deg: 14.0,
             command_elevation_deg: 0.0,
             command_heading_lag_s: 3.0,
+            command_target_lag_s: 2.0,
+            command_target_lead_s: 0.0,
+            command_target_heading_sigma_deg: 5.0,
             estimator: false,
             estimator_gain: 1.7,
             estimator_gain_mode: EstimatorGainMode::Fixed,
@@ -308,6 +329,7 @@ impl Default for GuidanceSection {
             estimator_lyapunov_weight: 1.0,
             k: 3.5,
             k_aircraft: 0.5,
+            velocity_lead_s: 0.0,
             sigma: 39.0,
             gamma_d: 40.0,
             b0_ft: 4.0,
@@ -318,6 +340,7 @@ impl Default for GuidanceSection {
             d_max_per_s: 20.0,
             d_epsilon: 1.0,
             shaping_pole_rps: 0.1,
+            approach_speed_max_fps: 0.0,
             intercept_radius_ft: 2.4,
         }
     }
@@ -328,7 +351,9 @@ impl GuidanceSection {
     /// range otherwise.
     pub fn command_length_ft(&self) -> f64 {
         match self.command_frame {
-            CommandFrame::Inertial => crate::frames::Vec3::from(self.command_ft).norm(),
+            CommandFrame::Inertial | CommandFrame::Target => {
+                crate::frames::Vec3::from(self.command_ft).norm()
+            }
             _ => self.command_range_ft,
         }
     }
@@ -360,6 +385,24 @@ impl GuidanceSection {
             self.command_heading_lag_s,
             0.01,
             1000.0,
+        )?;
+        check::in_closed(
+            "guidance.command_target_lag_s",
+            self.command_target_lag_s,
+            0.01,
+            1000.0,
+        )?;
+        check::in_closed(
+            "guidance.command_target_lead_s",
+            self.command_target_lead_s,
+            0.0,
+            1000.0,
+        )?;
+        check::in_closed(
+            "guidance.command_target_heading_sigma_deg",
+            self.command_target_heading_sigma_deg,
+            0.0,
+            180.0,
         )?;
         check::positive("guidance.k", self.k)?;
         check::in_closed("guidance.k_aircraft", self.k_aircraft, 1e-3, 100.0)?;
@@ -399,6 +442,13 @@ impl GuidanceSection {
             0.0,
             100.0,
         )?;
+        check::in_closed("guidance.velocity_lead_s", self.velocity_lead_s, 0.0, 100.0)?;
+        check::in_closed(
+            "guidance.approach_speed_max_fps",
+            self.approach_speed_max_fps,
+            0.0,
+            1e4,
+        )?;
         check::positive("guidance.intercept_radius_ft", self.intercept_radius_ft)
     }
 }
@@ -413,6 +463,10 @@ pub enum ExcitationMode {
     Continuous,
     /// a(t) from the integral over the last whole period, held through the next ((2.28), (5.27)).
     PerPeriod,
+    /// a(t) = min(k_sigma σ_b(t), k1 - k3) + k3 from the Kalman estimator's uncertainty of b
+    /// (SPEC §9): large while b is unknown, fading once known (needs `estimator.kind =
+    /// "kalman"` or `estimator.log_kalman`).
+    Uncertainty,
 }
 
 /// Units of the excitation amplitude a (and of k1, k3).
@@ -459,6 +513,13 @@ pub struct ExcitationSection {
     pub direction: [f64; 3],
     /// The error whose energy ∫ eᵀe the amplitude follows.
     pub error: ExcitationError,
+    /// `mode = "uncertainty"`: amplitude per ft of the estimator's σ_b, in the excitation's
+    /// units per ft.
+    pub k_sigma: f64,
+    /// With a camera, the amplitude is also capped at this fraction of the half field of view
+    /// along the excitation's direction at the commanded range (the target must stay in
+    /// view); 0 turns the cap off.
+    pub fov_fraction: f64,
 }
 
 impl Default for ExcitationSection {
@@ -472,6 +533,8 @@ impl Default for ExcitationSection {
             k3: 0.0002,
             direction: [1.0, 0.0, 0.0],
             error: ExcitationError::Measured,
+            k_sigma: 4.0,
+            fov_fraction: 0.0,
         }
     }
 }
@@ -482,6 +545,8 @@ impl ExcitationSection {
         check::non_negative("excitation.k1", self.k1)?;
         check::non_negative("excitation.k2", self.k2)?;
         check::in_closed("excitation.k3", self.k3, 0.0, self.k1.max(0.0))?;
+        check::in_closed("excitation.k_sigma", self.k_sigma, 0.0, 1e4)?;
+        check::in_closed("excitation.fov_fraction", self.fov_fraction, 0.0, 1.0)?;
         check::nonzero_vec("excitation.direction", &self.direction)
     }
 }
@@ -524,6 +589,8 @@ pub struct Scenario {
     pub guidance: GuidanceSection,
     /// Acceleration guidance gains (`guidance.law = "acceleration"`).
     pub acceleration: super::AccelerationSection,
+    /// What infers range and size between sensing and guidance.
+    pub estimator: super::EstimatorSection,
     /// Excitation.
     pub excitation: ExcitationSection,
     /// Camera (sensor `camera`).
@@ -542,7 +609,9 @@ impl Scenario {
         let g = &self.guidance;
         g.mission == Mission::Formation
             && match g.command_frame {
-                CommandFrame::Inertial => g.command_ft.iter().any(|v| *v != 0.0),
+                CommandFrame::Inertial | CommandFrame::Target => {
+                    g.command_ft.iter().any(|v| *v != 0.0)
+                }
                 CommandFrame::Body | CommandFrame::Heading => g.command_range_ft > 0.0,
             }
     }
@@ -554,7 +623,25 @@ impl Scenario {
         self.follower.validate()?;
         self.guidance.validate()?;
         self.acceleration.validate()?;
+        self.estimator.validate()?;
+        check::require(
+            self.estimator.kind == super::EstimatorKind::Adaptive
+                || self.guidance.law == GuidanceLawKind::Velocity,
+            "estimator.kind",
+            "\"kalman\"",
+            "\"adaptive\" with guidance.law = \"acceleration\" (the Kalman filter feeds the \
+             velocity law)",
+        )?;
         self.excitation.validate()?;
+        check::require(
+            self.excitation.mode != ExcitationMode::Uncertainty
+                || self.estimator.kind == super::EstimatorKind::Kalman
+                || self.estimator.log_kalman,
+            "excitation.mode",
+            "\"uncertainty\"",
+            "another mode unless estimator.kind = \"kalman\" or estimator.log_kalman = true \
+             (the amplitude follows the Kalman filter's σ_b)",
+        )?;
         self.sensor
             .validate(self.run.dt_s, self.has_formation_command())?;
         // The camera's focal length also serves the noisy sensor's noise on pixels.

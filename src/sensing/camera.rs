@@ -5,14 +5,14 @@
 //! between frames; a frame whose status is not `Ok` is a lost frame: the guidance then coasts.
 
 use super::transform::scaled_relative_position;
-use crate::frames::{EulerAngles, Vec3};
+use crate::frames::{EulerAngles, Mat3, Vec3};
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use crate::render::gpu::{GpuContext, GpuError};
 use crate::render::image::CameraImage;
 use crate::render::mesh::{MeshError, TargetMesh};
 use crate::render::renderer::{PendingFrame, RenderError, RenderTimings, Renderer};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
-use crate::scenario::{BlobChoice, CameraSection, Scenario, SkyKind};
+use crate::scenario::{BearingPoint, BlobChoice, CameraSection, Scenario, SkyKind};
 use crate::vision::{
     BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ImageSizeError, ImageTruth,
     TruthProjector, VisionConfig, VisionConfigError, VisionPipeline,
@@ -51,19 +51,26 @@ pub struct CaptureGeometry {
     pub relative_ned_ft: Vec3,
     /// R_F, NED, ft (the follower's own navigation state, known to it).
     pub follower_position_ned_ft: Vec3,
-    /// Follower attitude (camera = body).
+    /// Follower attitude.
     pub follower_attitude: EulerAngles,
+    /// The camera's mounting on the body, L_CB (identity: camera = body).
+    pub camera_from_body: Mat3,
     /// Target attitude.
     pub target_attitude: EulerAngles,
 }
 
 impl CaptureGeometry {
+    /// L_CB L_BE: NED to camera axes.
+    pub fn camera_from_ned(&self) -> Mat3 {
+        self.camera_from_body * self.follower_attitude.body_from_ned()
+    }
+
     /// The target's pose in camera axes.
     pub fn pose(&self) -> TargetPoseInCamera {
-        let body_from_ned = self.follower_attitude.body_from_ned();
+        let camera_from_ned = self.camera_from_ned();
         TargetPoseInCamera {
-            position_body_ft: body_from_ned * self.relative_ned_ft,
-            body_from_target: body_from_ned * self.target_attitude.body_from_ned().transpose(),
+            position_body_ft: camera_from_ned * self.relative_ned_ft,
+            body_from_target: camera_from_ned * self.target_attitude.body_from_ned().transpose(),
         }
     }
 }
@@ -86,6 +93,8 @@ pub struct FrameRecord {
     pub r_measured: Option<Vec3>,
     /// Where the follower was when the frame was taken, NED, ft.
     pub follower_position_ned_ft: Vec3,
+    /// The camera's orientation then, (L_CB L_BE)ᵀ: NED from camera axes.
+    pub ned_from_camera: Mat3,
     /// The true range ‖R‖ when the frame was taken, ft (for the apparent size).
     pub range_ft: f64,
 }
@@ -154,6 +163,7 @@ pub struct CameraSensor {
     truth: TruthProjector,
     mesh_vertices_ft: Vec<Vec3>,
     selection: BlobChoice,
+    bearing_point: BearingPoint,
     period_ticks: u64,
     latency_frames: u64,
     pending: VecDeque<FrameRecord>,
@@ -250,6 +260,7 @@ impl CameraSensor {
             truth: TruthProjector::new(),
             mesh_vertices_ft: mesh.vertices_ft.clone(),
             selection: camera.selection,
+            bearing_point: camera.bearing_point,
             period_ticks: camera.period_ticks(scenario.run.dt_s),
             latency_frames: u64::from(camera.latency_frames),
             pending: VecDeque::new(),
@@ -361,13 +372,13 @@ impl CameraSensor {
             .truth
             .image_truth(&self.mesh_vertices_ft, &pose, &self.intrinsics);
         let truth = self.last_truth.map(|t: ImageTruth| t.image_measurement());
-        let measured = blob.image_measurement(&self.intrinsics);
+        let measured = blob.image_measurement_at(&self.intrinsics, self.bearing_point);
         let ok = blob.status == BlobStatus::Ok;
         let r_measured = match (ok, measured) {
             (true, Some(m)) => Some(scaled_relative_position(
                 &m,
                 self.intrinsics.focal_px,
-                &geometry.follower_attitude.body_from_ned(),
+                &geometry.camera_from_ned(),
             )),
             _ => None,
         };
@@ -391,6 +402,7 @@ impl CameraSensor {
             truth,
             r_measured,
             follower_position_ned_ft: geometry.follower_position_ned_ft,
+            ned_from_camera: geometry.camera_from_ned().transpose(),
             range_ft: geometry.relative_ned_ft.norm(),
         };
         self.last_frame = Some(record);

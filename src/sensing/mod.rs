@@ -18,7 +18,7 @@ pub use camera::{CameraSensor, CaptureGeometry, FrameRecord, SensorError};
 pub use noisy::NoisySensor;
 pub use transform::{
     bearing_elevation_rad, image_from_relative_position, line_of_sight_body,
-    scaled_relative_position,
+    scaled_position_jacobian, scaled_relative_position,
 };
 
 use crate::frames::{Mat3, Vec3};
@@ -72,6 +72,26 @@ impl Sensor {
         }
     }
 
+    /// Whether a continuous sensor takes a new, independent sample at this tick (the noisy
+    /// sensor's sample period; every tick for the perfect one); never for the camera, whose
+    /// frames are delivered.
+    pub fn is_sample_tick(&self, tick: u64) -> bool {
+        match self {
+            Self::Perfect { .. } => true,
+            Self::Noisy(sensor) => sensor.is_sample_tick(tick),
+            Self::Camera(_) => false,
+        }
+    }
+
+    /// The per-axis variance of a continuous sensor's r* in this geometry (scaled units²):
+    /// zero for the perfect sensor, the noisy sensor's own.
+    pub fn continuous_variance(&self, relative_ned_ft: &Vec3, body_from_ned: &Mat3) -> f64 {
+        match self {
+            Self::Noisy(sensor) => sensor.variance(relative_ned_ft, body_from_ned),
+            Self::Perfect { .. } | Self::Camera(_) => 0.0,
+        }
+    }
+
     /// Acts at the start of tick `tick` in the geometry then: the noisy sensor draws its next
     /// sample when one is due (tick 0's is drawn at set-up, see
     /// [`Self::draw_initial_noise`]); the camera takes a frame when one is due and returns
@@ -86,7 +106,7 @@ impl Sensor {
             Self::Perfect { .. } => Ok(None),
             Self::Noisy(sensor) => {
                 if tick > 0 && sensor.is_sample_tick(tick) {
-                    let body_from_ned = geometry.follower_attitude.body_from_ned();
+                    let body_from_ned = geometry.camera_from_ned();
                     sensor.draw(&geometry.relative_ned_ft, &body_from_ned);
                 }
                 Ok(None)
@@ -99,7 +119,7 @@ impl Sensor {
     /// Draws the noisy sensor's first sample, for the measurement the filters start at.
     pub fn draw_initial_noise(&mut self, geometry: &CaptureGeometry) {
         if let Self::Noisy(sensor) = self {
-            let body_from_ned = geometry.follower_attitude.body_from_ned();
+            let body_from_ned = geometry.camera_from_ned();
             sensor.draw(&geometry.relative_ned_ft, &body_from_ned);
         }
     }

@@ -14,7 +14,9 @@
 //! commanded ‖R_c‖²/(3 b²) (`command`: one level for the run). Either way
 //! SNR = 10 log10(E‖r‖² / E‖n_r‖²) in dB; the run reports the SNR it realised.
 
-use super::transform::{image_from_relative_position, scaled_relative_position};
+use super::transform::{
+    image_from_relative_position, scaled_position_jacobian, scaled_relative_position,
+};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{NoiseOn, Scenario, SnrReference};
 use crate::vision::ImageMeasurement;
@@ -145,6 +147,30 @@ impl NoisySensor {
                 };
                 (noisy.b_i_px > 0.0)
                     .then(|| scaled_relative_position(&noisy, self.focal_px, body_from_ned))
+            }
+        }
+    }
+
+    /// The per-axis variance of r* in this geometry, scaled units²: σ² of the noise on r, or
+    /// the mean diagonal of J Σ Jᵀ for noise on the pixels (J the sensing transform's
+    /// Jacobian at the noise-free image).
+    pub fn variance(&self, relative_ned_ft: &Vec3, body_from_ned: &Mat3) -> f64 {
+        let r = relative_ned_ft / self.size_ft;
+        match self.noise_on {
+            NoiseOn::ScaledPosition => self.scaled_sigma(&r).powi(2),
+            NoiseOn::Pixels => {
+                let Some(image) = image_from_relative_position(
+                    relative_ned_ft,
+                    body_from_ned,
+                    self.size_ft,
+                    self.focal_px,
+                ) else {
+                    return f64::INFINITY;
+                };
+                let j = scaled_position_jacobian(&image, self.focal_px, &body_from_ned.transpose());
+                let [sy, sz, sb] = self.pixel_sigma_px;
+                let sigma = Mat3::from_diagonal(&Vec3::new(sy * sy, sz * sz, sb * sb));
+                (j * sigma * j.transpose()).trace() / 3.0
             }
         }
     }

@@ -34,6 +34,31 @@ pub fn scaled_relative_position(
     body_from_ned.transpose() * line_of_sight_body(bearing, elevation) * m.scaled_range(focal_px)
 }
 
+/// J = ∂r/∂(yI, zI, bI) of [`scaled_relative_position`] at a measurement, columns yI, zI, bI,
+/// `ned_from_camera` the camera's L_BEᵀ: since aI T_IB = [l, yI, -zI]ᵀ / bI exactly,
+/// r = L_BEᵀ [l, yI, -zI]ᵀ / bI and J = L_BEᵀ [[0, 0, -l/bI²], [1/bI, 0, -yI/bI²],
+/// [0, -1/bI, zI/bI²]]. It maps pixel noise to the noise of r (SPEC §9).
+pub fn scaled_position_jacobian(
+    measurement: &ImageMeasurement,
+    focal_px: f64,
+    ned_from_camera: &Mat3,
+) -> Mat3 {
+    let m = measurement;
+    let (inv, inv2) = (1.0 / m.b_i_px, 1.0 / (m.b_i_px * m.b_i_px));
+    let camera = Mat3::new(
+        0.0,
+        0.0,
+        -focal_px * inv2,
+        inv,
+        0.0,
+        -m.y_i_px * inv2,
+        0.0,
+        -inv,
+        m.z_i_px * inv2,
+    );
+    ned_from_camera * camera
+}
+
 /// The inverse of [`scaled_relative_position`]: the image coordinates of the relative position
 /// `rel_ned_ft` and the maximal length bI = l b / X that (3.7) assumes, i.e. the image of a
 /// segment of length b parallel to the image plane at depth X. (A real silhouette's maximal
@@ -92,6 +117,35 @@ mod tests {
                 "r = {r:?}, expected {expected:?}"
             );
             checked += 1;
+        }
+    }
+
+    /// The Jacobian matches central differences of the transform.
+    #[test]
+    fn jacobian_matches_finite_differences() {
+        let attitude = EulerAngles::new(0.3, -0.2, 1.1).body_from_ned();
+        let m = ImageMeasurement {
+            y_i_px: 40.0,
+            z_i_px: -25.0,
+            b_i_px: 60.0,
+        };
+        let focal_px = 554.0;
+        let j = scaled_position_jacobian(&m, focal_px, &attitude.transpose());
+        let h = 1e-4;
+        for (column, delta) in [(0, [h, 0.0, 0.0]), (1, [0.0, h, 0.0]), (2, [0.0, 0.0, h])] {
+            let shifted = |sign: f64| ImageMeasurement {
+                y_i_px: m.y_i_px + sign * delta[0],
+                z_i_px: m.z_i_px + sign * delta[1],
+                b_i_px: m.b_i_px + sign * delta[2],
+            };
+            let fd = (scaled_relative_position(&shifted(1.0), focal_px, &attitude)
+                - scaled_relative_position(&shifted(-1.0), focal_px, &attitude))
+                / (2.0 * h);
+            assert!(
+                (fd - j.column(column)).norm() < 1e-8,
+                "{column}: {fd} vs {}",
+                j.column(column)
+            );
         }
     }
 

@@ -4,6 +4,7 @@
 
 use super::ImageMeasurement;
 use crate::render::camera::CameraIntrinsics;
+use crate::scenario::BearingPoint;
 
 use super::background::BackgroundFitter;
 use super::components::{BlobSummary, ComponentLabeller, PixelBox};
@@ -91,10 +92,26 @@ impl BlobMeasurement {
     /// the principal point), whatever the status except `NotFound` (then `None`): check
     /// `status` before trusting a `Truncated` or `TooSmall` measurement.
     pub fn image_measurement(&self, camera: &CameraIntrinsics) -> Option<ImageMeasurement> {
+        self.image_measurement_at(camera, BearingPoint::Centroid)
+    }
+
+    /// The measurement with the bearing and elevation taken to `point` of the silhouette.
+    pub fn image_measurement_at(
+        &self,
+        camera: &CameraIntrinsics,
+        point: BearingPoint,
+    ) -> Option<ImageMeasurement> {
         if self.status == BlobStatus::NotFound {
             return None;
         }
-        let (y_i_px, z_i_px) = camera.image_from_pixel(self.centroid_u_px, self.centroid_v_px);
+        let (u_px, v_px) = match (point, self.feret) {
+            (BearingPoint::LengthMidpoint, Some(f)) => (
+                0.5 * (f.start.u_px + f.end.u_px),
+                0.5 * (f.start.v_px + f.end.v_px),
+            ),
+            _ => (self.centroid_u_px, self.centroid_v_px),
+        };
+        let (y_i_px, z_i_px) = camera.image_from_pixel(u_px, v_px);
         Some(ImageMeasurement {
             y_i_px,
             z_i_px,

@@ -1,0 +1,186 @@
+//! The Kalman estimator stage (`[estimator] kind = "kalman"`, SPEC §9): starts the filter of
+//! [`super::kalman`] on the first measurement, fuses every camera frame at its capture time with
+//! a covariance mapped from pixel noise through the sensing transform's Jacobian (a 20-pixel
+//! silhouette at 200 ft counts for less than a 130-pixel one at 33 ft), or samples a continuous
+//! sensor, and answers, for any instant and follower position, the estimate the guidance flies
+//! on. It also records when b became known (σ_b / b̂ below a threshold).
+
+use super::TargetEstimate;
+use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, TargetFilter};
+use crate::frames::{Mat3, Vec3};
+use crate::scenario::EstimatorSection;
+use crate::sensing::{FrameRecord, scaled_position_jacobian};
+
+/// The Kalman estimator of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KalmanTracker {
+    noise: FilterNoise,
+    prior: FilterPrior,
+    /// diag(σ_y², σ_z², σ_b²) × the inflation, px².
+    pixel_covariance_px2: Mat3,
+    /// The floor of a continuous sensor's variance per axis, scaled units².
+    scaled_variance_floor: f64,
+    focal_px: f64,
+    /// b̂ is bounded to [min, max], ft (the guidance's projection bounds).
+    size_bounds_ft: (f64, f64),
+    known_sigma_fraction: f64,
+    filter: Option<TargetFilter>,
+    known_since_s: Option<f64>,
+    fused: u64,
+}
+
+impl KalmanTracker {
+    /// The tracker of an `[estimator]` section for a camera of focal length `focal_px`,
+    /// starting from b̂(0) = `b0_ft` and bounding b̂ to `size_bounds_ft`.
+    pub fn new(
+        section: &EstimatorSection,
+        focal_px: f64,
+        b0_ft: f64,
+        size_bounds_ft: (f64, f64),
+    ) -> Self {
+        let [sy, sz, sb] = section.pixel_sigma_px;
+        Self {
+            noise: FilterNoise {
+                jerk_psd: section.jerk_psd,
+                inverse_size_psd: section.inverse_size_psd,
+            },
+            prior: FilterPrior {
+                size_ft: b0_ft,
+                inverse_size_sigma_per_ft: section.initial_inverse_size_sigma_per_ft,
+                relative_velocity_sigma_fps: section.initial_relative_velocity_sigma_fps,
+                acceleration_sigma_fps2: section.initial_acceleration_sigma_fps2,
+            },
+            pixel_covariance_px2: Mat3::from_diagonal(&Vec3::new(sy * sy, sz * sz, sb * sb))
+                * section.measurement_inflation,
+            scaled_variance_floor: section.scaled_sigma_floor.powi(2),
+            focal_px,
+            size_bounds_ft,
+            known_sigma_fraction: section.known_sigma_fraction,
+            filter: None,
+            known_since_s: None,
+            fused: 0,
+        }
+    }
+
+    /// Fuses a camera frame (nothing when it measured nothing), the follower flying at
+    /// `follower_velocity_ned_fps` (used only to start the filter).
+    pub fn fuse_frame(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) {
+        let (Some(r_star), Some(pixels)) = (record.r_measured, record.measured) else {
+            return;
+        };
+        let jacobian = scaled_position_jacobian(&pixels, self.focal_px, &record.ned_from_camera);
+        let covariance = jacobian * self.pixel_covariance_px2 * jacobian.transpose();
+        self.fuse(
+            record.t_s,
+            &r_star,
+            &covariance,
+            &record.follower_position_ned_ft,
+            follower_velocity_ned_fps,
+        );
+    }
+
+    /// Fuses a continuous sensor's measurement r* taken now, with its own per-axis variance
+    /// (the floor when smaller).
+    pub fn fuse_sample(
+        &mut self,
+        t_s: f64,
+        r_star: &Vec3,
+        variance: f64,
+        follower_position_ned_ft: &Vec3,
+        follower_velocity_ned_fps: &Vec3,
+    ) {
+        let covariance = Mat3::identity() * variance.max(self.scaled_variance_floor);
+        self.fuse(
+            t_s,
+            r_star,
+            &covariance,
+            follower_position_ned_ft,
+            follower_velocity_ned_fps,
+        );
+    }
+
+    /// Predicts to the measurement's time and fuses it (or starts the filter on it).
+    fn fuse(
+        &mut self,
+        t_s: f64,
+        r_star: &Vec3,
+        covariance: &Mat3,
+        follower_position_ned_ft: &Vec3,
+        follower_velocity_ned_fps: &Vec3,
+    ) {
+        match self.filter.as_mut() {
+            None => {
+                self.filter = Some(TargetFilter::new(
+                    self.noise,
+                    &self.prior,
+                    r_star,
+                    covariance,
+                    t_s,
+                    follower_position_ned_ft,
+                    follower_velocity_ned_fps,
+                ));
+            }
+            Some(filter) => {
+                filter.predict_to(t_s, follower_position_ned_ft);
+                filter.update(r_star, covariance);
+            }
+        }
+        self.fused += 1;
+        if self.known_since_s.is_none() && self.size_is_known() {
+            self.known_since_s = Some(t_s);
+        }
+    }
+
+    /// The estimate the guidance flies on at `t_s` with the follower at
+    /// `follower_position_ned_ft`; `None` before the first measurement.
+    pub fn estimate_at(&self, t_s: f64, follower_position_ned_ft: &Vec3) -> Option<TargetEstimate> {
+        let filter = self.filter.as_ref()?;
+        Some(self.bounded(&filter.estimate_at(t_s, follower_position_ned_ft)))
+    }
+
+    /// The estimate at the last fused measurement.
+    pub fn posterior(&self) -> Option<TargetEstimate> {
+        Some(self.bounded(&self.filter.as_ref()?.posterior()))
+    }
+
+    /// b̂ = 1/β̂ within the bounds, and σ_b.
+    fn bounded(&self, est: &FilterEstimate) -> TargetEstimate {
+        let (min, max) = self.size_bounds_ft;
+        let b_hat_ft = if est.beta_per_ft > 0.0 {
+            est.size_ft().clamp(min, max)
+        } else {
+            max
+        };
+        TargetEstimate {
+            r: est.r,
+            d_per_s: est.d_per_s,
+            a_per_s2: est.a_per_s2,
+            b_hat_ft,
+            b_sigma_ft: est.beta_sigma_per_ft * b_hat_ft * b_hat_ft,
+        }
+    }
+
+    /// Whether σ_b / b̂ is below the threshold now.
+    pub fn size_is_known(&self) -> bool {
+        self.posterior()
+            .is_some_and(|e| e.b_sigma_ft < self.known_sigma_fraction * e.b_hat_ft)
+    }
+
+    /// σ of the heading of the estimated target velocity, rad (infinite before the filter
+    /// starts).
+    pub fn heading_sigma_rad(&self) -> f64 {
+        self.filter
+            .as_ref()
+            .map_or(f64::INFINITY, TargetFilter::heading_sigma_rad)
+    }
+
+    /// When σ_b / b̂ first fell below the threshold, s.
+    pub fn known_since_s(&self) -> Option<f64> {
+        self.known_since_s
+    }
+
+    /// Measurements fused so far.
+    pub fn fused(&self) -> u64 {
+        self.fused
+    }
+}

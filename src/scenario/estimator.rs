@@ -1,0 +1,152 @@
+//! `[estimator]`: what infers the target's range and size between sensing and guidance
+//! (DESIGN §1): the seed's adaptive laws, which estimate b̂ and d̂ inside the guidance law, or
+//! the Kalman filter of SPEC §9, which infers r, d, a and 1/b from the measurements and the
+//! follower's own velocity and hands them to the law (`estimation::kalman`).
+
+use serde::{Deserialize, Serialize};
+
+use super::check::{self, Check};
+
+/// Which estimator feeds the guidance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EstimatorKind {
+    /// The seed's adaptive laws (4.5), (5.20)-(5.41), (6.16): b̂ and d̂ adapt inside the law.
+    Adaptive,
+    /// The Kalman filter of SPEC §9; the law flies on its estimates (certainty equivalence).
+    Kalman,
+}
+
+/// `[estimator]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EstimatorSection {
+    /// Which estimator feeds the guidance (default the seed's).
+    pub kind: EstimatorKind,
+    /// With `kind = "adaptive"`: run the Kalman filter on the same measurements too and log
+    /// its estimates beside the law's (`kf_*` columns), for comparison.
+    pub log_kalman: bool,
+    /// q_j, the intensity of the white jerk of a = a_T/b per axis, 1/s⁵. Choice: the seed
+    /// target's acceleration changes by up to about 1 ft/s² within a second where its
+    /// profile's pieces meet and by 0.3 ft/s³ inside them; (0.3 ft/s³ / 8 ft)² · 10 s ≈ 0.01.
+    pub jerk_psd: f64,
+    /// q_β, the intensity of the random walk of β = 1/b, 1/(ft² s). b is constant, but the
+    /// size the camera measures is the silhouette's, which changes with the target's aspect
+    /// (seed 8.2) by a few percent over tens of seconds: choice 1e-7 (σ_β grows by
+    /// 1e-7^½ · √30 s ≈ 0.0017/ft, 1.4% of 1/8 ft, in 30 s without information).
+    pub inverse_size_psd: f64,
+    /// σ of the image measurements (yI, zI, bI), px, that the measurement covariance maps
+    /// through the Jacobian of (3.3)-(3.12). Choice: the vision pipeline's centroid is within
+    /// 0.2 px of the silhouette's, and the silhouette's centroid moves by a few pixels from
+    /// the target's reference point with its attitude at close range; its maximal length
+    /// reads short by 1-7% with range and aspect.
+    pub pixel_sigma_px: [f64; 3],
+    /// Factor on the measurement covariance (SPEC §9: about 2 keeps b̂ from sitting low on
+    /// the short-reading lengths; matched, b̂ sat 1-3% low in an independent study).
+    pub measurement_inflation: f64,
+    /// σ of r per axis (scaled units) below which a continuous sensor's measurement is not
+    /// trusted (the `perfect` sensor has none of its own).
+    pub scaled_sigma_floor: f64,
+    /// σ of β(0) = 1/b̂(0), 1/ft (b̂(0) is `guidance.b0_ft`). Choice: 0.15 covers β from
+    /// 0.1 to 0.4 (b from 2.5 to 10 ft) about b̂(0) = 4 ft within 1σ.
+    pub initial_inverse_size_sigma_per_ft: f64,
+    /// σ of the target's velocity relative to the follower's at the start, per axis, ft/s.
+    pub initial_relative_velocity_sigma_fps: f64,
+    /// σ of the target's acceleration at the start, per axis, ft/s² (seed: |a_T| ≤ 3.2).
+    pub initial_acceleration_sigma_fps2: f64,
+    /// b counts as known once σ_b / b̂ falls below this (reported as `b_known_time_s`; the
+    /// target command frame follows the estimated target velocity from then on).
+    pub known_sigma_fraction: f64,
+}
+
+impl Default for EstimatorSection {
+    fn default() -> Self {
+        Self {
+            kind: EstimatorKind::Adaptive,
+            log_kalman: false,
+            jerk_psd: 0.01,
+            inverse_size_psd: 1e-7,
+            pixel_sigma_px: [1.0, 1.0, 2.0],
+            measurement_inflation: 2.0,
+            scaled_sigma_floor: 1e-4,
+            initial_inverse_size_sigma_per_ft: 0.15,
+            initial_relative_velocity_sigma_fps: 15.0,
+            initial_acceleration_sigma_fps2: 3.0,
+            known_sigma_fraction: 0.05,
+        }
+    }
+}
+
+impl EstimatorSection {
+    /// Checks every value.
+    pub fn validate(&self) -> Check {
+        check::in_closed("estimator.jerk_psd", self.jerk_psd, 0.0, 1e6)?;
+        check::in_closed(
+            "estimator.inverse_size_psd",
+            self.inverse_size_psd,
+            0.0,
+            1.0,
+        )?;
+        for (i, sigma) in self.pixel_sigma_px.iter().enumerate() {
+            check::in_closed(&format!("estimator.pixel_sigma_px[{i}]"), *sigma, 1e-3, 1e3)?;
+        }
+        check::in_closed(
+            "estimator.measurement_inflation",
+            self.measurement_inflation,
+            0.01,
+            1e4,
+        )?;
+        check::in_closed(
+            "estimator.scaled_sigma_floor",
+            self.scaled_sigma_floor,
+            1e-9,
+            10.0,
+        )?;
+        check::in_closed(
+            "estimator.initial_inverse_size_sigma_per_ft",
+            self.initial_inverse_size_sigma_per_ft,
+            1e-6,
+            100.0,
+        )?;
+        check::in_closed(
+            "estimator.initial_relative_velocity_sigma_fps",
+            self.initial_relative_velocity_sigma_fps,
+            0.0,
+            1e4,
+        )?;
+        check::in_closed(
+            "estimator.initial_acceleration_sigma_fps2",
+            self.initial_acceleration_sigma_fps2,
+            0.0,
+            1e4,
+        )?;
+        check::in_closed(
+            "estimator.known_sigma_fraction",
+            self.known_sigma_fraction,
+            1e-6,
+            1.0,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_the_seeds() {
+        let s = EstimatorSection::default();
+        assert_eq!(s.validate(), Ok(()));
+        assert_eq!(s.kind, EstimatorKind::Adaptive);
+    }
+
+    #[test]
+    fn bad_values_are_named() {
+        let s = EstimatorSection {
+            pixel_sigma_px: [1.0, f64::NAN, 2.0],
+            ..EstimatorSection::default()
+        };
+        let err = s.validate().expect_err("NaN");
+        assert_eq!(err.key, "estimator.pixel_sigma_px[1]");
+    }
+}
