@@ -359,6 +359,27 @@ impl GuidanceSection {
     }
 
     fn validate(&self) -> Check {
+        self.validate_command()?;
+        self.validate_estimator()?;
+        self.validate_adaptation()?;
+        check::in_closed(
+            "guidance.shaping_pole_rps",
+            self.shaping_pole_rps,
+            0.0,
+            100.0,
+        )?;
+        check::in_closed("guidance.velocity_lead_s", self.velocity_lead_s, 0.0, 100.0)?;
+        check::in_closed(
+            "guidance.approach_speed_max_fps",
+            self.approach_speed_max_fps,
+            0.0,
+            1e4,
+        )?;
+        check::positive("guidance.intercept_radius_ft", self.intercept_radius_ft)
+    }
+
+    /// The formation command and its frames.
+    fn validate_command(&self) -> Check {
         check::finite_vec("guidance.command_ft", &self.command_ft)?;
         check::in_closed("guidance.command_range_ft", self.command_range_ft, 0.0, 1e5)?;
         check::in_closed(
@@ -372,13 +393,6 @@ impl GuidanceSection {
             self.command_elevation_deg,
             -89.0,
             89.0,
-        )?;
-        check::positive("guidance.estimator_gain", self.estimator_gain)?;
-        check::positive("guidance.estimator_process_psd", self.estimator_process_psd)?;
-        check::positive("guidance.estimator_noise_psd", self.estimator_noise_psd)?;
-        check::positive(
-            "guidance.estimator_lyapunov_weight",
-            self.estimator_lyapunov_weight,
         )?;
         check::in_closed(
             "guidance.command_heading_lag_s",
@@ -403,7 +417,22 @@ impl GuidanceSection {
             self.command_target_heading_sigma_deg,
             0.0,
             180.0,
-        )?;
+        )
+    }
+
+    /// The Chapter 6 estimator's design.
+    fn validate_estimator(&self) -> Check {
+        check::positive("guidance.estimator_gain", self.estimator_gain)?;
+        check::positive("guidance.estimator_process_psd", self.estimator_process_psd)?;
+        check::positive("guidance.estimator_noise_psd", self.estimator_noise_psd)?;
+        check::positive(
+            "guidance.estimator_lyapunov_weight",
+            self.estimator_lyapunov_weight,
+        )
+    }
+
+    /// Gains, projection bounds and initial estimates of the adaptive laws.
+    fn validate_adaptation(&self) -> Check {
         check::positive("guidance.k", self.k)?;
         check::in_closed("guidance.k_aircraft", self.k_aircraft, 1e-3, 100.0)?;
         check::non_negative("guidance.sigma", self.sigma)?;
@@ -435,21 +464,7 @@ impl GuidanceSection {
             format!("{:?} (norm {d0_norm})", self.d0_per_s),
             format!("norm <= guidance.d_max_per_s = {}", self.d_max_per_s),
         )?;
-        check::positive("guidance.d_epsilon", self.d_epsilon)?;
-        check::in_closed(
-            "guidance.shaping_pole_rps",
-            self.shaping_pole_rps,
-            0.0,
-            100.0,
-        )?;
-        check::in_closed("guidance.velocity_lead_s", self.velocity_lead_s, 0.0, 100.0)?;
-        check::in_closed(
-            "guidance.approach_speed_max_fps",
-            self.approach_speed_max_fps,
-            0.0,
-            1e4,
-        )?;
-        check::positive("guidance.intercept_radius_ft", self.intercept_radius_ft)
+        check::positive("guidance.d_epsilon", self.d_epsilon)
     }
 }
 
