@@ -69,6 +69,9 @@ pub enum MeasurementSource {
 pub struct MeasurementHold {
     source: MeasurementSource,
     compensate_delay: bool,
+    /// The latest frame that measured the target (held through lost frames, for pointing a
+    /// gimbal at where it should be).
+    last_measured: Option<HeldFrame>,
 }
 
 impl MeasurementHold {
@@ -82,6 +85,7 @@ impl MeasurementHold {
                 MeasurementSource::AwaitingFirst
             },
             compensate_delay,
+            last_measured: None,
         }
     }
 
@@ -102,7 +106,15 @@ impl MeasurementHold {
         if frame.is_some() || self.source != MeasurementSource::AwaitingFirst {
             self.source = MeasurementSource::Held(frame);
         }
+        if frame.is_some() {
+            self.last_measured = frame;
+        }
         first
+    }
+
+    /// The latest frame that measured the target.
+    pub fn last_measured(&self) -> Option<HeldFrame> {
+        self.last_measured
     }
 
     /// The held frame's measurement as the guidance is given it at `t_s` (brought forward

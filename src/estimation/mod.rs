@@ -185,6 +185,38 @@ impl Estimator {
         }
     }
 
+    /// Where the estimator predicts the target is at `t_s`, r (scaled units, NED), with the
+    /// follower at `follower_position_ned_ft`: the Kalman filter's r̂, or the latest frame
+    /// that measured the target brought forward with the law's estimates `law` (the
+    /// direction a gimbal points at); `None` before any measurement.
+    pub fn predicted_r(
+        &self,
+        t_s: f64,
+        follower_position_ned_ft: &Vec3,
+        law: Option<LawEstimates>,
+    ) -> Option<Vec3> {
+        match self {
+            Self::Adaptive { hold, .. } => {
+                let frame = hold.last_measured()?;
+                Some(match law {
+                    Some(law) => hold.held_measurement(&frame, t_s, follower_position_ned_ft, &law),
+                    None => frame.r,
+                })
+            }
+            Self::Kalman(tracker) => tracker
+                .estimate_at(t_s, follower_position_ned_ft)
+                .map(|e| e.r),
+        }
+    }
+
+    /// When the latest measurement of the target was taken, s (`None` before any).
+    pub fn last_measured_s(&self) -> Option<f64> {
+        match self {
+            Self::Adaptive { hold, .. } => hold.last_measured().map(|f| f.t_s),
+            Self::Kalman(tracker) => tracker.last_fused_s(),
+        }
+    }
+
     /// The Kalman filter, when the run has one (flying on it, or beside the adaptive law).
     pub fn tracker(&self) -> Option<&KalmanTracker> {
         match self {

@@ -179,6 +179,11 @@ impl KalmanTracker {
         self.known_since_s
     }
 
+    /// The capture time of the latest fused measurement, s.
+    pub fn last_fused_s(&self) -> Option<f64> {
+        self.filter.as_ref().map(TargetFilter::time_s)
+    }
+
     /// Measurements fused so far.
     pub fn fused(&self) -> u64 {
         self.fused

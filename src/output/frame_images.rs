@@ -3,7 +3,9 @@
 
 use crate::render::image::{CameraImage, ImageSaveError};
 use crate::sensing::CameraSensor;
-use crate::vision::overlay::draw_measurement_overlay;
+use crate::sensing::gimbal::GimbalAngles;
+use crate::sim::GimbalReading;
+use crate::vision::overlay::{draw_caption, draw_measurement_overlay};
 use crate::vision::{BlobMeasurement, ImageSizeError};
 use std::path::{Path, PathBuf};
 
@@ -54,8 +56,13 @@ impl FrameSaver {
         }
     }
 
-    /// Saves the camera's last frame if it is new and its index is a multiple of N.
-    pub fn offer(&mut self, camera: &CameraSensor) -> Result<(), FrameWriteError> {
+    /// Saves the camera's last frame if it is new and its index is a multiple of N, with
+    /// `captions()` under the overlay's status line (when the overlay is on).
+    pub fn offer(
+        &mut self,
+        camera: &CameraSensor,
+        captions: impl FnOnce() -> Vec<String>,
+    ) -> Result<(), FrameWriteError> {
         let Some((frame, record, blob)) = camera.last_frame() else {
             return Ok(());
         };
@@ -65,24 +72,51 @@ impl FrameSaver {
         self.last_index = Some(record.index);
         create_dir(&self.dir)?;
         let path = self.dir.join(format!("{:06}.png", record.index));
-        write_frame(&path, frame, self.overlay.then_some(blob))
+        let overlay = self.overlay.then(|| Overlay {
+            measurement: blob,
+            captions: captions(),
+        });
+        write_frame(&path, frame, overlay.as_ref())
     }
 }
 
-/// Writes a frame as PNG, with the measurement drawn on a copy when given.
+/// What is drawn over a saved frame: its measurement and lines of text under the status.
+#[derive(Debug)]
+pub struct Overlay<'a> {
+    /// The frame's measurement.
+    pub measurement: &'a BlobMeasurement,
+    /// Lines under the status line (e.g. the gimbal's angles).
+    pub captions: Vec<String>,
+}
+
+/// The overlay's line for a gimbal, in degrees: `GIMBAL PAN 23.4 TILT -5.1 CMD 24.0 -5.0`.
+pub fn gimbal_captions(reading: Option<GimbalReading>) -> Vec<String> {
+    reading
+        .map(|g| {
+            let deg = |a: &GimbalAngles| (a.pan_rad.to_degrees(), a.tilt_rad.to_degrees());
+            let ((pan, tilt), (pan_c, tilt_c)) = (deg(&g.angles), deg(&g.command));
+            format!("GIMBAL PAN {pan:.1} TILT {tilt:.1} CMD {pan_c:.1} {tilt_c:.1}")
+        })
+        .into_iter()
+        .collect()
+}
+
+/// Writes a frame as PNG, with the overlay drawn on a copy when given.
 pub fn write_frame(
     path: &Path,
     frame: &CameraImage,
-    overlay: Option<&BlobMeasurement>,
+    overlay: Option<&Overlay>,
 ) -> Result<(), FrameWriteError> {
-    match overlay {
-        None => Ok(frame.save_png(path)?),
-        Some(blob) => {
-            let mut copy = frame.clone();
-            draw_measurement_overlay(&mut copy.rgba, copy.width_px, copy.height_px, blob)?;
-            Ok(copy.save_png(path)?)
-        }
+    let Some(overlay) = overlay else {
+        return Ok(frame.save_png(path)?);
+    };
+    let mut copy = frame.clone();
+    let (w, h) = (copy.width_px, copy.height_px);
+    draw_measurement_overlay(&mut copy.rgba, w, h, overlay.measurement)?;
+    for (k, caption) in overlay.captions.iter().enumerate() {
+        draw_caption(&mut copy.rgba, w, h, k + 1, caption)?;
     }
+    Ok(copy.save_png(path)?)
 }
 
 /// Why `wingman render` could not write its frame.
@@ -133,6 +167,10 @@ pub fn render_frame_at(
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         create_dir(dir)?;
     }
-    write_frame(path, &copy, Some(blob))?;
+    let overlay = Overlay {
+        measurement: blob,
+        captions: gimbal_captions(sim.gimbal_reading()),
+    };
+    write_frame(path, &copy, Some(&overlay))?;
     Ok(*record)
 }

@@ -89,7 +89,9 @@ pub fn run_to_directory(
     let failure = loop {
         let outcome = sim.step();
         if let (Some(saver), Some(camera)) = (frame_saver.as_mut(), sim.camera())
-            && let Err(e) = saver.offer(camera)
+            && let Err(e) = saver.offer(camera, || {
+                frame_images::gimbal_captions(sim.gimbal_reading())
+            })
         {
             warnings.push(format!("frame not saved: {e}"));
             frame_saver = None;

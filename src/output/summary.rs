@@ -2,6 +2,7 @@
 
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::{EstimatorKind, GuidanceLawKind};
+use crate::sensing::losses::LossEpisode;
 use crate::sim::{SimError, Simulation, Snapshot, StageTimes};
 use crate::vision::BlobStatus;
 use crate::vision::ImageMeasurement;
@@ -65,6 +66,9 @@ pub struct Summary {
     pub rms_error_last20s_ft: [f64; 3],
     /// Frames in which the target was not measured.
     pub lost_frames: u64,
+    /// Each run of delivered frames that did not measure the target: its start, frames,
+    /// length and whether the target was found again (camera runs; empty otherwise).
+    pub loss_episodes: Vec<LossEpisode>,
     /// The SNR the noisy sensor realised, 10 log10(Σ‖r‖² / Σ‖r* - r‖²) over its samples, dB
     /// (noisy runs).
     pub noise_snr_db: Option<f64>,
@@ -201,33 +205,8 @@ impl Summary {
         let duration_s = sim.time_s();
         let last = logged.last();
         let camera = sim.camera();
-        let stages = sim.stage_times();
-        let per_frame_ms = camera.filter(|c| c.frames() > 0).map(|c| {
-            let t = c.timings();
-            let per = |d: std::time::Duration| 1e3 * d.as_secs_f64() / c.frames() as f64;
-            PerFrameCost {
-                render: per(t.render),
-                readback: per(t.readback),
-                vision: per(t.vision),
-                truth: per(t.truth),
-                estimator: per(stages.estimator),
-                guidance: per(stages.guidance),
-                control: per(stages.control),
-                plant: per(stages.plant),
-                integration: per(stages.integration),
-            }
-        });
-        let aircraft = sim
-            .follower()
-            .aircraft()
-            .zip(sim.flight_envelope())
-            .map(|(a, e)| {
-                let limits = &a.params().actuators;
-                AircraftSummary::new(
-                    e,
-                    [limits.elevator.max, limits.aileron.max, limits.rudder.max],
-                )
-            });
+        let per_frame_ms = per_frame_cost(sim);
+        let aircraft = aircraft_summary(sim);
         Self {
             scenario: name.to_string(),
             status,
@@ -253,6 +232,7 @@ impl Summary {
             min_range_ft: sim.min_range_ft(),
             rms_error_last20s_ft: rms_error_since(logged, duration_s - 20.0),
             lost_frames: camera.map_or(0, |c| c.lost_frames()),
+            loss_episodes: sim.loss_episodes(),
             noise_snr_db: sim.noisy_sensor().and_then(|n| n.realised_snr_db()),
             notes: sim.notes().to_vec(),
             centroid_rms_px: camera.and_then(|c| c.errors().centroid_rms_px()),
@@ -262,7 +242,7 @@ impl Summary {
             }),
             adapter: camera.map(|c| c.adapter().to_string()),
             per_frame_ms,
-            stage_wall_s: stages.into(),
+            stage_wall_s: sim.stage_times().into(),
             aircraft,
         }
     }
@@ -271,6 +251,40 @@ impl Summary {
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
     }
+}
+
+/// Mean wall time per camera frame of each stage (camera runs with frames).
+fn per_frame_cost(sim: &Simulation) -> Option<PerFrameCost> {
+    let stages = sim.stage_times();
+    sim.camera().filter(|c| c.frames() > 0).map(|c| {
+        let t = c.timings();
+        let per = |d: std::time::Duration| 1e3 * d.as_secs_f64() / c.frames() as f64;
+        PerFrameCost {
+            render: per(t.render),
+            readback: per(t.readback),
+            vision: per(t.vision),
+            truth: per(t.truth),
+            estimator: per(stages.estimator),
+            guidance: per(stages.guidance),
+            control: per(stages.control),
+            plant: per(stages.plant),
+            integration: per(stages.integration),
+        }
+    })
+}
+
+/// The 6-DOF follower's envelope (aircraft runs).
+fn aircraft_summary(sim: &Simulation) -> Option<AircraftSummary> {
+    sim.follower()
+        .aircraft()
+        .zip(sim.flight_envelope())
+        .map(|(a, e)| {
+            let limits = &a.params().actuators;
+            AircraftSummary::new(
+                e,
+                [limits.elevator.max, limits.aileron.max, limits.rudder.max],
+            )
+        })
 }
 
 /// The target size a camera run's frames imply, ‖R‖ / aI (see

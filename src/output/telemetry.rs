@@ -34,6 +34,12 @@ pub fn row_of(s: &Snapshot) -> Row {
     if let Some(filter) = &s.filter {
         filter_columns(filter, &mut row);
     }
+    if let Some(g) = &s.gimbal {
+        row.push(("gimbal_pan_rad", g.angles.pan_rad));
+        row.push(("gimbal_tilt_rad", g.angles.tilt_rad));
+        row.push(("gimbal_pan_cmd_rad", g.command.pan_rad));
+        row.push(("gimbal_tilt_cmd_rad", g.command.tilt_rad));
+    }
     row
 }
 

@@ -82,6 +82,8 @@ pub struct CameraSection {
     /// attack looks above its flight path by α; a camera pitched down by about the α of its
     /// usual speeds keeps a target at its own level near the image's centre.
     pub mount_pitch_deg: f64,
+    /// The pan/tilt gimbal, when the camera rides one.
+    pub gimbal: super::GimbalSection,
     /// The point of the silhouette the bearing and elevation (yI, zI) are measured to. The
     /// seed's is the centroid; an extended target's centroid is not at the depth of the points
     /// its maximal length spans (the wing tips, seen from behind), and as the follower moves
@@ -115,6 +117,7 @@ impl Default for CameraSection {
             mask_coverage: 0.5,
             compensate_delay: true,
             mount_pitch_deg: 0.0,
+            gimbal: super::GimbalSection::default(),
             bearing_point: BearingPoint::Centroid,
             link_radius_px: 2,
         }
@@ -132,6 +135,7 @@ impl CameraSection {
         self.validate_focal_length()?;
         check::int_in("camera.height_px", i64::from(self.height_px), 8, 8192)?;
         check::in_closed("camera.mount_pitch_deg", self.mount_pitch_deg, -90.0, 90.0)?;
+        self.gimbal.validate()?;
         check::in_closed("camera.rate_hz", self.rate_hz, 0.01, 10_000.0)?;
         let ticks = 1.0 / (self.rate_hz * dt_s);
         check::require(

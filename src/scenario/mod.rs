@@ -7,6 +7,7 @@ mod camera;
 pub mod check;
 mod control;
 mod estimator;
+mod gimbal;
 mod sections;
 mod sensor;
 
@@ -15,6 +16,7 @@ pub use atmosphere::*;
 pub use camera::*;
 pub use control::*;
 pub use estimator::*;
+pub use gimbal::*;
 pub use sections::*;
 pub use sensor::*;
 
@@ -132,12 +134,16 @@ pub enum OverrideError {
     NotASection(String),
 }
 
-/// Applies `section.key=value`; the value is read as a TOML value (number, boolean, array, quoted
+/// Applies `section.key=value` (or `section.sub.key=value` for a section inside a section);
+/// the value is read as a TOML value (number, boolean, array, quoted
 /// string) and, failing that, as a bare string.
 fn apply_override(table: &mut toml::Table, text: &str) -> Result<(), OverrideError> {
     let (key, value_text) = text.split_once('=').ok_or(OverrideError::Form)?;
-    let (section, field) = key.trim().split_once('.').ok_or(OverrideError::Form)?;
-    if section.is_empty() || field.is_empty() || field.contains('.') {
+    let path: Vec<&str> = key.trim().split('.').collect();
+    let Some((field, sections)) = path.split_last() else {
+        return Err(OverrideError::Form);
+    };
+    if sections.is_empty() || path.iter().any(|p| p.is_empty()) {
         return Err(OverrideError::Form);
     }
     let value_text = value_text.trim();
@@ -146,13 +152,15 @@ fn apply_override(table: &mut toml::Table, text: &str) -> Result<(), OverrideErr
         .ok()
         .and_then(|mut t| t.remove("v"))
         .unwrap_or_else(|| toml::Value::String(value_text.to_string()));
-    let entry = table
-        .entry(section.to_string())
-        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-    let section_table = entry
-        .as_table_mut()
-        .ok_or_else(|| OverrideError::NotASection(section.to_string()))?;
-    section_table.insert(field.to_string(), value);
+    let mut current = table;
+    for section in sections {
+        current = current
+            .entry(section.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+            .as_table_mut()
+            .ok_or_else(|| OverrideError::NotASection(section.to_string()))?;
+    }
+    current.insert(field.to_string(), value);
     Ok(())
 }
 
@@ -196,6 +204,21 @@ mod tests {
             .to_string();
         assert!(err.contains("guidance.b0_ft = 40"), "{err}");
         assert!(err.contains("b_max_ft = 30"), "{err}");
+    }
+
+    /// A key of a section inside a section can be set too.
+    #[test]
+    fn nested_keys_can_be_set() {
+        let s = parse(
+            "",
+            &[
+                "camera.gimbal.kind=pan_tilt",
+                "atmosphere.disturbances.drag_factor=1.5",
+            ],
+        )
+        .expect("valid");
+        assert_eq!(s.camera.gimbal.kind, GimbalKind::PanTilt);
+        assert_eq!(s.atmosphere.disturbances.drag_factor, 1.5);
     }
 
     #[test]

@@ -11,6 +11,8 @@
 //! simulation evaluates them at every integration stage. The camera delivers frames.
 
 pub mod camera;
+pub mod gimbal;
+pub mod losses;
 pub mod noisy;
 pub mod transform;
 

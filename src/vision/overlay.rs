@@ -21,6 +21,9 @@ pub const LOST_RGB: [u8; 3] = [255, 40, 40];
 /// Colour of the ground-truth marks.
 pub const TRUTH_RGB: [u8; 3] = [0, 220, 255];
 
+/// Colour of captions under the status line.
+pub const CAPTION_RGB: [u8; 3] = [255, 255, 255];
+
 /// Half-length of the centroid cross's arms, px.
 const CROSS_HALF_PX: f64 = 6.0;
 /// Text scale (each font pixel is this many image pixels square).
@@ -177,6 +180,26 @@ pub fn draw_measurement_overlay(
         TEXT_ORIGIN_PX,
         &status_line(measurement),
         rgb,
+    );
+    Ok(())
+}
+
+/// Draws `text` in white on the given line of the overlay's text (line 0 is the status line),
+/// e.g. the gimbal's angles under the measurement's status.
+pub fn draw_caption(
+    rgba: &mut [u8],
+    width_px: u32,
+    height_px: u32,
+    line: usize,
+    text: &str,
+) -> Result<(), ImageSizeError> {
+    let mut canvas = Canvas::new(rgba, width_px, height_px)?;
+    let line_px = (GLYPH_HEIGHT + 3) * TEXT_SCALE;
+    canvas.text(
+        TEXT_ORIGIN_PX,
+        TEXT_ORIGIN_PX + line * line_px,
+        text,
+        CAPTION_RGB,
     );
     Ok(())
 }

@@ -15,6 +15,8 @@
 //! tick: the noisy sensor may draw its noise, the camera may take a frame and deliver one to
 //! the guidance. A snapshot between ticks therefore shows what the guidance works with.
 
+mod layout;
+
 use crate::estimation::{
     Estimator, GuidanceMeasurement, LawEstimates, TargetEstimate, TargetMotionEstimate,
 };
@@ -28,14 +30,16 @@ use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
 use crate::guidance::signals::{CommandKind, FollowerCommand, GuidanceInput, GuidanceOutput};
 use crate::integrate::Rk4;
 use crate::scenario::{
-    ExcitationUnits, FollowerModel, GuidanceLawKind, Mission, Scenario, SensorMode,
+    ExcitationUnits, FollowerModel, GimbalKind, GuidanceLawKind, Mission, Scenario, SensorMode,
 };
+use crate::sensing::gimbal::{Gimbal, GimbalAngles};
+use crate::sensing::losses::{LossEpisode, LossLog};
 use crate::sensing::{
     CameraSensor, CaptureGeometry, FrameRecord, NoisySensor, Sensor, SensorError,
 };
 use crate::world::target::{TargetMotionModel, TargetState};
+use layout::StateLayout;
 use std::cell::Cell;
-use std::ops::Range;
 use std::time::{Duration, Instant};
 
 /// Why a simulation could not start or go on.
@@ -117,6 +121,8 @@ pub struct Snapshot {
     pub guidance: GuidanceOutput,
     /// The last camera frame's measurement and truth (camera runs).
     pub frame: Option<FrameRecord>,
+    /// The gimbal's angles and command now (gimballed cameras).
+    pub gimbal: Option<GimbalReading>,
     /// The 6-DOF follower's air data, actuators and flight controller (aircraft runs).
     pub aircraft: Option<AircraftActuation>,
 }
@@ -130,6 +136,15 @@ impl Snapshot {
             FollowerCommand::Velocity(_) => None,
         }
     }
+}
+
+/// The gimbal's angles and its pointing law's command at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GimbalReading {
+    /// The angles (as the encoders read them).
+    pub angles: GimbalAngles,
+    /// The pointing law's command.
+    pub command: GimbalAngles,
 }
 
 /// Wall time spent in each stage of the continuous loop, summed over the run.
@@ -156,41 +171,6 @@ struct Evaluation {
     actuation: Actuation,
 }
 
-/// Where each stage's slice lies in the state vector.
-#[derive(Debug, Clone, PartialEq)]
-struct StateLayout {
-    follower: Range<usize>,
-    command: Range<usize>,
-    guidance: Range<usize>,
-}
-
-impl StateLayout {
-    /// Slices of the given lengths, one after the other.
-    fn new(follower_len: usize, command_len: usize, guidance_len: usize) -> Self {
-        let command_at = follower_len;
-        let guidance_at = command_at + command_len;
-        Self {
-            follower: 0..command_at,
-            command: command_at..guidance_at,
-            guidance: guidance_at..guidance_at + guidance_len,
-        }
-    }
-
-    /// The (follower, command, guidance) slices of a state.
-    fn split<'a>(&self, x: &'a [f64]) -> (&'a [f64], &'a [f64], &'a [f64]) {
-        let (rest, guidance) = x.split_at(self.guidance.start);
-        let (follower, command) = rest.split_at(self.command.start);
-        (follower, command, guidance)
-    }
-
-    /// The (follower, command, guidance) slices of a state, mutable.
-    fn split_mut<'a>(&self, x: &'a mut [f64]) -> (&'a mut [f64], &'a mut [f64], &'a mut [f64]) {
-        let (rest, guidance) = x.split_at_mut(self.guidance.start);
-        let (follower, command) = rest.split_at_mut(self.command.start);
-        (follower, command, guidance)
-    }
-}
-
 /// A running simulation.
 #[derive(Debug)]
 pub struct Simulation {
@@ -203,9 +183,13 @@ pub struct Simulation {
     guidance: GuidanceLaw,
     excitation: Excitation,
     sensor: Sensor,
-    /// The camera's fixed mount, L_CB.
-    camera_from_body: Mat3,
+    /// The camera's fixed mount on the body (or on the gimbal's base), L_CB.
+    camera_mount: Mat3,
+    /// The camera's pan/tilt gimbal, when it rides one.
+    gimbal: Option<Gimbal>,
     estimator: Estimator,
+    /// The runs of frames that did not measure the target.
+    losses: LossLog,
     layout: StateLayout,
     /// What the stages' set-up had to say (estimator gain, observer-gain fallback).
     notes: Vec<String>,
@@ -247,7 +231,14 @@ impl Simulation {
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let estimator = Estimator::new(scenario, sensor.is_continuous());
         let target = TargetMotionModel::from_section(&scenario.target);
-        let camera_from_body = scenario.camera.camera_from_body();
+        let gimbal = (scenario.sensor.mode == SensorMode::Camera
+            && scenario.camera.gimbal.kind == GimbalKind::PanTilt)
+            .then(|| Gimbal::new(&scenario.camera.gimbal));
+        let gimbal_x = gimbal
+            .as_ref()
+            .map_or(vec![], |g| g.initial_state().to_vec());
+        let camera_mount = scenario.camera.camera_from_body();
+        let camera_from_body = mounted_camera(&camera_mount, gimbal.as_ref(), &gimbal_x);
         let geometry = capture_geometry(&target, &follower, &follower_x, 0.0, &camera_from_body);
         // The filters start at the first measurement: r*(0) with a noisy sensor, the true
         // r(0) otherwise (a camera restarts them at its first frame).
@@ -256,8 +247,14 @@ impl Simulation {
         let r_first = sensor
             .continuous_measurement(&geometry.relative_ned_ft, &geometry.camera_from_ned())
             .unwrap_or(r0);
-        let layout = StateLayout::new(follower_x.len(), command::STATE_LEN, guidance.state_len());
+        let layout = StateLayout::new(
+            follower_x.len(),
+            gimbal_x.len(),
+            command::STATE_LEN,
+            guidance.state_len(),
+        );
         let mut state = follower_x;
+        state.extend(gimbal_x);
         state.extend(FormationCommand::initial_state(&geometry.follower_attitude));
         state.extend(guidance.initial_state(&r_first));
         let mut sim = Self {
@@ -275,8 +272,10 @@ impl Simulation {
                 excitation_cap(scenario),
             ),
             sensor,
-            camera_from_body,
+            camera_mount,
+            gimbal,
             estimator,
+            losses: LossLog::default(),
             layout,
             notes,
             stage_times: Cell::new(StageTimes::default()),
@@ -287,7 +286,7 @@ impl Simulation {
             intercept_time_s: None,
         };
         let first = sim.evaluate().guidance.command;
-        let (follower_x, _, _) = sim.layout.split_mut(&mut sim.state);
+        let follower_x = sim.layout.split_mut(&mut sim.state).follower;
         sim.follower.align_with_first_command(follower_x, &first);
         sim.sense()?;
         Ok(sim)
@@ -333,6 +332,11 @@ impl Simulation {
         &self.estimator
     }
 
+    /// The runs of delivered frames that did not measure the target, in order.
+    pub fn loss_episodes(&self) -> Vec<LossEpisode> {
+        self.losses.episodes()
+    }
+
     /// The noisy sensor, in noisy runs.
     pub fn noisy_sensor(&self) -> Option<&NoisySensor> {
         self.sensor.noisy()
@@ -361,14 +365,41 @@ impl Simulation {
 
     /// Where follower and target are now, as a camera frame would see them.
     pub fn capture_geometry(&self) -> CaptureGeometry {
-        let (follower_x, _, _) = self.layout.split(&self.state);
+        let slices = self.layout.split(&self.state);
         capture_geometry(
             &self.target,
             &self.follower,
-            follower_x,
+            slices.follower,
             self.time_s(),
-            &self.camera_from_body,
+            &self.camera_from_body(slices.gimbal),
         )
+    }
+
+    /// The gimbal's angles and command now (gimballed cameras).
+    pub fn gimbal_reading(&self) -> Option<GimbalReading> {
+        let gimbal = self.gimbal.as_ref()?;
+        Some(GimbalReading {
+            angles: GimbalAngles::of(self.layout.split(&self.state).gimbal),
+            command: self.gimbal_command(gimbal, self.time_s(), &self.state),
+        })
+    }
+
+    /// L_CB for a gimbal slice: the gimbal's angles over the fixed mount.
+    fn camera_from_body(&self, gimbal_x: &[f64]) -> Mat3 {
+        mounted_camera(&self.camera_mount, self.gimbal.as_ref(), gimbal_x)
+    }
+
+    /// The gimbal's command at (t, x): toward where the estimator predicts the target is, and
+    /// searching about it once the target has been missing (see [`Gimbal::command`]).
+    fn gimbal_command(&self, gimbal: &Gimbal, t_s: f64, x: &[f64]) -> GimbalAngles {
+        let slices = self.layout.split(x);
+        let position = self.follower.position_ned_ft(slices.follower);
+        let law = self.guidance.estimates(slices.guidance);
+        let line_of_sight = self.estimator.predicted_r(t_s, &position, law);
+        let base_from_ned =
+            self.camera_mount * self.follower.attitude(slices.follower).body_from_ned();
+        let missing_s = self.estimator.last_measured_s().map_or(0.0, |m| t_s - m);
+        gimbal.command(slices.gimbal, line_of_sight, &base_from_ned, missing_s, t_s)
     }
 
     /// The sensors act at the current tick: a camera frame that reaches the guidance goes to
@@ -385,10 +416,13 @@ impl Simulation {
                     source: Box::new(e),
                 })?;
         let started = Instant::now();
-        let (follower_x, _, _) = self.layout.split(&self.state);
+        let follower_x = self.layout.split(&self.state).follower;
         let velocity = self.follower.track_ned_fps(follower_x);
         let first = match delivered {
-            Some(record) => self.estimator.deliver(&record, &velocity),
+            Some(record) => {
+                self.losses.record(record.t_s, record.r_measured.is_some());
+                self.estimator.deliver(&record, &velocity)
+            }
             None => {
                 self.sample_continuous(&geometry, &velocity);
                 false
@@ -398,7 +432,7 @@ impl Simulation {
             && let GuidanceMeasurement::Now { r: Some(r0), .. } =
                 self.guidance_measurement(t_s, &self.state)
         {
-            let (_, _, guidance_x) = self.layout.split_mut(&mut self.state);
+            let guidance_x = self.layout.split_mut(&mut self.state).guidance;
             self.guidance.start_at(guidance_x, &r0);
         }
         let mut times = self.stage_times.get();
@@ -428,18 +462,18 @@ impl Simulation {
 
     /// The measurement the estimator stage gives the guidance at (t, x).
     fn guidance_measurement(&self, t_s: f64, x: &[f64]) -> GuidanceMeasurement {
-        let (follower_x, _, guidance_x) = self.layout.split(x);
-        let position = self.follower.position_ned_ft(follower_x);
+        let slices = self.layout.split(x);
+        let position = self.follower.position_ned_ft(slices.follower);
         self.estimator.guidance_measurement(
             t_s,
             &position,
-            self.guidance.estimates(guidance_x),
+            self.guidance.estimates(slices.guidance),
             || {
                 let relative = self.target.position_ned_ft(t_s) - position;
-                let body_from_ned =
-                    self.camera_from_body * self.follower.attitude(follower_x).body_from_ned();
+                let camera_from_ned = self.camera_from_body(slices.gimbal)
+                    * self.follower.attitude(slices.follower).body_from_ned();
                 self.sensor
-                    .continuous_measurement(&relative, &body_from_ned)
+                    .continuous_measurement(&relative, &camera_from_ned)
             },
         )
     }
@@ -447,7 +481,7 @@ impl Simulation {
     /// The estimates b̂ and d̂ the guidance flies on at (t, x): the adaptive law's own, or the
     /// Kalman filter's (`None` before its first measurement).
     fn estimates(&self, x: &[f64], measurement: &GuidanceMeasurement) -> Option<LawEstimates> {
-        let (_, _, guidance_x) = self.layout.split(x);
+        let guidance_x = self.layout.split(x).guidance;
         self.guidance.estimates(guidance_x).or(match measurement {
             GuidanceMeasurement::Now {
                 estimate: Some(e), ..
@@ -465,7 +499,7 @@ impl Simulation {
     /// frame holds). With the Kalman estimate the track leads by the frame's lag, d̂ + â τ, so that
     /// the frame does not trail a steadily turning target by its turn rate times τ.
     fn command_input(&self, x: &[f64], measurement: &GuidanceMeasurement) -> CommandInput {
-        let (follower_x, _, _) = self.layout.split(x);
+        let follower_x = self.layout.split(x).follower;
         let g = &self.scenario.guidance;
         let heading_gate_rad = g.command_target_heading_sigma_deg.to_radians();
         let track_ned = match (measurement, self.estimator.tracker()) {
@@ -503,7 +537,8 @@ impl Simulation {
         r_measured: Option<Vec3>,
         estimate: Option<TargetEstimate>,
     ) -> GuidanceInput {
-        let (follower_x, command_x, _) = self.layout.split(x);
+        let slices = self.layout.split(x);
+        let (follower_x, command_x) = (slices.follower, slices.command);
         let (command_ned_ft, command_rate_ned_fps) = self.command.command(command_x, command);
         GuidanceInput {
             r_measured,
@@ -520,22 +555,31 @@ impl Simulation {
     /// three stages are timed apart (see [`StageTimes`]).
     fn derivative(&self, t_s: f64, x: &[f64], dx: &mut [f64]) -> Evaluation {
         let started = Instant::now();
-        let (follower_x, command_x, guidance_x) = self.layout.split(x);
-        let (follower_dx, command_dx, guidance_dx) = self.layout.split_mut(dx);
+        let x_of = self.layout.split(x);
+        let dx_of = self.layout.split_mut(dx);
         let measurement = self.guidance_measurement(t_s, x);
         let command = self.command_input(x, &measurement);
-        self.command.derivative(command_x, &command, command_dx);
+        self.command
+            .derivative(x_of.command, &command, dx_of.command);
+        if let Some(gimbal) = &self.gimbal {
+            let pointing = self.gimbal_command(gimbal, t_s, x);
+            gimbal.derivative(x_of.gimbal, &pointing, dx_of.gimbal);
+        }
         let out = match measurement {
-            GuidanceMeasurement::NotYet => self.guidance.idle(guidance_x, guidance_dx),
+            GuidanceMeasurement::NotYet => self.guidance.idle(x_of.guidance, dx_of.guidance),
             GuidanceMeasurement::Now { r, estimate } => {
                 let input = self.guidance_input(t_s, x, &command, r, estimate);
-                self.guidance.derivative(guidance_x, &input, guidance_dx)
+                self.guidance
+                    .derivative(x_of.guidance, &input, dx_of.guidance)
             }
         };
         let guided = Instant::now();
-        let actuation = self.follower.control(follower_x, &out.command, follower_dx);
+        let actuation = self
+            .follower
+            .control(x_of.follower, &out.command, dx_of.follower);
         let controlled = Instant::now();
-        self.follower.plant(follower_x, &actuation, follower_dx);
+        self.follower
+            .plant(x_of.follower, &actuation, dx_of.follower);
         let mut times = self.stage_times.get();
         times.guidance += guided - started;
         times.control += controlled - guided;
@@ -563,7 +607,8 @@ impl Simulation {
             guidance: out,
             actuation,
         } = self.derivative(t_s, &self.state, &mut dx);
-        let (follower_x, command_x, _) = self.layout.split(&self.state);
+        let slices = self.layout.split(&self.state);
+        let (follower_x, command_x) = (slices.follower, slices.command);
         let follower = self.follower.position_ned_ft(follower_x);
         let target = self.target.state(t_s);
         let measurement = self.guidance_measurement(t_s, &self.state);
@@ -600,6 +645,7 @@ impl Simulation {
                 .map(|t| t.estimate_at(t_s, &follower)),
             guidance: out,
             frame: self.camera().and_then(CameraSensor::last_record),
+            gimbal: self.gimbal_reading(),
             aircraft: actuation.aircraft().copied(),
         }
     }
@@ -612,7 +658,7 @@ impl Simulation {
         let integrate_started = Instant::now();
         let t_s = self.time_s();
         let dt_s = self.scenario.run.dt_s;
-        let (follower_x, _, _) = self.layout.split(&self.state);
+        let follower_x = self.layout.split(&self.state).follower;
         self.follower.begin_step(follower_x, dt_s);
         let mut state = std::mem::take(&mut self.state);
         let mut rk4 = std::mem::replace(&mut self.rk4, Rk4::new(0));
@@ -620,10 +666,13 @@ impl Simulation {
             self.derivative(t, x, dx);
         });
         self.rk4 = rk4;
-        let (follower_x, command_x, guidance_x) = self.layout.split_mut(&mut state);
-        self.follower.normalize(follower_x);
-        FormationCommand::normalize(command_x);
-        self.guidance.enforce_bounds(guidance_x);
+        let slices = self.layout.split_mut(&mut state);
+        self.follower.normalize(slices.follower);
+        if let Some(gimbal) = &self.gimbal {
+            gimbal.normalize(slices.gimbal);
+        }
+        FormationCommand::normalize(slices.command);
+        self.guidance.enforce_bounds(slices.guidance);
         self.state = state;
         self.tick += 1;
         let outcome = self.after_step();
@@ -646,7 +695,7 @@ impl Simulation {
                 what: format!("state element {i} is {}", self.state[i]),
             });
         }
-        let (follower_x, _, _) = self.layout.split(&self.state);
+        let follower_x = self.layout.split(&self.state).follower;
         let range_ft = (self.target.position_ned_ft(t_end_s)
             - self.follower.position_ned_ft(follower_x))
         .norm();
@@ -711,6 +760,14 @@ fn excitation_cap(scenario: &Scenario) -> Option<f64> {
         ExcitationUnits::Ft => cap_ft,
         ExcitationUnits::Scaled => cap_ft / scenario.guidance.b0_ft,
     })
+}
+
+/// L_CB of a camera on its fixed mount, or on a gimbal (its angles in `gimbal_x`) over it.
+fn mounted_camera(mount: &Mat3, gimbal: Option<&Gimbal>, gimbal_x: &[f64]) -> Mat3 {
+    match gimbal {
+        Some(_) => GimbalAngles::of(gimbal_x).camera_from_body() * mount,
+        None => *mount,
+    }
 }
 
 /// Where follower and target are at `t_s` for a follower slice.

@@ -1,0 +1,248 @@
+//! The camera's pan/tilt gimbal (seed 8.2 "Field of View", SPEC §10).
+//!
+//! Camera frame C: pan ψ_g about the body z axis (positive right), then tilt θ_g about the
+//! panned y axis (positive up, like pitch): L_CB is the §0 DCM at (0, θ_g, ψ_g); with both zero
+//! the camera looks along the body x axis. The angles are measured (encoders), so the sensing
+//! transform uses L_CB L_BE of the frame's capture.
+//!
+//! Each axis is a first-order servo, θ̇ = (θ_c - θ)/τ limited to ±`rate_limit`, held inside its
+//! angle limits. The pointing law aims the camera at a line of sight given in NED: the
+//! estimator's prediction of where the target is now (the latest measured frame brought
+//! forward by the follower's own motion, or the Kalman filter's r̂), turned into body axes with
+//! the follower's attitude now. So the body's rotation since the frame is fed forward, and
+//! while frames measure the target the camera keeps it near the image centre; while none does
+//! it keeps pointing where the estimator predicts, and once the target has been missing for
+//! `search_after_s` it circles about that prediction with a radius growing at
+//! `search_growth_dps` up to `search_max_deg` (one circle every `search_period_s`).
+
+use crate::frames::{EulerAngles, Mat3, Vec3, wrap_angle_rad};
+use crate::scenario::GimbalSection;
+
+/// Length of the gimbal's state: `[ψ_g, θ_g]`.
+pub const GIMBAL_STATE_LEN: usize = 2;
+
+/// The gimbal's angles, rad.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GimbalAngles {
+    /// Pan ψ_g, positive right.
+    pub pan_rad: f64,
+    /// Tilt θ_g, positive up.
+    pub tilt_rad: f64,
+}
+
+impl GimbalAngles {
+    /// The angles of a state slice.
+    pub fn of(x: &[f64]) -> Self {
+        Self {
+            pan_rad: x[0],
+            tilt_rad: x[1],
+        }
+    }
+
+    /// L_CB: body to camera axes.
+    pub fn camera_from_body(&self) -> Mat3 {
+        EulerAngles::new(0.0, self.tilt_rad, self.pan_rad).body_from_ned()
+    }
+
+    /// The angles that point the camera along `direction_body` (any length).
+    pub fn pointing_along(direction_body: &Vec3) -> Self {
+        Self {
+            pan_rad: direction_body.y.atan2(direction_body.x),
+            tilt_rad: (-direction_body.z).atan2(direction_body.x.hypot(direction_body.y)),
+        }
+    }
+}
+
+/// A two-axis gimbal with its servos and pointing law.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gimbal {
+    pan_limits_rad: [f64; 2],
+    tilt_limits_rad: [f64; 2],
+    rate_limit_rps: f64,
+    time_constant_s: f64,
+    search_after_s: f64,
+    search_growth_rps: f64,
+    search_max_rad: f64,
+    search_omega_rps: f64,
+}
+
+impl Gimbal {
+    /// The gimbal a `[camera.gimbal]` section describes.
+    pub fn new(section: &GimbalSection) -> Self {
+        let radians = |deg: [f64; 2]| deg.map(f64::to_radians);
+        Self {
+            pan_limits_rad: radians(section.pan_limits_deg),
+            tilt_limits_rad: radians(section.tilt_limits_deg),
+            rate_limit_rps: section.rate_limit_dps.to_radians(),
+            time_constant_s: section.time_constant_s,
+            search_after_s: section.search_after_s,
+            search_growth_rps: section.search_growth_dps.to_radians(),
+            search_max_rad: section.search_max_deg.to_radians(),
+            search_omega_rps: std::f64::consts::TAU / section.search_period_s,
+        }
+    }
+
+    /// At the start the camera looks ahead (or as near as its limits allow).
+    pub fn initial_state(&self) -> [f64; GIMBAL_STATE_LEN] {
+        self.clamped(&GimbalAngles::default())
+    }
+
+    /// The commanded angles at `t_s`: along the predicted line of sight `line_of_sight_ned`
+    /// (none: hold the present angles) for a follower whose L_BE is `body_from_ned`, plus the
+    /// search circle when the target has been missing for `missing_s`; inside the limits.
+    pub fn command(
+        &self,
+        x: &[f64],
+        line_of_sight_ned: Option<Vec3>,
+        body_from_ned: &Mat3,
+        missing_s: f64,
+        t_s: f64,
+    ) -> GimbalAngles {
+        let now = GimbalAngles::of(x);
+        let Some(los) = line_of_sight_ned else {
+            return now;
+        };
+        let mut angles = GimbalAngles::pointing_along(&(body_from_ned * los));
+        // The pan nearest the present one: a target crossing behind the camera's pan range
+        // holds the pan at the limit on its side instead of swinging the long way round.
+        angles.pan_rad = now.pan_rad + wrap_angle_rad(angles.pan_rad - now.pan_rad);
+        let searching_s = missing_s - self.search_after_s;
+        if searching_s > 0.0 {
+            let radius = (self.search_growth_rps * searching_s).min(self.search_max_rad);
+            let (s, c) = (self.search_omega_rps * t_s).sin_cos();
+            angles.pan_rad += radius * c;
+            angles.tilt_rad += radius * s;
+        }
+        let [pan_rad, tilt_rad] = self.clamped(&angles);
+        GimbalAngles { pan_rad, tilt_rad }
+    }
+
+    /// The servos' rates toward `command`: (θ_c - θ)/τ within ±rate, zero at a limit.
+    pub fn derivative(&self, x: &[f64], command: &GimbalAngles, dx: &mut [f64]) {
+        let now = GimbalAngles::of(x);
+        for (i, (angle, commanded, [min, max])) in [
+            (now.pan_rad, command.pan_rad, self.pan_limits_rad),
+            (now.tilt_rad, command.tilt_rad, self.tilt_limits_rad),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let rate = ((commanded - angle) / self.time_constant_s)
+                .clamp(-self.rate_limit_rps, self.rate_limit_rps);
+            let blocked = (angle >= max && rate > 0.0) || (angle <= min && rate < 0.0);
+            dx[i] = if blocked { 0.0 } else { rate };
+        }
+    }
+
+    /// Holds the angles inside their limits after a step.
+    pub fn normalize(&self, x: &mut [f64]) {
+        let clamped = self.clamped(&GimbalAngles::of(x));
+        x.copy_from_slice(&clamped);
+    }
+
+    fn clamped(&self, a: &GimbalAngles) -> [f64; GIMBAL_STATE_LEN] {
+        let [pan_min, pan_max] = self.pan_limits_rad;
+        let [tilt_min, tilt_max] = self.tilt_limits_rad;
+        [
+            a.pan_rad.clamp(pan_min, pan_max),
+            a.tilt_rad.clamp(tilt_min, tilt_max),
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sensing::{image_from_relative_position, scaled_relative_position};
+    use proptest::prelude::*;
+
+    fn gimbal() -> Gimbal {
+        Gimbal::new(&GimbalSection::default())
+    }
+
+    proptest! {
+        /// SPEC §1's round trip through a gimbal: a point projected with L_CB L_BE and read
+        /// back with the same rotation gives R/b, for any attitude and gimbal angles that keep
+        /// the point in front of the camera.
+        #[test]
+        fn sensing_round_trip_through_the_gimbal(
+            phi in -1.0f64..1.0, theta in -0.8f64..0.8, psi in -3.0f64..3.0,
+            pan in -2.5f64..2.5, tilt in -1.4f64..0.5,
+            bearing in -0.5f64..0.5, elevation in -0.4f64..0.4, range in 5.0f64..500.0,
+        ) {
+            let camera_from_body = GimbalAngles { pan_rad: pan, tilt_rad: tilt }.camera_from_body();
+            let camera_from_ned = camera_from_body * EulerAngles::new(phi, theta, psi).body_from_ned();
+            let p_camera = crate::sensing::line_of_sight_body(bearing, elevation) * range;
+            let rel_ned = camera_from_ned.transpose() * p_camera;
+            let m = image_from_relative_position(&rel_ned, &camera_from_ned, 8.0, 554.0).expect("ahead");
+            let r = scaled_relative_position(&m, 554.0, &camera_from_ned);
+            prop_assert!((r - rel_ned / 8.0).norm() <= 1e-9 * rel_ned.norm());
+        }
+    }
+
+    /// Pointing along a direction centres it: the direction is the camera's x axis.
+    #[test]
+    fn pointing_centres_the_direction() {
+        let u_body = Vec3::new(30.0, 20.0, -10.0);
+        let angles = GimbalAngles::pointing_along(&u_body);
+        let in_camera = angles.camera_from_body() * u_body;
+        assert!(in_camera.y.abs() < 1e-12 && in_camera.z.abs() < 1e-12 && in_camera.x > 0.0);
+        assert!(
+            angles.pan_rad > 0.0 && angles.tilt_rad > 0.0,
+            "right and up"
+        );
+    }
+
+    /// The servo is rate limited and stops at its limits; the command stays inside them.
+    #[test]
+    fn servo_rate_and_angle_limits() {
+        let g = gimbal();
+        let mut dx = [0.0; 2];
+        let far = GimbalAngles {
+            pan_rad: 3.0,
+            tilt_rad: -3.0,
+        };
+        g.derivative(&[0.0, 0.0], &far, &mut dx);
+        let rate = GimbalSection::default().rate_limit_dps.to_radians();
+        assert_eq!(dx, [rate, -rate]);
+        let pan_max = GimbalSection::default().pan_limits_deg[1].to_radians();
+        g.derivative(&[pan_max, 0.0], &far, &mut dx);
+        assert_eq!(dx[0], 0.0);
+        let behind = g.command(
+            &[0.0, 0.0],
+            Some(Vec3::new(-1.0, -0.01, 0.0)),
+            &Mat3::identity(),
+            0.0,
+            0.0,
+        );
+        assert!(behind.pan_rad >= -pan_max - 1e-12);
+        // Behind on the right while panned right: hold the right limit, not the left one.
+        let right = g.command(
+            &[2.9, 0.0],
+            Some(Vec3::new(-1.0, -0.01, 0.0)),
+            &Mat3::identity(),
+            0.0,
+            0.0,
+        );
+        assert_eq!(right.pan_rad, pan_max);
+    }
+
+    /// Missing the target, the camera circles about the prediction, wider with time, up to
+    /// the largest radius.
+    #[test]
+    fn search_widens_about_the_prediction() {
+        let g = gimbal();
+        let section = GimbalSection::default();
+        let los = Some(Vec3::new(1.0, 0.0, 0.0));
+        let offset = |missing: f64, t: f64| {
+            let a = g.command(&[0.0, 0.0], los, &Mat3::identity(), missing, t);
+            a.pan_rad.hypot(a.tilt_rad)
+        };
+        assert_eq!(offset(0.0, 0.3), 0.0);
+        let early = offset(section.search_after_s + 0.5, 0.3);
+        let later = offset(section.search_after_s + 1.0, 0.3);
+        assert!(later > early && early > 0.0, "{early} {later}");
+        let widest = offset(section.search_after_s + 1000.0, 0.3);
+        assert!((widest - section.search_max_deg.to_radians()).abs() < 1e-9);
+    }
+}
