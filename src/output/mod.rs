@@ -8,6 +8,7 @@ pub mod plots;
 pub mod summary;
 pub mod telemetry;
 
+use crate::render::GpuContext;
 use crate::scenario::Scenario;
 use crate::sim::{SimError, Simulation, Snapshot, StepOutcome};
 use std::path::{Path, PathBuf};
@@ -55,6 +56,18 @@ pub fn run_to_directory(
     scenario: &Scenario,
     name: &str,
     out_dir: &Path,
+    progress: impl FnMut(f64),
+) -> Result<RunReport, RunError> {
+    run_to_directory_on(scenario, name, out_dir, None, progress)
+}
+
+/// [`run_to_directory`], with a camera rendering on `gpu` when given (a device shared by the
+/// runs of a sweep) and on a device of its own otherwise.
+pub fn run_to_directory_on(
+    scenario: &Scenario,
+    name: &str,
+    out_dir: &Path,
+    gpu: Option<&GpuContext>,
     mut progress: impl FnMut(f64),
 ) -> Result<RunReport, RunError> {
     std::fs::create_dir_all(out_dir).map_err(io_error(out_dir))?;
@@ -65,7 +78,7 @@ pub fn run_to_directory(
         TelemetryWriter::create(&telemetry_path).map_err(io_error(&telemetry_path))?;
 
     let started = Instant::now();
-    let mut sim = Simulation::new(scenario)
+    let mut sim = Simulation::on_gpu(scenario, gpu)
         .map_err(|e| RunError::Sim(Box::new(e), telemetry_path.clone()))?;
     let mut logged: Vec<Snapshot> = Vec::new();
     let log_every = u64::from(scenario.run.log_every);

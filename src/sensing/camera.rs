@@ -240,12 +240,17 @@ pub fn load_target_mesh(scenario: &Scenario) -> Result<TargetMesh, SensorError> 
 impl CameraSensor {
     /// Sets up GPU, renderer, mesh and image pipeline for a camera scenario.
     pub fn new(scenario: &Scenario) -> Result<Self, SensorError> {
+        Self::on_gpu(scenario, &GpuContext::new()?)
+    }
+
+    /// Sets up renderer, mesh and image pipeline on an open GPU device (e.g. one shared by
+    /// the runs of a sweep).
+    pub fn on_gpu(scenario: &Scenario, gpu: &GpuContext) -> Result<Self, SensorError> {
         let camera = &scenario.camera;
         let mesh = load_target_mesh(scenario)?;
-        let gpu = GpuContext::new()?;
         let adapter = gpu.description();
         let settings = render_settings(camera, scenario.run.seed);
-        let renderer = Renderer::new(&gpu, settings, &mesh)?;
+        let renderer = Renderer::new(gpu, settings, &mesh)?;
         let mut vision_config = VisionConfig {
             min_pixel_count: camera.min_pixel_count as usize,
             ..VisionConfig::default()

@@ -24,6 +24,7 @@ pub use transform::{
 };
 
 use crate::frames::{Mat3, Vec3};
+use crate::render::GpuContext;
 use crate::scenario::{Scenario, SensorMode};
 
 /// The sensor of a run.
@@ -42,14 +43,22 @@ pub enum Sensor {
 
 impl Sensor {
     /// The sensor a scenario's `[sensor]` describes; `command_norm_ft` is the length of the
-    /// formation command a noisy sensor may refer its SNR to.
-    pub fn new(scenario: &Scenario, command_norm_ft: f64) -> Result<Self, SensorError> {
+    /// formation command a noisy sensor may refer its SNR to. A camera renders on `gpu` when
+    /// given, on a device of its own otherwise.
+    pub fn new(
+        scenario: &Scenario,
+        command_norm_ft: f64,
+        gpu: Option<&GpuContext>,
+    ) -> Result<Self, SensorError> {
         Ok(match scenario.sensor.mode {
             SensorMode::Perfect => Self::Perfect {
                 size_ft: scenario.target.size_ft,
             },
             SensorMode::Noisy => Self::Noisy(Box::new(NoisySensor::new(scenario, command_norm_ft))),
-            SensorMode::Camera => Self::Camera(Box::new(CameraSensor::new(scenario)?)),
+            SensorMode::Camera => Self::Camera(Box::new(match gpu {
+                Some(gpu) => CameraSensor::on_gpu(scenario, gpu)?,
+                None => CameraSensor::new(scenario)?,
+            })),
         })
     }
 

@@ -29,6 +29,7 @@ use crate::guidance::excitation::Excitation;
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
 use crate::guidance::signals::{CommandKind, FollowerCommand, GuidanceInput, GuidanceOutput};
 use crate::integrate::Rk4;
+use crate::render::GpuContext;
 use crate::scenario::{
     ExcitationUnits, FollowerModel, GimbalKind, GuidanceLawKind, Mission, Scenario, SensorMode,
 };
@@ -212,6 +213,12 @@ impl Simulation {
     /// the guidance's measurement comes from (a continuous sensor or held camera frames).
     /// The sensors act for tick 0 before it returns.
     pub fn new(scenario: &Scenario) -> Result<Self, SimError> {
+        Self::on_gpu(scenario, None)
+    }
+
+    /// [`Self::new`], with a camera rendering on `gpu` when given (a device shared by the
+    /// runs of a sweep) and on a device of its own otherwise.
+    pub fn on_gpu(scenario: &Scenario, gpu: Option<&GpuContext>) -> Result<Self, SimError> {
         let g = &scenario.guidance;
         let command_kind = match g.law {
             GuidanceLawKind::Velocity => CommandKind::Velocity,
@@ -227,7 +234,7 @@ impl Simulation {
         let compensate = scenario.follower.model == FollowerModel::Aircraft;
         let kind = scenario.estimator.kind;
         let (guidance, notes) = GuidanceLaw::new(g, &scenario.acceleration, kind, compensate)?;
-        let mut sensor = Sensor::new(scenario, g.command_length_ft())
+        let mut sensor = Sensor::new(scenario, g.command_length_ft(), gpu)
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let estimator = Estimator::new(scenario, sensor.is_continuous());
         let target = TargetMotionModel::from_section(&scenario.target);
