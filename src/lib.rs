@@ -28,7 +28,8 @@
 //!
 //! Modules, in the order data flows (each imports only those before it): [`frames`],
 //! [`state_block`], [`linalg`], [`integrate`], [`scenario`], [`world`], [`render`], [`vision`],
-//! [`sensing`], [`estimation`], [`guidance`], [`control`], [`follower`], [`sim`], [`output`].
+//! [`sensing`], [`estimation`], [`guidance`], [`control`], [`follower`], [`sim`], [`output`],
+//! [`study`] (sweeps of many runs, `wingman sweep`).
 #![warn(missing_docs)]
 
 pub mod control;
@@ -44,6 +45,7 @@ pub mod scenario;
 pub mod sensing;
 pub mod sim;
 pub mod state_block;
+pub mod study;
 
 pub mod vision;
 pub mod world;

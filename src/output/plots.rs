@@ -96,7 +96,7 @@ const FONT_PATHS: [&str; 4] = [
 ];
 
 /// Registers a system font with plotters once; false when none was found.
-fn font_available() -> bool {
+pub fn font_available() -> bool {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     *REGISTERED.get_or_init(|| {
         FONT_PATHS.iter().any(|path| {
