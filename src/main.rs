@@ -1,13 +1,15 @@
 //! `wingman` command line: parse, call the library, map errors to exit codes
-//! (0 success, 2 bad scenario or argument, 1 failed run).
+//! (0 success, 2 bad scenario, study file or argument, 1 failed run or write).
 
 use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
+use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use wingman::output::frame_images::render_frame_at;
 use wingman::output::{RunError, run_to_directory};
 use wingman::scenario::Scenario;
+use wingman::study::{Plan, Progress, Shard, StudyError, SweepOptions, merge_shards, run_sweep};
 
 #[derive(Parser)]
 #[command(
@@ -51,6 +53,41 @@ enum Command {
         #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
         overrides: Vec<String>,
     },
+    /// Run a study (many runs over axes of scenario keys, or the apparent-size study) and
+    /// write one folder per case, results.csv and plots; `sweep merge` combines shards.
+    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+    Sweep {
+        #[command(subcommand)]
+        merge: Option<SweepCommand>,
+        /// Study file (TOML).
+        #[arg(required = true)]
+        study: Option<PathBuf>,
+        /// Output directory (default: runs/<study stem>, or runs/<study stem>-shard-I-of-N).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Cases run at once (default: the number of cores).
+        #[arg(long)]
+        jobs: Option<NonZeroUsize>,
+        /// Run only shard I of N (0 <= I < N): the cases whose index is I modulo N.
+        #[arg(long, value_name = "I/N")]
+        shard: Option<Shard>,
+        /// No progress output.
+        #[arg(long)]
+        quiet: bool,
+    },
+}
+
+#[derive(Subcommand)]
+enum SweepCommand {
+    /// Combine the folders of a sweep's shards into the folder one machine would write.
+    Merge {
+        /// Shard folders (each written by `wingman sweep STUDY --shard I/N`).
+        #[arg(required = true)]
+        shards: Vec<PathBuf>,
+        /// The merged sweep's folder.
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 fn stem(path: &Path) -> String {
@@ -74,6 +111,99 @@ fn main() -> ExitCode {
             out,
             overrides,
         } => render(&scenario, at_s, out, &overrides),
+        Command::Sweep {
+            merge: Some(SweepCommand::Merge { shards, out }),
+            ..
+        } => merge(&shards, &out),
+        Command::Sweep {
+            study,
+            out,
+            jobs,
+            shard,
+            quiet,
+            ..
+        } => match study {
+            Some(study) => sweep(&study, out, jobs, shard, quiet),
+            None => ExitCode::from(2),
+        },
+    }
+}
+
+/// Exit code 2 for a bad study file or folder, 1 for a failure to write.
+fn study_failure(e: &StudyError) -> ExitCode {
+    eprintln!("error: {e}");
+    ExitCode::from(if e.is_bad_input() { 2 } else { 1 })
+}
+
+fn sweep(
+    path: &Path,
+    out: Option<PathBuf>,
+    jobs: Option<NonZeroUsize>,
+    shard: Option<Shard>,
+    quiet: bool,
+) -> ExitCode {
+    let plan = match Plan::load(path) {
+        Ok(plan) => plan,
+        Err(e) => return study_failure(&e),
+    };
+    let name = stem(path);
+    let out_dir = out.unwrap_or_else(|| match shard {
+        Some(s) => PathBuf::from("runs").join(format!("{name}-shard-{}-of-{}", s.index, s.count)),
+        None => PathBuf::from("runs").join(&name),
+    });
+    let jobs = jobs
+        .or_else(|| std::thread::available_parallelism().ok())
+        .map_or(1, NonZeroUsize::get);
+    let progress = match (quiet, std::io::stderr().is_terminal()) {
+        (true, _) => Progress::Quiet,
+        (false, true) => Progress::Bar,
+        (false, false) => Progress::Lines,
+    };
+    let started = std::time::Instant::now();
+    let options = SweepOptions {
+        out_dir: out_dir.clone(),
+        jobs,
+        shard,
+        progress,
+    };
+    match run_sweep(&plan, &options) {
+        Ok(report) => {
+            for warning in &report.warnings {
+                eprintln!("warning: {warning}");
+            }
+            if !quiet {
+                eprintln!(
+                    "{name}: {} cases ({} complete before): {} completed or intercepted, {} diverged or failed, {} lost the target; {:.1} s on {jobs} worker(s); results in {}",
+                    report.cases,
+                    report.skipped,
+                    report.completed,
+                    report.failed,
+                    report.lost_target,
+                    started.elapsed().as_secs_f64(),
+                    out_dir.join("results.csv").display()
+                );
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => study_failure(&e),
+    }
+}
+
+fn merge(shards: &[PathBuf], out: &Path) -> ExitCode {
+    match merge_shards(shards, out) {
+        Ok(report) => {
+            for warning in &report.warnings {
+                eprintln!("warning: {warning}");
+            }
+            eprintln!(
+                "merged {} shard folder(s): {} cases; results in {}",
+                shards.len(),
+                report.cases,
+                out.join("results.csv").display()
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => study_failure(&e),
     }
 }
 

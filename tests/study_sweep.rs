@@ -1,0 +1,295 @@
+//! `wingman sweep` as a user runs it, on a small study of the seed's Chapter 4 formation (a
+//! kinematic follower and perfect measurements: fast and deterministic). Invariants:
+//! - the study run whole and as 3 shards merged give the same `results.csv`, but for the
+//!   wall-clock columns (`results::is_timing_column`), which are blanked before comparing;
+//! - a sweep killed midway and run again runs only the cases not complete (their records are
+//!   left byte for byte) and ends with the `results.csv` of an uninterrupted sweep;
+//! - a bad value of an axis is reported as a bad study file, naming the file, the axis and
+//!   the value, with exit code 2, before anything runs (no output folder);
+//! - a case that cannot run is a row with status `failed`, and the sweep goes on.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+use wingman::study::results::is_timing_column;
+
+fn wingman() -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_wingman"));
+    command.env("NODEVICE_SELECT", "1");
+    command
+}
+
+/// Writes a study of `scenarios/seed_ch4_formation.toml` into `dir` and returns its path.
+fn write_study(dir: &Path, name: &str, body: &str) -> PathBuf {
+    let scenario = common::repo_root().join("scenarios/seed_ch4_formation.toml");
+    let text = format!(
+        "[study]\nscenario = \"{}\"\n{body}",
+        scenario.display().to_string().replace('\\', "/")
+    );
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("study written");
+    path
+}
+
+/// 3 x 2 gains, 2 replicates: 12 cases of 20 s.
+const SMALL: &str = "replicates = 2
+set = [\"run.duration_s=20\", \"output.plots=false\"]
+
+[[axis]]
+key = \"guidance.k\"
+values = [2.0, 3.5, 5.0]
+
+[[axis]]
+key = \"guidance.gamma_d\"
+range = { from = 8, to = 12, step = 4 }
+";
+
+fn sweep(study: &Path, out: &Path, extra: &[&str]) -> Output {
+    let output = wingman()
+        .arg("sweep")
+        .arg(study)
+        .arg("--out")
+        .arg(out)
+        .args(["--quiet", "--jobs", "2"])
+        .args(extra)
+        .output()
+        .expect("wingman runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    output
+}
+
+/// `results.csv` as rows of cells, with the wall-clock columns blanked.
+fn results_without_timing(dir: &Path) -> Vec<Vec<String>> {
+    let mut reader = csv::Reader::from_path(dir.join("results.csv")).expect("results.csv");
+    let header: Vec<String> = reader
+        .headers()
+        .expect("header")
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let mut rows = vec![header.clone()];
+    for record in reader.records() {
+        let record = record.expect("row");
+        rows.push(
+            record
+                .iter()
+                .zip(&header)
+                .map(|(cell, name)| if is_timing_column(name) { "" } else { cell }.to_string())
+                .collect(),
+        );
+    }
+    rows
+}
+
+fn file_names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .map(|entries| {
+            entries
+                .filter_map(Result::ok)
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    names.sort();
+    names
+}
+
+#[test]
+fn three_shards_merged_equal_the_whole_sweep() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let study = write_study(dir.path(), "small.toml", SMALL);
+    let whole = dir.path().join("whole");
+    sweep(&study, &whole, &[]);
+    let shards: Vec<PathBuf> = (0..3)
+        .map(|i| {
+            let out = dir.path().join(format!("shard{i}"));
+            sweep(&study, &out, &["--shard", &format!("{i}/3")]);
+            out
+        })
+        .collect();
+    for (i, shard) in shards.iter().enumerate() {
+        // Cases are dealt out in turn: shard i holds cases i, i + 3, i + 6, i + 9.
+        let rows = results_without_timing(shard);
+        let cases: Vec<&str> = rows[1..].iter().map(|r| r[0].as_str()).collect();
+        let expected: Vec<String> = (0..4).map(|k| (i + 3 * k).to_string()).collect();
+        assert_eq!(cases, expected);
+    }
+    let merged = dir.path().join("merged");
+    let output = wingman()
+        .args(["sweep", "merge"])
+        .args(&shards)
+        .arg("--out")
+        .arg(&merged)
+        .output()
+        .expect("merge runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+
+    let expected = results_without_timing(&whole);
+    assert_eq!(expected.len(), 13, "a header and 12 cases");
+    assert!(expected[0].iter().any(|c| c == "guidance.k"));
+    assert!(expected[0].iter().any(|c| c == "run.seed"));
+    assert!(
+        expected[1..]
+            .iter()
+            .all(|row| row[expected[0].iter().position(|c| c == "status").unwrap()] == "completed")
+    );
+    assert_eq!(results_without_timing(&merged), expected);
+    assert_eq!(
+        file_names(&merged.join("cases")),
+        file_names(&whole.join("cases"))
+    );
+    assert_eq!(
+        file_names(&merged.join("plots")),
+        file_names(&whole.join("plots"))
+    );
+    assert!(file_names(&whole.join("plots")).contains(&"heatmap_b_hat_final_ft.png".to_string()));
+}
+
+/// Counts the cases with a record in a sweep folder.
+fn complete_cases(out: &Path) -> Vec<String> {
+    file_names(&out.join("cases"))
+        .into_iter()
+        .filter(|case| out.join("cases").join(case).join("case.json").exists())
+        .collect()
+}
+
+#[test]
+fn a_killed_sweep_resumes_with_the_missing_cases_only() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    // 140 s runs (about 0.15-0.4 s each), one at a time: the kill lands midway.
+    let body = SMALL.replace("run.duration_s=20", "run.duration_s=140");
+    let study = write_study(dir.path(), "resume.toml", &body);
+    let out = dir.path().join("killed");
+    let mut child = wingman()
+        .arg("sweep")
+        .arg(&study)
+        .arg("--out")
+        .arg(&out)
+        .args(["--quiet", "--jobs", "1"])
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("wingman starts");
+    let started = Instant::now();
+    while complete_cases(&out).len() < 3 && started.elapsed() < Duration::from_secs(120) {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().expect("killed");
+    child.wait().expect("reaped");
+    let before = complete_cases(&out);
+    assert!(
+        (3..12).contains(&before.len()),
+        "the kill should land midway: {} cases complete",
+        before.len()
+    );
+    assert!(!out.join("results.csv").exists());
+    let records_before: Vec<Vec<u8>> = before
+        .iter()
+        .map(|case| std::fs::read(out.join("cases").join(case).join("case.json")).unwrap())
+        .collect();
+
+    let output = wingman()
+        .arg("sweep")
+        .arg(&study)
+        .arg("--out")
+        .arg(&out)
+        .args(["--jobs", "2"])
+        .output()
+        .expect("wingman runs");
+    assert!(output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains(&format!("{} of 12 cases already complete", before.len())),
+        "{stderr}"
+    );
+    // The complete cases were not run again: their records (wall times included) are as
+    // they were.
+    for (case, record) in before.iter().zip(&records_before) {
+        let after = std::fs::read(out.join("cases").join(case).join("case.json")).unwrap();
+        assert_eq!(&after, record, "case {case} ran again");
+    }
+    assert_eq!(complete_cases(&out).len(), 12);
+
+    let uninterrupted = dir.path().join("uninterrupted");
+    sweep(&study, &uninterrupted, &[]);
+    assert_eq!(
+        results_without_timing(&out),
+        results_without_timing(&uninterrupted)
+    );
+}
+
+#[test]
+fn a_bad_axis_value_is_a_bad_study_file() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let body = "[[axis]]\nkey = \"guidance.k\"\nvalues = [2.0, -1.0]\n";
+    let study = write_study(dir.path(), "bad.toml", body);
+    let out = dir.path().join("never");
+    let output = wingman()
+        .arg("sweep")
+        .arg(&study)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .expect("wingman runs");
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("bad.toml"), "{stderr}");
+    assert!(stderr.contains("axis `guidance.k`, value -1.0"), "{stderr}");
+    assert!(!out.exists(), "nothing runs before the study is checked");
+
+    let unknown = write_study(
+        dir.path(),
+        "unknown.toml",
+        "[[axis]]\nname = \"typo\"\nkey = \"guidance.kk\"\nvalues = [1]\n",
+    );
+    let output = wingman()
+        .arg("sweep")
+        .arg(&unknown)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("axis `typo`") && stderr.contains("kk"),
+        "{stderr}"
+    );
+
+    let shard = wingman()
+        .arg("sweep")
+        .arg(&study)
+        .args(["--shard", "3/3"])
+        .output()
+        .unwrap();
+    assert_eq!(shard.status.code(), Some(2));
+}
+
+#[test]
+fn a_case_that_cannot_run_is_a_row() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let body = "set = [\"run.duration_s=2\", \"output.plots=false\", \"camera.mesh=no_such_mesh.obj\", \"camera.rate_hz=25\"]\n\
+                [[axis]]\nkey = \"sensor.mode\"\nvalues = [\"perfect\", \"camera\"]\n";
+    let study = write_study(dir.path(), "failing.toml", body);
+    let out = dir.path().join("out");
+    sweep(&study, &out, &[]);
+    let rows = results_without_timing(&out);
+    let status = rows[0].iter().position(|c| c == "status").unwrap();
+    let message = rows[0].iter().position(|c| c == "message").unwrap();
+    assert_eq!(rows[1][status], "completed");
+    assert_eq!(rows[2][status], "failed");
+    assert!(
+        rows[2][message].contains("no_such_mesh.obj") || rows[2][message].contains("adapter"),
+        "{:?}",
+        rows[2]
+    );
+}
