@@ -1,17 +1,21 @@
-//! Multisampling only around the target.
+//! Drawing the target only around itself.
 //!
 //! On a software adapter (lavapipe) a 4x multisampled frame costs its clear and its resolve
 //! over every sample of the image, whatever the target covers: at 640x480 that is most of a
 //! frame's time (measured: 3.6 ms against 1.1 ms with one sample). The target covers a small
 //! window of the image, and the sky needs no multisampling (it is the same at every sample of
-//! a pixel). So a frame is drawn as a one-sample sky over the whole image, and the target,
-//! multisampled, into a square framebuffer that covers its projection
-//! ([`crate::render::projection::clip_from_body_in_window`]), resolved and copied into place.
-//! The window moves by whole pixels, so every sample falls where it would in the whole image.
+//! a pixel). So a frame is drawn as a one-sample sky over the image, and the target (with
+//! depth, multisampled when the camera has several samples) into a square framebuffer that
+//! covers its projection ([`crate::render::projection::clip_from_body_in_window`]), resolved
+//! and copied into place. The window moves by whole pixels, so every sample falls where it
+//! would in the whole image. One-sample cameras draw the target the same way, so that a frame
+//! drawn only in a region of the image (`render::region`) has, there, the pixels of the whole
+//! frame: the target's window does not depend on the region.
 
 use crate::frames::Vec3;
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use crate::render::projection::{NEAR_PLANE_FT, PixelWindow};
+use crate::render::region::ImageRegion;
 
 /// Pixels of sky kept around the target's projected bounding box.
 const MARGIN_PX: f64 = 2.0;
@@ -99,8 +103,8 @@ pub fn plan_frame(
     })
 }
 
-/// The part of `window` inside the image: where it starts in the window and in the image,
-/// and its size (None when they do not overlap).
+/// The part of `window` inside a region of the image: where it starts in the window and in
+/// the image, and its size (None when they do not overlap).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct WindowCopy {
     /// First column and row in the window, px.
@@ -112,15 +116,22 @@ pub struct WindowCopy {
 }
 
 impl WindowCopy {
-    /// The overlap of `window` and an image of `intrinsics`' size.
-    pub fn of(window: &PixelWindow, intrinsics: &CameraIntrinsics) -> Option<Self> {
-        let axis = |start: i64, len: u32, image: u32| {
-            let first = start.max(0);
-            let last = (start + i64::from(len)).min(i64::from(image));
+    /// The overlap of `window` and `region` (the whole image, or the part of it a frame
+    /// draws).
+    pub fn of(window: &PixelWindow, region: &ImageRegion) -> Option<Self> {
+        let axis = |start: i64, len: u32, region_start: u32, region_len: u32| {
+            let first = start.max(i64::from(region_start));
+            let last =
+                (start + i64::from(len)).min(i64::from(region_start) + i64::from(region_len));
             (last > first).then(|| ((first - start) as u32, first as u32, (last - first) as u32))
         };
-        let (fu, tu, w) = axis(window.u0_px, window.width_px, intrinsics.width_px)?;
-        let (fv, tv, h) = axis(window.v0_px, window.height_px, intrinsics.height_px)?;
+        let (fu, tu, w) = axis(window.u0_px, window.width_px, region.u0_px, region.width_px)?;
+        let (fv, tv, h) = axis(
+            window.v0_px,
+            window.height_px,
+            region.v0_px,
+            region.height_px,
+        )?;
         Some(Self {
             from_px: [fu, fv],
             to_px: [tu, tv],
@@ -190,10 +201,10 @@ mod tests {
         );
     }
 
-    /// The copy is the overlap of window and image, at both ends.
+    /// The copy is the overlap of window and image (or region), at both ends.
     #[test]
     fn copy_is_clipped_to_the_image() {
-        let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
+        let cam = ImageRegion::whole(&CameraIntrinsics::from_hfov(640, 480, 60.0));
         let window = |u0, v0| PixelWindow {
             u0_px: u0,
             v0_px: v0,
@@ -217,5 +228,19 @@ mod tests {
             })
         );
         assert_eq!(WindowCopy::of(&window(640, 0), &cam), None);
+        let region = ImageRegion {
+            u0_px: 30,
+            v0_px: 40,
+            width_px: 20,
+            height_px: 100,
+        };
+        assert_eq!(
+            WindowCopy::of(&window(10, 20), &region),
+            Some(WindowCopy {
+                from_px: [20, 20],
+                to_px: [30, 40],
+                size_px: [20, 44]
+            })
+        );
     }
 }

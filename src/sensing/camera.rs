@@ -201,7 +201,7 @@ pub fn render_settings(camera: &CameraSection, seed: u64) -> RenderSettings {
     RenderSettings {
         intrinsics: intrinsics(camera),
         msaa_samples: camera.msaa_samples,
-        multisample_window: true,
+        target_window: true,
         background: Background { sky, noise },
         shading: TargetShading::default(),
     }
