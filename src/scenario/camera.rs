@@ -24,6 +24,21 @@ pub enum BlobChoice {
     Nearest,
 }
 
+/// Which pixels of each frame are drawn, read back and measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CameraPipeline {
+    /// Only a tracking window around where the target is predicted to be, from the last
+    /// measurement and the follower's attitude (`vision::tracking`); the whole image at
+    /// acquisition, after a lost frame, for a frame to be saved (`output.frames_every`), and
+    /// again, in the same frame, when the target reaches the window's edge. The camera's cost
+    /// then follows the target, not the image size (issue 13), and the measurements are the
+    /// whole image's (within 1e-9 px on a noise-free sky: `tests/camera_window.rs`).
+    Window,
+    /// Every frame whole: the reference the window is compared with.
+    Whole,
+}
+
 /// `[camera]` section.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -69,6 +84,9 @@ pub struct CameraSection {
     /// A candidate pixel joins the target mask when at least this fraction of it is covered,
     /// in (0, 1]; lower keeps thin parts (a wing seen edge-on) connected.
     pub mask_coverage: f64,
+    /// Which pixels are drawn, read back and measured: `window` (default) or `whole` (the
+    /// reference; same measurements on a noise-free sky, slower at high resolution).
+    pub pipeline: CameraPipeline,
 }
 
 impl Default for CameraSection {
@@ -92,6 +110,7 @@ impl Default for CameraSection {
             mask_coverage: 0.5,
             compensate_delay: true,
             link_radius_px: 2,
+            pipeline: CameraPipeline::Window,
         }
     }
 }

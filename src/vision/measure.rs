@@ -90,13 +90,16 @@ impl Region {
 }
 
 impl BlobMeasurer {
-    /// Measures `blob` in `frame`.
+    /// Measures `blob` (its box in the frame's own pixels) in `frame`; the centroid and the
+    /// outline points are in image coordinates (the frame's origin added before any
+    /// arithmetic, so that a region of an image gives the image's numbers to the bit).
     pub fn measure(&mut self, frame: &RgbaView<'_>, blob: &BlobToMeasure<'_>) -> BlobGeometry {
         let (w, h) = (frame.width, frame.height);
+        let [ou, ov] = frame.origin;
         // Weights live on the bbox + 2 (ring + one more for the gradient stencil).
         let region = Region::around(blob.bbox, 2, w, h);
         self.grid
-            .reset(region.u0, region.v0, region.width, region.height);
+            .reset(ou + region.u0, ov + region.v0, region.width, region.height);
         let labels = blob.labels;
         let label_at = |u: isize, v: isize| -> u32 {
             if u < 0 || v < 0 || u >= w as isize || v >= h as isize {
@@ -145,16 +148,16 @@ impl BlobMeasurer {
                 self.grid.weights[local] = weight as f32;
                 self.grid.is_edge[local] = kind != INTERIOR;
                 sum_w += weight;
-                sum_wu += weight * (u as f64 + 0.5);
-                sum_wv += weight * (v as f64 + 0.5);
+                sum_wu += weight * ((ou + u) as f64 + 0.5);
+                sum_wv += weight * ((ov + v) as f64 + 0.5);
             }
         }
         let (centroid_u_px, centroid_v_px) = if sum_w > 0.0 {
             (sum_wu / sum_w, sum_wv / sum_w)
         } else {
             (
-                0.5 * f64::from(blob.bbox.min_u + blob.bbox.max_u + 1),
-                0.5 * f64::from(blob.bbox.min_v + blob.bbox.max_v + 1),
+                (ou as f64) + 0.5 * f64::from(blob.bbox.min_u + blob.bbox.max_u + 1),
+                (ov as f64) + 0.5 * f64::from(blob.bbox.min_v + blob.bbox.max_v + 1),
             )
         };
         self.finder.find(
