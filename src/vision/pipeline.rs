@@ -6,7 +6,7 @@
 //! 13: a tracking camera looks where the target is predicted to be), with the background
 //! fitted on the region's border, and returns the measurement in the image's coordinates. It
 //! equals the whole image's measurement when the region's border is background like the
-//! image's (noise-free: the same colour surface) and no target pixel comes within
+//! image's (noise-free: the same colour surface) and no blob comes within
 //! [`VisionPipeline::region_clearance_px`] of an edge of the region inside the image; when
 //! one does, it says so, and the caller measures the whole image instead.
 
@@ -118,9 +118,10 @@ pub struct RegionMeasurement {
     /// The measurement, in the image's coordinates (its `Truncated` status means the blob
     /// touches the region's border).
     pub blob: BlobMeasurement,
-    /// A target candidate pixel lies within [`VisionPipeline::region_clearance_px`] of an
-    /// edge of the region that is inside the image: the target may reach beyond the region,
-    /// so the measurement may differ from the whole image's.
+    /// A blob of at least `min_pixel_count` mask pixels comes within
+    /// [`VisionPipeline::region_clearance_px`] of an edge of the region that is inside the
+    /// image: the target may reach beyond the region, so the measurement may differ from the
+    /// whole image's.
     pub reaches_inner_edge: bool,
 }
 
@@ -238,11 +239,13 @@ impl VisionPipeline {
 }
 
 impl VisionPipeline {
-    /// How close to an inner edge of a region a candidate pixel may come, px, before the
-    /// region's measurement may differ from the whole image's: a blob takes in mask pixels
-    /// up to `link_radius_px` away, and its measurement reads the coverage of pixels up to 2
-    /// px beyond its mask (the ring and the gradient stencil), plus one for a core pixel's
-    /// neighbours.
+    /// How close to an inner edge of a region a blob may come, px, before the region's
+    /// measurement may differ from the whole image's: a blob takes in mask pixels up to
+    /// `link_radius_px` away, and its measurement reads the coverage of pixels up to 2 px
+    /// beyond its mask (the ring and the gradient stencil), plus one for a core pixel's
+    /// neighbours. Smaller blobs (below `min_pixel_count`: noise, or a sliver of target whose
+    /// link to the measured blob would pass outside the region, which the measured blob's
+    /// own clearance rules out) are not measured and do not count.
     pub fn region_clearance_px(&self) -> u32 {
         self.config.link_radius_px as u32 + 3
     }
@@ -276,13 +279,19 @@ impl VisionPipeline {
         let [left, top, right, bottom] = region.inner_edges(intrinsics);
         let clearance = self.region_clearance_px() as usize;
         let (w, h) = (region.width_px as usize, region.height_px as usize);
-        let reaches_inner_edge = self.segmenter.candidates.iter().any(|&i| {
-            let (u, v) = (i as usize % w, i as usize / w);
-            (left && u < clearance)
-                || (top && v < clearance)
-                || (right && u + clearance >= w)
-                || (bottom && v + clearance >= h)
-        });
+        let reaches_inner_edge = self
+            .labeller
+            .blobs
+            .iter()
+            .filter(|b| b.pixel_count >= self.config.min_pixel_count)
+            .any(|b| {
+                let (u0, v0) = (b.bbox.min_u as usize, b.bbox.min_v as usize);
+                let (u1, v1) = (b.bbox.max_u as usize, b.bbox.max_v as usize);
+                (left && u0 < clearance)
+                    || (top && v0 < clearance)
+                    || (right && u1 + clearance >= w)
+                    || (bottom && v1 + clearance >= h)
+            });
         Ok(RegionMeasurement {
             blob,
             reaches_inner_edge,
