@@ -33,7 +33,7 @@ use crate::render::projection::{
 };
 use crate::render::region::ImageRegion;
 use crate::render::settings::{RenderSettings, Sky};
-use crate::render::window::{FramePlan, WindowCopy, bounding_corners, plan_frame};
+use crate::render::window::{FramePlan, WindowCopy, plan_frame};
 
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -152,10 +152,10 @@ pub struct Renderer {
     vertex_buffer: wgpu::Buffer,
     vertex_count: u32,
     uniform_slots: UniformSlots,
-    /// Corners of the mesh's bounding box, target axes, ft (plans the window).
-    corners_ft: [Vec3; 8],
-    /// Multisampled window framebuffers by side (index log2 side), made when first needed.
-    windows: Vec<Option<RenderTargets>>,
+    /// The mesh's vertices, target axes, ft (plan the target's window).
+    vertices_ft: Vec<Vec3>,
+    /// Window framebuffers by size, made when first needed.
+    windows: WindowTargetsCache,
     uniforms: FrameUniforms,
     clip_from_body: Matrix4<f64>,
     /// The whole image's framebuffers; its resolve texture is the image read back.
@@ -185,12 +185,7 @@ impl Renderer {
         let device = gpu.device().clone();
         let oom_scope = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation_scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let built = Self::build(
-            gpu,
-            settings,
-            &vertices,
-            bounding_corners(&mesh.vertices_ft),
-        );
+        let built = Self::build(gpu, settings, &vertices, mesh.vertices_ft.clone());
         let validation = pollster::block_on(validation_scope.pop());
         let oom = pollster::block_on(oom_scope.pop());
         if let Some(e) = validation.or(oom) {
@@ -205,7 +200,7 @@ impl Renderer {
         gpu: &GpuContext,
         settings: RenderSettings,
         vertices: &[TargetVertex],
-        corners_ft: [Vec3; 8],
+        vertices_ft: Vec<Vec3>,
     ) -> Self {
         let device = gpu.device().clone();
         let queue = gpu.queue().clone();
@@ -258,8 +253,8 @@ impl Renderer {
             vertex_buffer,
             vertex_count: vertices.len() as u32,
             uniform_slots,
-            corners_ft,
-            windows: Vec::new(),
+            vertices_ft,
+            windows: WindowTargetsCache::default(),
             uniforms,
             clip_from_body: clip_from_body(&cam),
             image,
@@ -399,7 +394,7 @@ impl Renderer {
         let target_to_body = self.write_image_uniforms(pose);
         let cam = self.settings.intrinsics;
         let plan = if self.settings.target_window {
-            plan_frame(&self.corners_ft, pose, &cam)
+            plan_frame(&self.vertices_ft, pose, &cam)
         } else {
             FramePlan::Whole
         };
@@ -501,35 +496,16 @@ impl Renderer {
         let Some(copy) = WindowCopy::of(window, region) else {
             return;
         };
-        let slot = self.make_window_targets(window.width_px);
-        if let Some(targets) = &self.windows[slot] {
-            self.draw_target(encoder, targets, true);
-            copy_window(
-                encoder,
-                &targets.resolve_texture,
-                &self.image.resolve_texture,
-                &copy,
-            );
-        }
-    }
-
-    /// Makes the framebuffers of a window of side `side_px` unless they exist; returns their
-    /// index in `windows`.
-    fn make_window_targets(&mut self, side_px: u32) -> usize {
-        let slot = side_px.trailing_zeros() as usize;
-        if self.windows.len() <= slot {
-            self.windows.resize_with(slot + 1, || None);
-        }
-        if self.windows[slot].is_none() {
-            self.windows[slot] = Some(RenderTargets::new(
-                &self.device,
-                "window ",
-                extent_px(side_px, side_px),
-                self.settings.msaa_samples,
-                wgpu::TextureUsages::COPY_SRC,
-            ));
-        }
-        slot
+        let samples = self.settings.msaa_samples;
+        let slot = self.windows.slot_for(&self.device, window, samples);
+        let targets = self.windows.targets(slot);
+        self.draw_target(encoder, targets, true);
+        copy_window(
+            encoder,
+            &targets.resolve_texture,
+            &self.image.resolve_texture,
+            &copy,
+        );
     }
 
     /// Copies `region` of the image's resolve texture into the staging buffer (rows padded).
@@ -684,6 +660,53 @@ impl Renderer {
         }
         self.staging.unmap();
         Ok(())
+    }
+}
+
+/// Window framebuffers by size, made when first needed; the least recently used goes when
+/// more than [`WindowTargetsCache::CAPACITY`] sizes are kept.
+#[derive(Debug, Default)]
+struct WindowTargetsCache {
+    /// (width, height, frame last used, framebuffers).
+    entries: Vec<(u32, u32, u64, RenderTargets)>,
+    /// Frames drawn with a window.
+    uses: u64,
+}
+
+impl WindowTargetsCache {
+    /// Sizes kept: a target's window changes size with its range and attitude, a few sizes
+    /// at a time.
+    const CAPACITY: usize = 12;
+
+    /// The slot of the framebuffers of `window`'s size with `samples` per pixel, made when
+    /// missing.
+    fn slot_for(&mut self, device: &wgpu::Device, window: &PixelWindow, samples: u32) -> usize {
+        self.uses += 1;
+        let size = (window.width_px, window.height_px);
+        let found = self.entries.iter().position(|e| (e.0, e.1) == size);
+        let index = found.unwrap_or_else(|| {
+            if self.entries.len() >= Self::CAPACITY
+                && let Some(oldest) = (0..self.entries.len()).min_by_key(|&i| self.entries[i].2)
+            {
+                self.entries.swap_remove(oldest);
+            }
+            let targets = RenderTargets::new(
+                device,
+                "window ",
+                extent_px(size.0, size.1),
+                samples,
+                wgpu::TextureUsages::COPY_SRC,
+            );
+            self.entries.push((size.0, size.1, 0, targets));
+            self.entries.len() - 1
+        });
+        self.entries[index].2 = self.uses;
+        index
+    }
+
+    /// The framebuffers in `slot` (from [`Self::slot_for`]).
+    fn targets(&self, slot: usize) -> &RenderTargets {
+        &self.entries[slot].3
     }
 }
 

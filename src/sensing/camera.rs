@@ -112,6 +112,19 @@ fn buffer_of(index: u64) -> usize {
     (index % 2) as usize
 }
 
+/// Copies the pixels of `window` out of `rgba`, the pixels of `drawn` (which contains it),
+/// into `out`.
+fn cut_window(rgba: &[u8], drawn: &ImageRegion, window: &ImageRegion, out: &mut Vec<u8>) {
+    out.clear();
+    let stride = 4 * drawn.width_px as usize;
+    let first = 4 * (window.u0_px - drawn.u0_px) as usize;
+    let row_bytes = 4 * window.width_px as usize;
+    for v in window.v0_px..window.v_end_px() {
+        let start = (v - drawn.v0_px) as usize * stride + first;
+        out.extend_from_slice(&rgba[start..start + row_bytes]);
+    }
+}
+
 /// Wall-clock time spent in each stage of the camera, summed over the run.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CameraTimings {
@@ -133,7 +146,8 @@ impl CameraTimings {
 }
 
 /// How the frames were drawn and measured (`camera.pipeline = "window"`), counted over the
-/// run; every frame is in exactly one of the first three.
+/// run; every frame is in exactly one of the first three. Frames are measured in their
+/// tracking window when there is one, those drawn whole to be saved included.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct WindowCounts {
     /// Drawn in the tracking window (measured there, or redrawn whole).
@@ -200,6 +214,10 @@ pub struct CameraSensor {
     pixels: [CameraImage; 2],
     /// The part of the image each of `pixels` holds.
     regions: [ImageRegion; 2],
+    /// The tracking window each of `pixels` is measured in (None: the whole image).
+    windows: [Option<ImageRegion>; 2],
+    /// A window's pixels cut from a whole frame (a frame drawn whole to be saved).
+    window_pixels: Vec<u8>,
     pipeline: CameraPipeline,
     tracker: TrackingWindow,
     /// Frames whose index is a multiple of this are saved, so drawn whole.
@@ -296,6 +314,8 @@ impl CameraSensor {
         let saved_every = scenario.output.frames_every;
         Ok(Self {
             regions: [whole, whole],
+            windows: [None, None],
+            window_pixels: Vec::new(),
             pipeline: camera.pipeline,
             tracker,
             saved_every: (saved_every > 0).then_some(u64::from(saved_every)),
@@ -341,8 +361,9 @@ impl CameraSensor {
         t_s: f64,
         geometry: &CaptureGeometry,
     ) -> Result<Option<FrameRecord>, SensorError> {
-        let region = self.region_to_draw(self.frames, geometry);
+        let (region, window) = self.regions_of(self.frames, geometry);
         let (exposure, pending) = self.expose(t_s, geometry, &region)?;
+        self.windows[buffer_of(exposure.index)] = window;
         let mut in_flight = Some((pending, exposure.index));
         if self.latency_frames == 0 {
             self.finish_in_flight(&mut in_flight)?;
@@ -373,33 +394,39 @@ impl CameraSensor {
     ) -> Result<FrameRecord, SensorError> {
         let whole = ImageRegion::whole(&self.intrinsics);
         let (exposure, pending) = self.expose(t_s, geometry, &whole)?;
+        self.windows[buffer_of(exposure.index)] = None;
         let mut in_flight = Some((pending, exposure.index));
         self.finish_in_flight(&mut in_flight)?;
         self.measure(&exposure, &mut in_flight)
     }
 
-    /// The part of the image to draw for frame `index`, taken in `geometry` (see the module
-    /// documentation), counted in [`WindowCounts`].
-    fn region_to_draw(&mut self, index: u64, geometry: &CaptureGeometry) -> ImageRegion {
+    /// The part of the image to draw for frame `index`, taken in `geometry`, and the tracking
+    /// window to measure it in (see the module documentation), counted in [`WindowCounts`].
+    /// A frame to be saved is drawn whole and measured in its window all the same.
+    fn regions_of(
+        &mut self,
+        index: u64,
+        geometry: &CaptureGeometry,
+    ) -> (ImageRegion, Option<ImageRegion>) {
         let whole = ImageRegion::whole(&self.intrinsics);
-        if self.saved_every.is_some_and(|n| index.is_multiple_of(n)) {
-            self.window_counts.whole_saved += 1;
-            return whole;
-        }
-        let predicted = match self.pipeline {
+        let window = match self.pipeline {
             CameraPipeline::Window => self
                 .tracker
                 .predict(index, &geometry.follower_attitude.body_from_ned()),
             CameraPipeline::Whole => None,
         };
-        match predicted {
+        if self.saved_every.is_some_and(|n| index.is_multiple_of(n)) {
+            self.window_counts.whole_saved += 1;
+            return (whole, window);
+        }
+        match window {
             Some(region) => {
                 self.window_counts.windowed += 1;
-                region
+                (region, window)
             }
             None => {
                 self.window_counts.whole_untracked += 1;
-                whole
+                (whole, None)
             }
         }
     }
@@ -458,6 +485,7 @@ impl CameraSensor {
                 let pose = exposure.geometry.pose();
                 let redrawn = self.renderer.begin_frame_in(&pose, &whole)?;
                 self.finish_in_flight(&mut Some((redrawn, exposure.index)))?;
+                self.windows[buffer_of(exposure.index)] = None;
                 self.measure_whole(exposure.index, selection)?
             }
         };
@@ -466,31 +494,41 @@ impl CameraSensor {
         Ok(self.record(exposure, blob))
     }
 
-    /// Measures the pixels of frame `index` as read back: the whole image, or its region.
+    /// Measures the pixels of frame `index` as read back: in its tracking window, or the
+    /// whole image. A window's measurement that cannot stand is replaced by the whole image's
+    /// when the frame was drawn whole, and asks for the frame to be drawn whole otherwise.
     fn measure_pixels(
         &mut self,
         index: u64,
         selection: BlobSelection,
     ) -> Result<RegionOutcome, SensorError> {
         let buffer = buffer_of(index);
-        let (frame, region) = (&self.pixels[buffer], self.regions[buffer]);
-        if region.is_whole(&self.intrinsics) {
+        let (drawn, frame) = (self.regions[buffer], &self.pixels[buffer]);
+        let Some(window) = self.windows[buffer] else {
             return Ok(RegionOutcome::Measured(
                 self.measure_whole(index, selection)?,
             ));
-        }
+        };
         let vision_started = Instant::now();
-        let measured =
-            self.vision
-                .measure_region(&frame.rgba, &region, &self.intrinsics, selection)?;
+        let pixels = if drawn == window {
+            &frame.rgba
+        } else {
+            cut_window(&frame.rgba, &drawn, &window, &mut self.window_pixels);
+            &self.window_pixels
+        };
+        let measured = self
+            .vision
+            .measure_region(pixels, &window, &self.intrinsics, selection)?;
         self.timings.vision += vision_started.elapsed();
-        Ok(
-            if measured.reaches_inner_edge || measured.blob.status != BlobStatus::Ok {
-                RegionOutcome::NeedsWholeImage
-            } else {
-                RegionOutcome::Measured(measured.blob)
-            },
-        )
+        if !measured.reaches_inner_edge && measured.blob.status == BlobStatus::Ok {
+            Ok(RegionOutcome::Measured(measured.blob))
+        } else if drawn.is_whole(&self.intrinsics) {
+            Ok(RegionOutcome::Measured(
+                self.measure_whole(index, selection)?,
+            ))
+        } else {
+            Ok(RegionOutcome::NeedsWholeImage)
+        }
     }
 
     /// Measures the pixels of frame `index`, a whole image.

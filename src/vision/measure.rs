@@ -23,6 +23,45 @@ const RING: u8 = 1;
 const BOUNDARY: u8 = 2;
 const INTERIOR: u8 = 3;
 
+/// The 8 neighbours of a pixel, (du, dv).
+const NEIGHBOURS: [(isize, isize); 8] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
+
+/// What pixel (u, v) of a `w` x `h` frame is to the blob `label`: [`INTERIOR`] (in the blob,
+/// with its 8 neighbours), [`BOUNDARY`] (in the blob, not all its neighbours), [`RING`] (in no
+/// blob, beside this one), or `None` (in another blob, or not beside this one).
+fn pixel_kind(labels: &[u32], w: usize, h: usize, u: usize, v: usize, label: u32) -> Option<u8> {
+    let own = labels[v * w + u];
+    if own != label && own != 0 {
+        return None;
+    }
+    let in_blob = |&(du, dv): &(isize, isize)| {
+        let (x, y) = (u as isize + du, v as isize + dv);
+        x >= 0
+            && y >= 0
+            && x < w as isize
+            && y < h as isize
+            && labels[y as usize * w + x as usize] == label
+    };
+    if own == label {
+        Some(if NEIGHBOURS.iter().all(in_blob) {
+            INTERIOR
+        } else {
+            BOUNDARY
+        })
+    } else {
+        NEIGHBOURS.iter().any(in_blob).then_some(RING)
+    }
+}
+
 /// What the moments and the edge points say about one blob.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct BlobGeometry {
@@ -100,39 +139,13 @@ impl BlobMeasurer {
         let region = Region::around(blob.bbox, 2, w, h);
         self.grid
             .reset(ou + region.u0, ov + region.v0, region.width, region.height);
-        let labels = blob.labels;
-        let label_at = |u: isize, v: isize| -> u32 {
-            if u < 0 || v < 0 || u >= w as isize || v >= h as isize {
-                0
-            } else {
-                labels[v as usize * w + u as usize]
-            }
-        };
         let inner = Region::around(blob.bbox, 1, w, h);
         let (mut sum_w, mut sum_wu, mut sum_wv) = (0.0, 0.0, 0.0);
         let mut truncated = false;
         for v in inner.v0..inner.v0 + inner.height {
             for u in inner.u0..inner.u0 + inner.width {
                 let idx = v * w + u;
-                let own = labels[idx];
-                let (ui, vi) = (u as isize, v as isize);
-                let mut blob_neighbours = 0;
-                for dv in -1..=1 {
-                    for du in -1..=1 {
-                        if (du, dv) != (0, 0) && label_at(ui + du, vi + dv) == blob.label {
-                            blob_neighbours += 1;
-                        }
-                    }
-                }
-                let kind = if own == blob.label {
-                    if blob_neighbours == 8 {
-                        INTERIOR
-                    } else {
-                        BOUNDARY
-                    }
-                } else if own == 0 && blob_neighbours > 0 {
-                    RING
-                } else {
+                let Some(kind) = pixel_kind(blob.labels, w, h, u, v, blob.label) else {
                     continue;
                 };
                 let weight = if kind == INTERIOR {

@@ -21,11 +21,13 @@ use crate::vision::{BlobMeasurement, BlobStatus};
 
 /// How far the target may move, or grow, in the image per second beyond what the camera's
 /// rotation explains, in maximal lengths per second. The relative velocity across the line of
-/// sight moves the silhouette by V/S of its own size per second (S its size, ft): 3 covers
-/// 24 ft/s across the line of sight of an 8 ft target, and the target's own roll at 1 rad/s
-/// swings its wing tips by half a length per second; the formation runs stay well inside it
-/// (measured, see `tests/camera_window.rs`).
-pub const MOTION_LENGTHS_PER_S: f64 = 3.0;
+/// sight moves the silhouette by V/S of its own size per second (S its size, ft), and the
+/// target's own roll swings its wing tips: 1.5 covers 12 ft/s across the line of sight of an
+/// 8 ft target. `formation.toml` needs at most 0.4 (measured: the silhouette's box moves at
+/// most 0.027 lengths beyond the carried box in the two frames between a measurement and the
+/// frame it places, at 640x480 and 1920x1080); a target that moves faster is measured whole
+/// in that frame, and costs its time.
+pub const MOTION_LENGTHS_PER_S: f64 = 1.5;
 /// Pixels added to every side besides the clearance the image pipeline needs: the partly
 /// covered pixels outside the measured blob's mask (one ring) and the background border the
 /// region's sky is fitted on (2 px), and a pixel of rounding.
@@ -184,7 +186,7 @@ mod tests {
         let level = EulerAngles::new(0.0, 0.0, 0.3).body_from_ned();
         assert_eq!(t.predict(1, &level), None);
         t.observe(10, &blob(300, 200, 359, 219), &level);
-        let margin = 3.0 / 30.0 * 60.0 + 4.0 + 5.0;
+        let margin = MOTION_LENGTHS_PER_S / 30.0 * 60.0 + 4.0 + 5.0;
         let r = t.predict(11, &level).expect("a window");
         // Carrying the corners through the identity rounds: within a pixel.
         let bounds = [
