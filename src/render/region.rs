@@ -48,7 +48,7 @@ impl ImageRegion {
             }
             let first = lo.floor().max(0.0);
             let end = hi.ceil().min(f64::from(len));
-            (end > first).then(|| (first as u32, (end - first) as u32))
+            (end > first).then_some((first as u32, (end - first) as u32))
         };
         let (u0_px, width_px) = axis(u_min_px, u_max_px, intrinsics.width_px)?;
         let (v0_px, height_px) = axis(v_min_px, v_max_px, intrinsics.height_px)?;

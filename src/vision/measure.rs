@@ -39,17 +39,24 @@ const NEIGHBOURS: [(isize, isize); 8] = [
 /// with its 8 neighbours), [`BOUNDARY`] (in the blob, not all its neighbours), [`RING`] (in no
 /// blob, beside this one), or `None` (in another blob, or not beside this one).
 fn pixel_kind(labels: &[u32], w: usize, h: usize, u: usize, v: usize, label: u32) -> Option<u8> {
-    let own = labels[v * w + u];
+    let idx = v * w + u;
+    let own = labels[idx];
     if own != label && own != 0 {
         return None;
     }
+    let inside_frame = u > 0 && v > 0 && u + 1 < w && v + 1 < h;
     let in_blob = |&(du, dv): &(isize, isize)| {
-        let (x, y) = (u as isize + du, v as isize + dv);
-        x >= 0
-            && y >= 0
-            && x < w as isize
-            && y < h as isize
-            && labels[y as usize * w + x as usize] == label
+        if inside_frame {
+            // All 8 neighbours are in the frame: no bounds to check.
+            labels[(idx as isize + dv * w as isize + du) as usize] == label
+        } else {
+            let (x, y) = (u as isize + du, v as isize + dv);
+            x >= 0
+                && y >= 0
+                && x < w as isize
+                && y < h as isize
+                && labels[y as usize * w + x as usize] == label
+        }
     };
     if own == label {
         Some(if NEIGHBOURS.iter().all(in_blob) {

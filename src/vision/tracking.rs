@@ -139,7 +139,9 @@ impl TrackingWindow {
         let cam = &self.intrinsics;
         let los_then = Vec3::new(cam.focal_px, u_px - cam.cx(), v_px - cam.cy());
         let los = now_from_then * los_then;
-        if !(los.x > MIN_FORWARD_COSINE * los.norm()) {
+        // (NaN is not in front either.)
+        let in_front = los.x > MIN_FORWARD_COSINE * los.norm();
+        if !in_front {
             return None;
         }
         Some((
