@@ -2,7 +2,9 @@
 //! multisampled image draws, over poses at every range of the seed's run, across the field of
 //! view, partly outside the image, on a uniform and on a gradient sky: the same pixels but for
 //! a few samples that lie on an edge (the window's projection moves vertices by a rounding
-//! error, ~1e-5 px, which can put a sample on the other side of an edge).
+//! error, ~1e-5 px, which can put a sample on the other side of an edge). And a frame drawn
+//! and read back only in a region of the image (issue 13) holds exactly the bytes the whole
+//! frame holds there.
 
 mod render_support;
 

@@ -33,7 +33,9 @@ pub enum CameraPipeline {
     /// acquisition, after a lost frame, for a frame to be saved (`output.frames_every`), and
     /// again, in the same frame, when the target reaches the window's edge. The camera's cost
     /// then follows the target, not the image size (issue 13), and the measurements are the
-    /// whole image's (within 1e-9 px on a noise-free sky: `tests/camera_window.rs`).
+    /// whole image's: to the bit on a noise-free uniform sky (formation.toml flies the same
+    /// telemetry), within 0.004 px on a gradient sky, and with pixel noise by less than a
+    /// new draw of the noise changes them (`tests/camera_window.rs`).
     Window,
     /// Every frame whole: the reference the window is compared with.
     Whole,
@@ -84,8 +86,8 @@ pub struct CameraSection {
     /// A candidate pixel joins the target mask when at least this fraction of it is covered,
     /// in (0, 1]; lower keeps thin parts (a wing seen edge-on) connected.
     pub mask_coverage: f64,
-    /// Which pixels are drawn, read back and measured: `window` (default) or `whole` (the
-    /// reference; same measurements on a noise-free sky, slower at high resolution).
+    /// Which pixels are drawn, read back and measured: `window` (default: the camera's cost
+    /// follows the target, not the image) or `whole` (the reference it is compared with).
     pub pipeline: CameraPipeline,
 }
 

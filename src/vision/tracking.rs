@@ -94,11 +94,6 @@ impl TrackingWindow {
         };
     }
 
-    /// Forgets the track: the next frame is looked for in the whole image.
-    pub fn forget(&mut self) {
-        self.track = None;
-    }
-
     /// The region in which to look for the target in frame `frame_index`, taken with the
     /// follower at `body_from_ned`; `None` (look at the whole image) without a recent track,
     /// when the target's last silhouette cannot be carried into this frame (it turned to the
