@@ -210,6 +210,7 @@ fn geometry(k: u64) -> CaptureGeometry {
         follower_position_ned_ft: Vec3::zeros(),
         follower_attitude: EulerAngles::new(roll, 0.02, 0.0),
         target_attitude: EulerAngles::new(0.3, 0.05, 0.4),
+        camera_from_body: Mat3::identity(),
     }
 }
 

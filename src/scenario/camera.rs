@@ -114,6 +114,9 @@ pub struct CameraSection {
     /// Which pixels are drawn, read back and measured: `window` (default: the camera's cost
     /// follows the target, not the image) or `whole` (the reference it is compared with).
     pub pipeline: CameraPipeline,
+    /// An occlusion: frames taken in [start, end) s show no target (as if a cloud or the
+    /// follower's own airframe hid it), to force a loss; [0, 0] for none.
+    pub occlusion_s: [f64; 2],
 }
 
 impl Default for CameraSection {
@@ -141,6 +144,7 @@ impl Default for CameraSection {
             bearing_point: BearingPoint::Centroid,
             link_radius_px: 2,
             pipeline: CameraPipeline::Window,
+            occlusion_s: [0.0, 0.0],
         }
     }
 }
@@ -178,6 +182,13 @@ impl CameraSection {
             "1 or 4",
         )?;
         check::in_closed("camera.noise_std_grey", self.noise_std_grey, 0.0, 100.0)?;
+        let [hide_s, show_s] = self.occlusion_s;
+        check::require(
+            hide_s.is_finite() && show_s.is_finite() && 0.0 <= hide_s && hide_s <= show_s,
+            "camera.occlusion_s",
+            format!("{:?}", self.occlusion_s),
+            "[start, end] s with 0 <= start <= end",
+        )?;
         check::require(
             !self.mesh.is_empty(),
             "camera.mesh",

@@ -21,9 +21,7 @@ use crate::render::mesh::{MeshError, TargetMesh};
 use crate::render::region::ImageRegion;
 use crate::render::renderer::{PendingFrame, RenderError, RenderTimings, Renderer};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
-use crate::scenario::{
-    BearingPoint, BlobChoice, CameraPipeline, CameraSection, Scenario, SkyKind,
-};
+use crate::scenario::{BearingPoint, BlobChoice, CameraPipeline, CameraSection, Scenario, SkyKind};
 use crate::vision::{
     BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ImageSizeError, ImageTruth,
     TrackingWindow, TruthProjector, VisionConfig, VisionConfigError, VisionPipeline,
@@ -214,6 +212,8 @@ pub struct CameraSensor {
     mesh_vertices_ft: Vec<Vec3>,
     selection: BlobChoice,
     bearing_point: BearingPoint,
+    /// Frames taken in [start, end) s show no target (`camera.occlusion_s`).
+    occlusion_s: [f64; 2],
     period_ticks: u64,
     latency_frames: u64,
     pending: VecDeque<FrameRecord>,
@@ -339,6 +339,7 @@ impl CameraSensor {
             mesh_vertices_ft: mesh.vertices_ft.clone(),
             selection: camera.selection,
             bearing_point: camera.bearing_point,
+            occlusion_s: camera.occlusion_s,
             period_ticks: camera.period_ticks(scenario.run.dt_s),
             latency_frames: u64::from(camera.latency_frames),
             pending: VecDeque::new(),
@@ -423,9 +424,7 @@ impl CameraSensor {
     ) -> (ImageRegion, Option<ImageRegion>) {
         let whole = ImageRegion::whole(&self.intrinsics);
         let window = match self.pipeline {
-            CameraPipeline::Window => self
-                .tracker
-                .predict(index, &geometry.camera_from_ned()),
+            CameraPipeline::Window => self.tracker.predict(index, &geometry.camera_from_ned()),
             CameraPipeline::Whole => None,
         };
         if self.saved_every.is_some_and(|n| index.is_multiple_of(n)) {
@@ -457,8 +456,21 @@ impl CameraSensor {
             geometry: *geometry,
         };
         self.frames += 1;
-        let pending = self.renderer.begin_frame_in(&geometry.pose(), region)?;
+        let pending = self
+            .renderer
+            .begin_frame_in(&self.drawn_pose(&exposure), region)?;
         Ok((exposure, pending))
+    }
+
+    /// The target's pose as a frame draws it: where it is, or nowhere while the occlusion
+    /// hides it.
+    fn drawn_pose(&self, exposure: &Exposure) -> TargetPoseInCamera {
+        let [hide_s, show_s] = self.occlusion_s;
+        if (hide_s..show_s).contains(&exposure.t_s) {
+            TargetPoseInCamera::hidden()
+        } else {
+            exposure.geometry.pose()
+        }
     }
 
     /// Reads the frame in flight, if any, back into its buffer.
@@ -495,7 +507,7 @@ impl CameraSensor {
                 self.finish_in_flight(in_flight)?;
                 self.window_counts.redrawn_whole += 1;
                 let whole = ImageRegion::whole(&self.intrinsics);
-                let pose = exposure.geometry.pose();
+                let pose = self.drawn_pose(exposure);
                 let redrawn = self.renderer.begin_frame_in(&pose, &whole)?;
                 self.finish_in_flight(&mut Some((redrawn, exposure.index)))?;
                 self.windows[buffer_of(exposure.index)] = None;
@@ -503,7 +515,8 @@ impl CameraSensor {
             }
         };
         let camera_from_ned = exposure.geometry.camera_from_ned();
-        self.tracker.observe(exposure.index, &blob, &camera_from_ned);
+        self.tracker
+            .observe(exposure.index, &blob, &camera_from_ned);
         Ok(self.record(exposure, blob))
     }
 
