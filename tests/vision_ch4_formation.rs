@@ -117,6 +117,24 @@ fn body_frame_command_cannot_identify_b() {
     );
 }
 
+/// Issue 11: the seed's inertial command, which takes the target out of a fixed camera's view
+/// in every turn (3,606 of 4,200 frames lost), loses no frame with the camera on a gimbal.
+#[test]
+fn inertial_command_on_a_gimbal_loses_no_frame() {
+    let report = common::run(
+        "vision_ch4_formation",
+        &[
+            "guidance.command_frame=inertial",
+            "camera.gimbal.kind=pan_tilt",
+        ],
+    );
+    let s = &report.summary;
+    assert_eq!(s.status, RunStatus::Completed, "{:?}", s.message);
+    assert_eq!(s.frames, 4200);
+    assert_eq!(s.lost_frames, 0, "{:?}", s.loss_episodes);
+    assert_eq!(s.gimbal.expect("gimbal").rows_at_limit, 0);
+}
+
 #[test]
 fn inertial_command_losses_are_survived_and_counted() {
     let report = common::run(
