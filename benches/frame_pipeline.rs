@@ -1,13 +1,17 @@
 //! Per-frame cost of the camera: render + readback + image pipeline, at 640x480 and
-//! 1920x1080, with 1 and 4 samples per pixel, on whatever adapter wgpu finds (lavapipe in CI).
+//! 1920x1080, with 1 and 4 samples per pixel, on whatever adapter wgpu finds (lavapipe in CI):
+//! the whole image (`..._msaaN`, the `camera.pipeline = "whole"` reference) and the tracking
+//! window (`..._msaaN_window`: drawn, read back and measured in the window the tracker
+//! predicts from the previous frame's measurement, as `camera.pipeline = "window"` does).
 //! Run with `cargo bench --bench frame_pipeline`; frames/s = 1 / time per iteration.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
+use wingman::frames::Mat3;
 use wingman::frames::{EulerAngles, Vec3};
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use wingman::render::{GpuContext, RenderSettings, Renderer, TargetMesh};
-use wingman::vision::{BlobSelection, VisionConfig, VisionPipeline};
+use wingman::render::{GpuContext, ImageRegion, RenderSettings, Renderer, TargetMesh};
+use wingman::vision::{BlobSelection, TrackingWindow, VisionConfig, VisionPipeline};
 
 fn frame_pipeline(c: &mut Criterion) {
     let gpu = match GpuContext::new() {
@@ -46,7 +50,7 @@ fn frame_pipeline(c: &mut Criterion) {
             };
             let name = format!("{width_px}x{height_px}_msaa{msaa_samples}");
             let mut index = 0u64;
-            group.bench_function(name, |b| {
+            group.bench_function(&name, |b| {
                 b.iter(|| {
                     index += 1;
                     let Ok(frame) = renderer.render(&pose, index) else {
@@ -59,6 +63,26 @@ fn frame_pipeline(c: &mut Criterion) {
                         BlobSelection::Largest,
                     );
                     black_box(measured.ok());
+                });
+            });
+            let cam = settings.intrinsics;
+            let mut tracker = TrackingWindow::new(cam, 1.0 / 30.0, vision.region_clearance_px());
+            group.bench_function(format!("{name}_window"), |b| {
+                b.iter(|| {
+                    index += 1;
+                    let region = tracker
+                        .predict(index, &Mat3::identity())
+                        .unwrap_or_else(|| ImageRegion::whole(&cam));
+                    let Ok(frame) = renderer.render_region(&pose, &region, index) else {
+                        return;
+                    };
+                    let Ok(measured) =
+                        vision.measure_region(&frame.rgba, &region, &cam, BlobSelection::Largest)
+                    else {
+                        return;
+                    };
+                    tracker.observe(index, &measured.blob, &Mat3::identity());
+                    black_box(measured);
                 });
             });
         }

@@ -9,7 +9,7 @@
 //! column is within 0.5 px of the projected target centre's; (2) the measured maximal length
 //! is within 1.5 px of the true maximal length of the projected mesh (`vision::truth`).
 //!
-//! Attitudes keep the wing at least 15° from edge-on: at 250 ft a wing 0.12 ft thick seen
+//! The poses are `render_support::sixty_poses`. Attitudes keep the wing at least 15° from edge-on: at 250 ft a wing 0.12 ft thick seen
 //! edge-on projects to a quarter of a pixel, which no camera resolves; that loss is a finding
 //! of the camera-in-the-loop scenario (its length error is in its summary), not hidden here.
 
@@ -18,8 +18,7 @@ mod render_support;
 use render_support::*;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{RenderSettings, Renderer, TargetMesh};
-use wingman::sensing::line_of_sight_body;
-use wingman::vision::{BlobSelection, BlobStatus, VisionConfig, VisionPipeline, image_truth};
+use wingman::vision::{BlobSelection, BlobStatus, VisionPipeline, image_truth};
 
 /// Sub-samples per pixel side of the CPU reference silhouette.
 const SUPERSAMPLE: usize = 8;
@@ -75,29 +74,6 @@ fn silhouette_centroid(
     (su / n, sv / n)
 }
 
-/// Target attitudes relative to the camera (roll, pitch, yaw of the target in camera axes),
-/// each at least 15° from a wing seen edge-on (asserted). The first is the symmetric view:
-/// pitched up 90°, the camera sees the planform with the nose up, mirror-symmetric in u.
-const ATTITUDES: [[f64; 3]; 6] = [
-    [0.0, std::f64::consts::FRAC_PI_2, 0.0],
-    [0.3, 0.9, 0.4],
-    [-0.4, 1.1, 2.0],
-    [0.2, -1.2, 2.8],
-    [0.0, -1.0, 0.5],
-    [0.0, 0.7, -0.5],
-];
-
-/// The image pipeline as the camera scenarios configure it: thin, partly covered pixels kept
-/// in the mask and one-pixel gaps bridged.
-fn vision_config() -> VisionConfig {
-    let mut config = VisionConfig {
-        link_radius_px: 2,
-        ..VisionConfig::default()
-    };
-    config.segmentation.mask_coverage = 0.2;
-    config
-}
-
 #[test]
 fn measured_centroid_and_length_match_geometry_over_60_poses() {
     let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
@@ -105,79 +81,59 @@ fn measured_centroid_and_length_match_geometry_over_60_poses() {
     settings.msaa_samples = 4;
     let mesh = aircraft();
     let mut renderer = Renderer::new(gpu(), settings, &mesh).unwrap_or_else(|e| panic!("{e}"));
-    let mut vision = VisionPipeline::new(vision_config()).unwrap_or_else(|e| panic!("{e}"));
+    let mut vision =
+        VisionPipeline::new(scenario_vision_config()).unwrap_or_else(|e| panic!("{e}"));
     let mut checked = 0;
     let mut failures = Vec::new();
     let (mut worst_centroid, mut worst_length) = (0.0f64, 0.0f64);
-    let positions = [20.0, 45.0, 90.0, 160.0, 250.0]
-        .into_iter()
-        .flat_map(|range_ft| {
-            [(-18.0, 8.0), (0.0, 0.0), (20.0, -10.0), (8.0, 15.0)].map(
-                |(bearing_deg, elevation_deg)| {
-                    // Close in, the whole 8 ft span must stay in the image: shrink the offsets.
-                    let scale = f64::min(1.0, range_ft / 60.0);
-                    (range_ft, bearing_deg * scale, elevation_deg * scale)
-                },
+    for case in sixty_poses() {
+        let PoseCase {
+            range_ft,
+            bearing_deg,
+            elevation_deg,
+            attitude,
+            pose: p,
+        } = case;
+        let symmetric = attitude == POSE_ATTITUDES[0];
+        let frame = renderer.render(&p, 0).unwrap_or_else(|e| panic!("{e}"));
+        let m = vision
+            .measure(
+                &frame.rgba,
+                frame.width_px,
+                frame.height_px,
+                BlobSelection::Largest,
             )
-        });
-    for (k, (range_ft, bearing_deg, elevation_deg)) in positions.enumerate() {
-        // Three attitudes per position: the planform, and two of the other five in turn.
-        for i in [0, 1 + k % 5, 1 + (k + 2) % 5] {
-            let attitude = ATTITUDES[i];
-            let symmetric = i == 0;
-            {
-                let position = line_of_sight_body(
-                    f64::to_radians(bearing_deg),
-                    f64::to_radians(elevation_deg),
-                ) * range_ft;
-                let p = pose([position.x, position.y, position.z], attitude);
-                let wing_normal = p.body_from_target * wingman::frames::Vec3::z();
-                let off_edge_on = wing_normal.dot(&position.normalize()).abs().asin();
-                assert!(
-                    off_edge_on > 15f64.to_radians(),
-                    "{attitude:?} is near edge-on"
-                );
-                let frame = renderer.render(&p, 0).unwrap_or_else(|e| panic!("{e}"));
-                let m = vision
-                    .measure(
-                        &frame.rgba,
-                        frame.width_px,
-                        frame.height_px,
-                        BlobSelection::Largest,
-                    )
-                    .unwrap_or_else(|e| panic!("{e}"));
-                let label = format!(
-                    "range {range_ft} bearing {bearing_deg} elevation {elevation_deg} attitude {attitude:?}"
-                );
-                if m.status != BlobStatus::Ok {
-                    failures.push(format!("{label}: status {:?}", m.status));
-                    continue;
-                }
-                let truth = image_truth(&mesh.vertices_ft, &p, &cam).expect("target in front");
-                let (cu, cv) = silhouette_centroid(&cam, &mesh, &p);
-                let centroid_error = (m.centroid_u_px - cu).hypot(m.centroid_v_px - cv);
-                if centroid_error >= 0.5 {
-                    failures.push(format!("{label}: centroid off by {centroid_error:.3} px"));
-                }
-                if symmetric && bearing_deg == 0.0 && elevation_deg == 0.0 {
-                    let (u_centre, _) = cam.pixel_from_image(truth.y_i_px, truth.z_i_px);
-                    let lateral = (m.centroid_u_px - u_centre).abs();
-                    if lateral >= 0.5 {
-                        failures.push(format!("{label}: column off the centre by {lateral:.3} px"));
-                    }
-                }
-                let length_error = (m.max_length_px - truth.b_i_px).abs();
-                if length_error >= 1.5 {
-                    failures.push(format!(
-                        "{label}: length {:.2} vs true {:.2} px",
-                        m.max_length_px, truth.b_i_px
-                    ));
-                }
-                worst_centroid = worst_centroid.max(centroid_error);
-                worst_length = worst_length.max(length_error);
-                checked += 1;
+            .unwrap_or_else(|e| panic!("{e}"));
+        let label = format!(
+            "range {range_ft} bearing {bearing_deg} elevation {elevation_deg} attitude {attitude:?}"
+        );
+        if m.status != BlobStatus::Ok {
+            failures.push(format!("{label}: status {:?}", m.status));
+            continue;
+        }
+        let truth = image_truth(&mesh.vertices_ft, &p, &cam).expect("target in front");
+        let (cu, cv) = silhouette_centroid(&cam, &mesh, &p);
+        let centroid_error = (m.centroid_u_px - cu).hypot(m.centroid_v_px - cv);
+        if centroid_error >= 0.5 {
+            failures.push(format!("{label}: centroid off by {centroid_error:.3} px"));
+        }
+        if symmetric && bearing_deg == 0.0 && elevation_deg == 0.0 {
+            let (u_centre, _) = cam.pixel_from_image(truth.y_i_px, truth.z_i_px);
+            let lateral = (m.centroid_u_px - u_centre).abs();
+            if lateral >= 0.5 {
+                failures.push(format!("{label}: column off the centre by {lateral:.3} px"));
             }
         }
+        let length_error = (m.max_length_px - truth.b_i_px).abs();
+        if length_error >= 1.5 {
+            failures.push(format!(
+                "{label}: length {:.2} vs true {:.2} px",
+                m.max_length_px, truth.b_i_px
+            ));
+        }
+        worst_centroid = worst_centroid.max(centroid_error);
+        worst_length = worst_length.max(length_error);
+        checked += 1;
     }
     assert!(checked >= 50, "only {checked} poses");
     eprintln!(

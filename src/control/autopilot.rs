@@ -547,18 +547,16 @@ impl Autopilot {
             &mut rates.airspeed_filter,
         );
         let raw_flight_path_rad = reference.map_or(air_flight_path_rad, |r| r.flight_path_rad);
-        let flight_path_cmd_rad = self.limited_flight_path(
-            raw_flight_path_rad,
-            air,
-            model.effectiveness.thrust_per_throttle_lbf,
-            model.nominal_drag_lbf,
-            model.drag_correction_fps2,
-        );
+        let airspeed_error_fps = air.airspeed_fps - airspeed_ref.value;
+        // What the airspeed law (7.20) asks of the thrust beyond holding the speed.
+        let speed_demand_fps2 = airspeed_ref.rate - g.airspeed_gain_per_s * airspeed_error_fps;
+        let flight_path_cmd_rad =
+            self.limited_flight_path(raw_flight_path_rad, air, model, speed_demand_fps2);
         VelocityReferences {
             course_rad: reference.and_then(|r| r.course_rad),
             airspeed_cmd_fps,
             airspeed_ref,
-            airspeed_error_fps: air.airspeed_fps - airspeed_ref.value,
+            airspeed_error_fps,
             air_flight_path_rad,
             raw_flight_path_rad,
             flight_path_cmd_rad,
@@ -734,34 +732,45 @@ impl Autopilot {
 
     /// γ_c kept between the steepest descent and climb that (7.20) can hold with the
     /// throttle inside its range less the margins ([`limit_flight_path`]); unchanged with
-    /// `flight_path_limits` off. `specific_force_fps2` is Ŵ_DᵀΦ: the limits are those of
-    /// steady speed (module docs).
+    /// `flight_path_limits` off. The limits are those of steady speed (module docs), with
+    /// the drag correction Ŵ_DᵀΦ; with `climb_waits_for_speed` the climb's also keeps the
+    /// acceleration `speed_demand_fps2` the airspeed law asks for (when positive).
     fn limited_flight_path(
         &self,
         raw_rad: f64,
         air: &AirData,
-        thrust_per_throttle_lbf: f64,
-        nominal_drag_lbf: f64,
-        specific_force_fps2: f64,
+        model: &NominalModel,
+        speed_demand_fps2: f64,
     ) -> f64 {
         let g = &self.gains;
         if !g.flight_path_limits {
             return raw_rad;
         }
+        let thrust_per_throttle_lbf = model.effectiveness.thrust_per_throttle_lbf;
         let full = thrust_per_throttle_lbf * self.params.actuators.throttle.max;
         let idle = thrust_per_throttle_lbf * self.params.actuators.throttle.min;
         let margin = g.thrust_margin_fraction * (full - idle);
-        let at_thrust = |thrust: f64| {
+        let at_thrust = |thrust: f64, specific_force_fps2: f64| {
             flight_path_for_thrust_rad(
                 thrust,
                 air.alpha_rad,
                 air.beta_rad,
-                nominal_drag_lbf,
+                model.nominal_drag_lbf,
                 self.params.mass.mass_slug,
                 specific_force_fps2,
             )
         };
-        limit_flight_path(raw_rad, at_thrust(idle + margin), at_thrust(full - margin))
+        let steady = model.drag_correction_fps2;
+        let climbing = if g.climb_waits_for_speed {
+            steady + speed_demand_fps2.max(0.0)
+        } else {
+            steady
+        };
+        limit_flight_path(
+            raw_rad,
+            at_thrust(idle + margin, steady),
+            at_thrust(full - margin, climbing),
+        )
     }
 
     /// The pitch offset α_ref cos φ added to γ_c in θ_c (0 with `alpha_feedforward` off).

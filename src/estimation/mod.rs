@@ -7,6 +7,7 @@
 //! - `kalman` ([`tracker`], [`kalman`], SPEC §9): a Kalman filter infers r, d, a and 1/b from
 //!   the measurements and the follower's own velocity; the law flies on its estimate.
 
+pub mod aspect;
 pub mod hold;
 pub mod kalman;
 pub mod tracker;

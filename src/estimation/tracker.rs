@@ -6,10 +6,17 @@
 //! on. It also records when b became known (σ_b / b̂ below a threshold).
 
 use super::TargetEstimate;
+use super::aspect::target_span_aspect;
 use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, TargetFilter};
 use crate::frames::{Mat3, Vec3};
-use crate::scenario::EstimatorSection;
+use crate::scenario::{EstimatorSection, SizeModel};
 use crate::sensing::{FrameRecord, scaled_position_jacobian};
+use crate::vision::ImageMeasurement;
+
+/// With the span model, σ of a frame's maximal length when the span is not the silhouette's
+/// longest dimension, as a multiple of that length: the frame then counts for its bearing
+/// only.
+const BEARING_ONLY_LENGTH_SIGMAS: f64 = 10.0;
 
 /// The Kalman estimator of a run.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,6 +31,8 @@ pub struct KalmanTracker {
     /// b̂ is bounded to [min, max], ft (the guidance's projection bounds).
     size_bounds_ft: (f64, f64),
     known_sigma_fraction: f64,
+    size_model: SizeModel,
+    span_aspect_min: f64,
     filter: Option<TargetFilter>,
     known_since_s: Option<f64>,
     fused: u64,
@@ -56,6 +65,8 @@ impl KalmanTracker {
             focal_px,
             size_bounds_ft,
             known_sigma_fraction: section.known_sigma_fraction,
+            size_model: section.size_model,
+            span_aspect_min: section.span_aspect_min,
             filter: None,
             known_since_s: None,
             fused: 0,
@@ -63,20 +74,55 @@ impl KalmanTracker {
     }
 
     /// Fuses a camera frame (nothing when it measured nothing), the follower flying at
-    /// `follower_velocity_ned_fps` (used only to start the filter).
+    /// `follower_velocity_ned_fps` (used only to start the filter). With the span model the
+    /// frame's r* is corrected for the target's aspect predicted at its capture
+    /// ([`super::aspect`]), or counts for its bearing only where the span is foreshortened
+    /// below `estimator.span_aspect_min`.
     pub fn fuse_frame(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) {
         let (Some(r_star), Some(pixels)) = (record.r_measured, record.measured) else {
             return;
         };
         let jacobian = scaled_position_jacobian(&pixels, self.focal_px, &record.ned_from_camera);
-        let covariance = jacobian * self.pixel_covariance_px2 * jacobian.transpose();
+        let mut r = r_star;
+        let mut covariance = jacobian * self.pixel_covariance_px2 * jacobian.transpose();
+        if let Some(aspect) = self.predicted_aspect(record, &pixels) {
+            if aspect >= self.span_aspect_min {
+                r *= aspect;
+                covariance *= aspect * aspect;
+            } else {
+                let mut bearing_only = self.pixel_covariance_px2;
+                bearing_only[(2, 2)] = (BEARING_ONLY_LENGTH_SIGMAS * pixels.b_i_px).powi(2);
+                covariance = jacobian * bearing_only * jacobian.transpose();
+            }
+        }
         self.fuse(
             record.t_s,
-            &r_star,
+            &r,
             &covariance,
             &record.follower_position_ned_ft,
             follower_velocity_ned_fps,
         );
+    }
+
+    /// The span's aspect factor in a frame, from the filter predicted to its capture (the
+    /// span model once the filter runs; `None` otherwise).
+    fn predicted_aspect(&mut self, record: &FrameRecord, pixels: &ImageMeasurement) -> Option<f64> {
+        if self.size_model != SizeModel::Span {
+            return None;
+        }
+        let filter = self.filter.as_mut()?;
+        filter.predict_to(record.t_s, &record.follower_position_ned_ft);
+        let est = filter.posterior();
+        if est.beta_per_ft <= 0.0 {
+            return None;
+        }
+        target_span_aspect(
+            &(est.d_per_s / est.beta_per_ft),
+            &(est.a_per_s2 / est.beta_per_ft),
+            &record.ned_from_camera,
+            (pixels.y_i_px, pixels.z_i_px),
+            self.focal_px,
+        )
     }
 
     /// Fuses a continuous sensor's measurement r* taken now, with its own per-axis variance

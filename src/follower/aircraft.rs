@@ -88,7 +88,8 @@ pub struct AircraftFollower {
 impl AircraftFollower {
     /// The follower of a configuration and its initial state (trimmed, controller at rest).
     pub fn new(config: &FollowerConfig) -> Result<(Self, Vec<f64>), AircraftSetupError> {
-        let params = AircraftParams::seed_follower()?;
+        let params =
+            AircraftParams::seed_follower()?.with_speed_brake(config.follower.speed_brake_c_drag);
         let aircraft = Aircraft::new(params.clone())?;
         let autopilot = Autopilot::new(&params, config.autopilot)?;
         let atmosphere = Atmosphere::new(config.atmosphere, config.turbulence_seed)?;

@@ -5,8 +5,10 @@
 //! and ‖d̂‖ for the acceleration law, Figs 5.4, 6.9) and `velocity.png` (V_F vs V_T, Figs
 //! 4.5 / 4.7, 6.1, 6.4). Acceleration law: `acceleration.png` (a_F vs a_T, Figs 5.2, 6.7) and
 //! `target_acceleration.png` (Fig 5.1). Noisy sensor: `measurement.png` (r* against the
-//! noise-free r; the seed shows no such figure). 6-DOF follower: the Chapter 7 figures of
-//! [`super::aircraft_figures`].
+//! noise-free r; the seed shows no such figure). A Kalman filter (SPEC §9):
+//! `size_estimate.png` (its b̂ with the ±3σ_b band against the true b and, in camera runs,
+//! the size each frame's silhouette implies; the excitation's amplitude). 6-DOF follower: the
+//! Chapter 7 figures of [`super::aircraft_figures`].
 
 use super::plots::{
     EXTRA, HIGHLIGHT, Panel, PlotError, REFERENCE, Series, TRUTH, draw_error, draw_figure,
@@ -128,6 +130,9 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
     }
     if scenario.sensor.mode == SensorMode::Noisy {
         draw_measurement_figure(dir, scenario, &t, logged)?;
+    }
+    if logged.iter().any(|s| s.filter.is_some()) {
+        draw_size_figure(dir, scenario, &t, logged)?;
     }
     super::aircraft_figures::draw_aircraft_figures(dir, &t, logged)
 }
@@ -329,6 +334,68 @@ fn draw_measurement_figure(
     draw_figure(
         &dir.join("measurement.png"),
         &format!("Measured and noise-free scaled relative position ({noise})"),
+        t,
+        &panels,
+    )
+}
+
+/// Kalman filter: b̂ with its ±3σ_b band against the true b and the size the frames' silhouettes
+/// imply (b_i ‖R‖ / f, camera runs), and the excitation's amplitude.
+fn draw_size_figure(
+    dir: &Path,
+    scenario: &Scenario,
+    t: &[f64],
+    logged: &[Snapshot],
+) -> Result<(), PlotError> {
+    let filter = |f: fn(b_hat: f64, sigma: f64) -> f64| -> Vec<f64> {
+        logged
+            .iter()
+            .map(|s| {
+                s.filter
+                    .flatten()
+                    .map_or(f64::NAN, |e| f(e.b_hat_ft, e.b_sigma_ft))
+            })
+            .collect()
+    };
+    let mut size = vec![
+        Series::new("b̂ (Kalman)", filter(|b, _| b), TRUTH),
+        Series::new("b̂ + 3σ", filter(|b, sigma| b + 3.0 * sigma), EXTRA),
+        Series::new("b̂ - 3σ", filter(|b, sigma| b - 3.0 * sigma), EXTRA),
+        Series::new(
+            "b true",
+            vec![scenario.target.size_ft; logged.len()],
+            REFERENCE,
+        ),
+    ];
+    if scenario.sensor.mode == SensorMode::Camera {
+        let focal_px = scenario.camera.focal_length_px();
+        let apparent = logged
+            .iter()
+            .map(|s| {
+                s.frame
+                    .and_then(|f| f.measured.map(|m| m.apparent_size_ft(focal_px, f.range_ft)))
+                    .unwrap_or(f64::NAN)
+            })
+            .collect();
+        size.push(Series::new("silhouette's size", apparent, HIGHLIGHT));
+    }
+    let panels = [
+        Panel {
+            y_label: "b, ft".to_string(),
+            series: size,
+        },
+        Panel {
+            y_label: "excitation amplitude".to_string(),
+            series: vec![Series::new(
+                "a(t)",
+                logged.iter().map(|s| s.excitation_amplitude).collect(),
+                TRUTH,
+            )],
+        },
+    ];
+    draw_figure(
+        &dir.join("size_estimate.png"),
+        "Size estimate with its ±3σ band, and the excitation's amplitude",
         t,
         &panels,
     )

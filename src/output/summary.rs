@@ -1,9 +1,10 @@
 //! `summary.json`: the numbers a run is judged by (DESIGN §4).
 
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
+use crate::scenario::GimbalSection;
 use crate::scenario::{EstimatorKind, GuidanceLawKind};
 use crate::sensing::losses::LossEpisode;
-use crate::sim::{SimError, Simulation, Snapshot, StageTimes};
+use crate::sim::{GimbalReading, SimError, Simulation, Snapshot, StageTimes};
 use crate::vision::BlobStatus;
 use crate::vision::ImageMeasurement;
 use serde::Serialize;
@@ -92,6 +93,57 @@ pub struct Summary {
     pub stage_wall_s: StageWall,
     /// The 6-DOF follower's flight envelope (aircraft runs).
     pub aircraft: Option<AircraftSummary>,
+    /// The gimbal's angle ranges and the logged rows at one of its limits (gimballed
+    /// cameras).
+    pub gimbal: Option<GimbalSummary>,
+}
+
+/// The gimbal's travel over the logged rows.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GimbalSummary {
+    /// Lowest and highest pan, deg.
+    pub pan_range_deg: [f64; 2],
+    /// Lowest and highest tilt, deg.
+    pub tilt_range_deg: [f64; 2],
+    /// Logged rows with an axis within 0.1° of a limit.
+    pub rows_at_limit: u64,
+    /// Logged rows.
+    pub rows: u64,
+}
+
+impl GimbalSummary {
+    /// Over the logged rows, for a gimbal with `[camera.gimbal]` limits `section`.
+    fn of(logged: &[Snapshot], section: &GimbalSection) -> Option<Self> {
+        let readings: Vec<_> = logged.iter().filter_map(|s| s.gimbal).collect();
+        if readings.is_empty() {
+            return None;
+        }
+        let range = |angle: &dyn Fn(&GimbalReading) -> f64| {
+            readings
+                .iter()
+                .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], g| {
+                    let a = angle(g).to_degrees();
+                    [lo.min(a), hi.max(a)]
+                })
+        };
+        let near = |a_rad: f64, [lo, hi]: [f64; 2]| {
+            let a = a_rad.to_degrees();
+            a <= lo + 0.1 || a >= hi - 0.1
+        };
+        let rows_at_limit = readings
+            .iter()
+            .filter(|g| {
+                near(g.angles.pan_rad, section.pan_limits_deg)
+                    || near(g.angles.tilt_rad, section.tilt_limits_deg)
+            })
+            .count() as u64;
+        Some(Self {
+            pan_range_deg: range(&|g| g.angles.pan_rad),
+            tilt_range_deg: range(&|g| g.angles.tilt_rad),
+            rows_at_limit,
+            rows: readings.len() as u64,
+        })
+    }
 }
 
 /// Wall time of the continuous loop's stages, s (see [`StageTimes`]).
@@ -244,6 +296,7 @@ impl Summary {
             per_frame_ms,
             stage_wall_s: sim.stage_times().into(),
             aircraft,
+            gimbal: GimbalSummary::of(logged, &sim.scenario().camera.gimbal),
         }
     }
 

@@ -73,6 +73,15 @@ pub struct TargetPoseInCamera {
 }
 
 impl TargetPoseInCamera {
+    /// A pose the renderer clips whole (the target behind the camera): a frame of sky only,
+    /// for a target hidden from view.
+    pub fn hidden() -> Self {
+        Self {
+            position_body_ft: Vec3::new(-1e3, 0.0, 0.0),
+            body_from_target: Mat3::identity(),
+        }
+    }
+
     /// A mesh vertex given in target-body coordinates, in camera/body coordinates.
     pub fn body_from_target_point(&self, p_target_ft: &Vec3) -> Vec3 {
         self.position_body_ft + self.body_from_target * p_target_ft

@@ -3,7 +3,8 @@
 //! [`gpu::GpuContext`] opens a headless wgpu device once; [`mesh::TargetMesh`] holds the
 //! target's triangles (the seed aircraft is built by [`aircraft_mesh`] and committed as
 //! `assets/target_aircraft.obj`); [`renderer::Renderer`] draws it with the exact pinhole
-//! projection of [`camera::CameraIntrinsics`] ([`projection`]) and reads back a [`image::CameraImage`].
+//! projection of [`camera::CameraIntrinsics`] ([`projection`]) and reads back a
+//! [`image::CameraImage`] of the whole image or of an [`region::ImageRegion`] of it.
 
 pub mod aircraft_mesh;
 pub mod camera;
@@ -12,6 +13,7 @@ pub mod image;
 pub mod mesh;
 pub mod noise;
 pub mod projection;
+pub mod region;
 pub mod renderer;
 pub mod settings;
 pub mod window;
@@ -19,5 +21,6 @@ pub mod window;
 pub use gpu::{GpuContext, GpuError};
 pub use image::CameraImage;
 pub use mesh::{MeshError, TargetMesh};
+pub use region::ImageRegion;
 pub use renderer::{ReadbackError, RenderError, RenderTimings, Renderer};
 pub use settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};

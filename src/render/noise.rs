@@ -8,6 +8,7 @@
 //! hashing and Box-Muller in the fragment shader.
 
 use crate::render::image::CameraImage;
+use crate::render::region::ImageRegion;
 
 /// Number of table entries: one per 16-bit draw.
 const TABLE_LEN: usize = 1 << 16;
@@ -36,13 +37,41 @@ impl NoiseGenerator {
         }
     }
 
-    /// Adds this frame's noise to `frame` in place; `frame_index` selects the draw.
+    /// Adds this frame's noise to `frame` (a whole image) in place; `frame_index` selects
+    /// the draw.
     pub fn apply(&self, frame: &mut CameraImage, frame_index: u64) {
+        let region = ImageRegion {
+            u0_px: 0,
+            v0_px: 0,
+            width_px: frame.width_px,
+            height_px: frame.height_px,
+        };
+        self.apply_in_region(&mut frame.rgba, &region, frame.width_px, frame_index);
+    }
+
+    /// Adds this frame's noise to `rgba`, the pixels of `region` (row-major, 4 bytes a pixel)
+    /// of an image `image_width_px` wide: each pixel gets the noise it gets in the whole
+    /// image. The draw of image pixel i is the (i mod 4)-th 16 bits of the hash of block i / 4.
+    pub fn apply_in_region(
+        &self,
+        rgba: &mut [u8],
+        region: &ImageRegion,
+        image_width_px: u32,
+        frame_index: u64,
+    ) {
         let key = splitmix64(self.seed_hash ^ frame_index);
         let add = |c: u8, n: i16| i16::from(c).saturating_add(n).clamp(0, 255) as u8;
-        for (block, pixels) in frame.rgba.chunks_mut(16).enumerate() {
-            let mut h = splitmix64(key.wrapping_add(block as u64));
-            for px in pixels.chunks_exact_mut(4) {
+        let row_bytes = 4 * region.width_px as usize;
+        if row_bytes == 0 {
+            return;
+        }
+        for (row, v) in rgba.chunks_exact_mut(row_bytes).zip(region.v0_px..) {
+            let first = u64::from(v) * u64::from(image_width_px) + u64::from(region.u0_px);
+            let mut h = splitmix64(key.wrapping_add(first / 4)) >> (16 * (first % 4));
+            for (i, px) in (first..).zip(row.chunks_exact_mut(4)) {
+                if i != first && i.is_multiple_of(4) {
+                    h = splitmix64(key.wrapping_add(i / 4));
+                }
                 let n = self.table[(h & 0xffff) as usize];
                 h >>= 16;
                 px[0] = add(px[0], n);
@@ -157,6 +186,28 @@ mod tests {
             assert_eq!(i32::from(p[1]) - i32::from(q[1]), d);
             assert_eq!(i32::from(p[2]) - i32::from(q[2]), d);
             assert_eq!(p[3], 255);
+        }
+    }
+
+    /// A region gets the noise its pixels get in the whole image, whatever its alignment to
+    /// the four-pixel blocks of the hash (image width 33: blocks span rows).
+    #[test]
+    fn region_noise_is_the_whole_image_noise_there() {
+        let g = NoiseGenerator::new(10.0, 3);
+        let mut whole = CameraImage::filled(33, 7, [100, 120, 140, 255]);
+        g.apply(&mut whole, 5);
+        let region = ImageRegion {
+            u0_px: 3,
+            v0_px: 2,
+            width_px: 29,
+            height_px: 4,
+        };
+        let mut part = CameraImage::filled(29, 4, [100, 120, 140, 255]);
+        g.apply_in_region(&mut part.rgba, &region, 33, 5);
+        for v in 0..4 {
+            for u in 0..29 {
+                assert_eq!(part.pixel(u, v), whole.pixel(u + 3, v + 2), "({u}, {v})");
+            }
         }
     }
 

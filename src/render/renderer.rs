@@ -7,6 +7,13 @@
 //! another thread's poll may run the map callback, so the callback reports on a channel) and
 //! unpads the rows into a reusable [`CameraImage`]. Pixel noise is then added on the CPU
 //! ([`crate::render::noise`]).
+//!
+//! A frame may be drawn and read back in an [`ImageRegion`] only (issue 13: the camera's cost
+//! should follow the target, not the image size): the region's sky is copied from a sky
+//! texture drawn once, the target's window (`render::window`, planned from the pose as for a
+//! whole frame) is drawn and copied over it where they overlap, and only the region is copied
+//! into the staging buffer, mapped and unpadded. Nothing else of the image is touched, and the
+//! region holds the bytes the whole frame holds there.
 
 use std::sync::mpsc;
 use std::time::Instant;
@@ -24,8 +31,9 @@ use crate::render::noise::NoiseGenerator;
 use crate::render::projection::{
     PixelWindow, body_from_target, clip_from_body, clip_from_body_in_window,
 };
+use crate::render::region::ImageRegion;
 use crate::render::settings::{RenderSettings, Sky};
-use crate::render::window::{FramePlan, WindowCopy, bounding_corners, plan_frame};
+use crate::render::window::{FramePlan, WindowCopy, plan_frame};
 
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -71,9 +79,18 @@ pub enum ReadbackError {
 #[derive(Debug)]
 pub struct PendingFrame {
     submission: wgpu::SubmissionIndex,
+    /// The part of the image drawn and read back.
+    region: ImageRegion,
     /// Reports the staging buffer's mapping (DESIGN §6: another thread's poll may run the
     /// callback).
     mapped: mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
+}
+
+impl PendingFrame {
+    /// The part of the image this frame draws and reads back.
+    pub fn region(&self) -> ImageRegion {
+        self.region
+    }
 }
 
 /// Wall-clock times of the last frame, s.
@@ -135,16 +152,18 @@ pub struct Renderer {
     vertex_buffer: wgpu::Buffer,
     vertex_count: u32,
     uniform_slots: UniformSlots,
-    /// Corners of the mesh's bounding box, target axes, ft (plans the window).
-    corners_ft: [Vec3; 8],
-    /// Multisampled window framebuffers by side (index log2 side), made when first needed.
-    windows: Vec<Option<RenderTargets>>,
+    /// The mesh's vertices, target axes, ft (plan the target's window).
+    vertices_ft: Vec<Vec3>,
+    /// Window framebuffers by size, made when first needed.
+    windows: WindowTargetsCache,
     uniforms: FrameUniforms,
     clip_from_body: Matrix4<f64>,
     /// The whole image's framebuffers; its resolve texture is the image read back.
     image: RenderTargets,
+    /// The sky alone over the whole image, drawn once: a frame drawn in a region of the image
+    /// copies its sky from here (the sky depends on the pixel only, never on the pose).
+    sky: wgpu::Texture,
     staging: wgpu::Buffer,
-    padded_bytes_per_row: u32,
     clear_color: wgpu::Color,
     noise: Option<NoiseGenerator>,
     /// The frame [`Renderer::render`] reads back into and returns.
@@ -166,12 +185,7 @@ impl Renderer {
         let device = gpu.device().clone();
         let oom_scope = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation_scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let built = Self::build(
-            gpu,
-            settings,
-            &vertices,
-            bounding_corners(&mesh.vertices_ft),
-        );
+        let built = Self::build(gpu, settings, &vertices, mesh.vertices_ft.clone());
         let validation = pollster::block_on(validation_scope.pop());
         let oom = pollster::block_on(oom_scope.pop());
         if let Some(e) = validation.or(oom) {
@@ -186,7 +200,7 @@ impl Renderer {
         gpu: &GpuContext,
         settings: RenderSettings,
         vertices: &[TargetVertex],
-        corners_ft: [Vec3; 8],
+        vertices_ft: Vec<Vec3>,
     ) -> Self {
         let device = gpu.device().clone();
         let queue = gpu.queue().clone();
@@ -214,15 +228,24 @@ impl Renderer {
             settings.msaa_samples,
             wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST,
         );
-        let padded_bytes_per_row = padded_bytes_per_row(cam.width_px);
         let staging = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
-            size: u64::from(padded_bytes_per_row) * u64::from(cam.height_px),
+            size: staging_bytes(&ImageRegion::whole(&cam)),
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let sky = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("sky"),
+            size: extent_px(cam.width_px, cam.height_px),
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: COLOR_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
 
-        Self {
+        let renderer = Self {
             device,
             queue,
             settings,
@@ -230,13 +253,13 @@ impl Renderer {
             vertex_buffer,
             vertex_count: vertices.len() as u32,
             uniform_slots,
-            corners_ft,
-            windows: Vec::new(),
+            vertices_ft,
+            windows: WindowTargetsCache::default(),
             uniforms,
             clip_from_body: clip_from_body(&cam),
             image,
+            sky,
             staging,
-            padded_bytes_per_row,
             clear_color: clear_color(&settings.background.sky),
             noise: settings
                 .background
@@ -244,7 +267,19 @@ impl Renderer {
                 .map(|n| NoiseGenerator::new(n.std_grey_levels, n.seed)),
             frame: CameraImage::filled(cam.width_px, cam.height_px, [0, 0, 0, 255]),
             timings: RenderTimings::default(),
-        }
+        };
+        renderer.paint_sky_texture();
+        renderer
+    }
+
+    /// Draws the sky texture, with the pass that draws the sky of a whole frame.
+    fn paint_sky_texture(&self) {
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sky") });
+        let view = self.sky.create_view(&Default::default());
+        self.draw_sky(&mut encoder, &view);
+        self.queue.submit([encoder.finish()]);
     }
 
     /// The settings this renderer was built with.
@@ -267,18 +302,58 @@ impl Renderer {
         finished.map(|()| &self.frame)
     }
 
+    /// Renders the target at `pose` in `region` of the image only and reads that region back
+    /// (the frame's size is the region's). Its pixels are those of the whole frame there.
+    pub fn render_region(
+        &mut self,
+        pose: &TargetPoseInCamera,
+        region: &ImageRegion,
+        frame_index: u64,
+    ) -> Result<&CameraImage, RenderError> {
+        let pending = self.begin_frame_in(pose, region)?;
+        let mut frame = std::mem::take(&mut self.frame);
+        let finished = self.finish_frame(pending, frame_index, &mut frame);
+        self.frame = frame;
+        finished.map(|()| &self.frame)
+    }
+
     /// Starts drawing the target at `pose` and returns at once: the GPU (or lavapipe's
     /// threads) draws while the caller works; [`Self::finish_frame`] waits for it. One frame
     /// may be in flight at a time (it owns the staging buffer).
     pub fn begin_frame(&mut self, pose: &TargetPoseInCamera) -> Result<PendingFrame, RenderError> {
+        let whole = ImageRegion::whole(&self.settings.intrinsics);
+        self.begin_frame_in(pose, &whole)
+    }
+
+    /// As [`Self::begin_frame`], drawing and reading back only `region` of the image (cut to
+    /// the image).
+    pub fn begin_frame_in(
+        &mut self,
+        pose: &TargetPoseInCamera,
+        region: &ImageRegion,
+    ) -> Result<PendingFrame, RenderError> {
         let start = Instant::now();
-        let pending = self.submit(pose)?;
+        let pending = self.submit(pose, &self.clipped(region))?;
         self.timings.submit_s = start.elapsed().as_secs_f64();
         Ok(pending)
     }
 
-    /// Waits for the frame [`Self::begin_frame`] started, reads it back into `frame` (resized
-    /// to the camera) and adds the pixel noise of `frame_index`.
+    /// `region` cut to the image (the whole image when nothing of it is inside).
+    fn clipped(&self, region: &ImageRegion) -> ImageRegion {
+        let cam = &self.settings.intrinsics;
+        ImageRegion::covering(
+            f64::from(region.u0_px),
+            f64::from(region.u_end_px()),
+            f64::from(region.v0_px),
+            f64::from(region.v_end_px()),
+            cam,
+        )
+        .unwrap_or_else(|| ImageRegion::whole(cam))
+    }
+
+    /// Waits for the frame [`Self::begin_frame`] (or [`Self::begin_frame_in`]) started, reads
+    /// its region back into `frame` (resized to the region) and adds the pixel noise of
+    /// `frame_index` (each pixel's, as in the whole image).
     pub fn finish_frame(
         &mut self,
         pending: PendingFrame,
@@ -286,10 +361,12 @@ impl Renderer {
         frame: &mut CameraImage,
     ) -> Result<(), RenderError> {
         let start = Instant::now();
+        let region = pending.region;
         self.read_back(pending, frame)?;
         let read = Instant::now();
         if let Some(noise) = &self.noise {
-            noise.apply(frame, frame_index);
+            let width_px = self.settings.intrinsics.width_px;
+            noise.apply_in_region(&mut frame.rgba, &region, width_px, frame_index);
         }
         self.timings.readback_s = (read - start).as_secs_f64();
         self.timings.noise_s = read.elapsed().as_secs_f64();
@@ -301,9 +378,14 @@ impl Renderer {
         self.timings
     }
 
-    /// Writes the uniforms for `pose`, encodes the passes of its frame plan and the copy into
-    /// the staging buffer, submits them and starts mapping the staging buffer.
-    fn submit(&mut self, pose: &TargetPoseInCamera) -> Result<PendingFrame, RenderError> {
+    /// Writes the uniforms for `pose`, encodes the passes of its frame plan in `region` and
+    /// the copy of `region` into the staging buffer, submits them and starts mapping the
+    /// staging buffer.
+    fn submit(
+        &mut self,
+        pose: &TargetPoseInCamera,
+        region: &ImageRegion,
+    ) -> Result<PendingFrame, RenderError> {
         if !(pose.position_body_ft.iter().all(|x| x.is_finite())
             && pose.body_from_target.iter().all(|x| x.is_finite()))
         {
@@ -311,8 +393,8 @@ impl Renderer {
         }
         let target_to_body = self.write_image_uniforms(pose);
         let cam = self.settings.intrinsics;
-        let plan = if self.image.msaa_view.is_some() && self.settings.multisample_window {
-            plan_frame(&self.corners_ft, pose, &cam)
+        let plan = if self.settings.target_window {
+            plan_frame(&self.vertices_ft, pose, &cam)
         } else {
             FramePlan::Whole
         };
@@ -325,10 +407,14 @@ impl Renderer {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("target frame"),
             });
-        self.encode_passes(&mut encoder, plan);
-        self.copy_image_to_staging(&mut encoder);
+        if region.is_whole(&cam) {
+            self.encode_passes(&mut encoder, plan);
+        } else {
+            self.encode_region_passes(&mut encoder, plan, region);
+        }
+        self.copy_region_to_staging(&mut encoder, region);
         let submission = self.queue.submit([encoder.finish()]);
-        Ok(self.map_staging(submission))
+        Ok(self.map_staging(submission, *region))
     }
 
     /// Writes the first uniform slot (the whole image's projection of the target at `pose`)
@@ -364,81 +450,103 @@ impl Renderer {
 
     /// The render passes of `plan`, leaving the frame in the image's resolve texture.
     fn encode_passes(&mut self, encoder: &mut wgpu::CommandEncoder, plan: FramePlan) {
+        let whole = ImageRegion::whole(&self.settings.intrinsics);
         match plan {
             FramePlan::Whole => self.draw_target(encoder, &self.image, false),
-            FramePlan::SkyOnly => self.draw_sky(encoder),
+            FramePlan::SkyOnly => self.draw_sky(encoder, &self.image.resolve_view),
             FramePlan::Window(window) => {
-                self.draw_sky(encoder);
-                let cam = self.settings.intrinsics;
-                if let Some(copy) = WindowCopy::of(&window, &cam) {
-                    let slot = self.make_window_targets(window.width_px);
-                    if let Some(targets) = &self.windows[slot] {
-                        self.draw_target(encoder, targets, true);
-                        copy_window(
-                            encoder,
-                            &targets.resolve_texture,
-                            &self.image.resolve_texture,
-                            &copy,
-                        );
-                    }
-                }
+                self.draw_sky(encoder, &self.image.resolve_view);
+                self.draw_window(encoder, &window, &whole);
             }
         }
     }
 
-    /// Makes the framebuffers of a window of side `side_px` unless they exist; returns their
-    /// index in `windows`.
-    fn make_window_targets(&mut self, side_px: u32) -> usize {
-        let slot = side_px.trailing_zeros() as usize;
-        if self.windows.len() <= slot {
-            self.windows.resize_with(slot + 1, || None);
+    /// The passes and copies of `plan` that leave, in `region` of the image's resolve
+    /// texture, the pixels the whole frame has there: the sky copied from the sky texture and
+    /// the target's window copied over it where they overlap. A plan that draws the target
+    /// over the whole image (a near or large target) draws the whole frame.
+    fn encode_region_passes(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        plan: FramePlan,
+        region: &ImageRegion,
+    ) {
+        if plan == FramePlan::Whole {
+            return self.encode_passes(encoder, plan);
         }
-        if self.windows[slot].is_none() {
-            self.windows[slot] = Some(RenderTargets::new(
-                &self.device,
-                "window ",
-                extent_px(side_px, side_px),
-                self.settings.msaa_samples,
-                wgpu::TextureUsages::COPY_SRC,
-            ));
+        let sky_copy = WindowCopy {
+            from_px: [region.u0_px, region.v0_px],
+            to_px: [region.u0_px, region.v0_px],
+            size_px: [region.width_px, region.height_px],
+        };
+        copy_window(encoder, &self.sky, &self.image.resolve_texture, &sky_copy);
+        if let FramePlan::Window(window) = plan {
+            self.draw_window(encoder, &window, region);
         }
-        slot
     }
 
-    /// Copies the image's resolve texture into the staging buffer (rows padded).
-    fn copy_image_to_staging(&self, encoder: &mut wgpu::CommandEncoder) {
-        let cam = self.settings.intrinsics;
+    /// Draws the target into its window's framebuffers and copies the part of the window
+    /// inside `region` into the image (nothing when they do not overlap).
+    fn draw_window(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        window: &PixelWindow,
+        region: &ImageRegion,
+    ) {
+        let Some(copy) = WindowCopy::of(window, region) else {
+            return;
+        };
+        let samples = self.settings.msaa_samples;
+        let slot = self.windows.slot_for(&self.device, window, samples);
+        let targets = self.windows.targets(slot);
+        self.draw_target(encoder, targets, true);
+        copy_window(
+            encoder,
+            &targets.resolve_texture,
+            &self.image.resolve_texture,
+            &copy,
+        );
+    }
+
+    /// Copies `region` of the image's resolve texture into the staging buffer (rows padded).
+    fn copy_region_to_staging(&self, encoder: &mut wgpu::CommandEncoder, region: &ImageRegion) {
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 texture: &self.image.resolve_texture,
                 mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
+                origin: wgpu::Origin3d {
+                    x: region.u0_px,
+                    y: region.v0_px,
+                    z: 0,
+                },
                 aspect: wgpu::TextureAspect::All,
             },
             wgpu::TexelCopyBufferInfo {
                 buffer: &self.staging,
                 layout: wgpu::TexelCopyBufferLayout {
                     offset: 0,
-                    bytes_per_row: Some(self.padded_bytes_per_row),
-                    rows_per_image: Some(cam.height_px),
+                    bytes_per_row: Some(padded_bytes_per_row(region.width_px)),
+                    rows_per_image: Some(region.height_px),
                 },
             },
-            extent_px(cam.width_px, cam.height_px),
+            extent_px(region.width_px, region.height_px),
         );
     }
 
-    /// Starts mapping the staging buffer once `submission` is done; the frame reports on a
-    /// channel (DESIGN §6).
-    fn map_staging(&self, submission: wgpu::SubmissionIndex) -> PendingFrame {
+    /// Starts mapping the part of the staging buffer that holds `region` once `submission`
+    /// is done; the frame reports on a channel (DESIGN §6).
+    fn map_staging(&self, submission: wgpu::SubmissionIndex, region: ImageRegion) -> PendingFrame {
         let (sender, receiver) = mpsc::channel();
-        self.staging
-            .slice(..)
-            .map_async(wgpu::MapMode::Read, move |result| {
+        self.staging.slice(..staging_bytes(&region)).map_async(
+            wgpu::MapMode::Read,
+            move |result| {
                 // The receiver lives until the frame is read back; a send error cannot matter.
                 let _ = sender.send(result);
-            });
+            },
+        );
         PendingFrame {
             submission,
+            region,
             mapped: receiver,
         }
     }
@@ -495,12 +603,12 @@ impl Renderer {
         pass.draw(0..self.vertex_count, 0..1);
     }
 
-    /// The sky alone, one sample per pixel, over the whole image.
-    fn draw_sky(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// The sky alone, one sample per pixel, over the whole image of `view`.
+    fn draw_sky(&self, encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("sky"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &self.image.resolve_view,
+                view,
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
@@ -521,7 +629,7 @@ impl Renderer {
     }
 
     /// Waits for the frame's submission and mapping, and unpads the staging buffer's rows
-    /// into `frame` (resized to the camera).
+    /// into `frame` (resized to the frame's region).
     fn read_back(
         &mut self,
         pending: PendingFrame,
@@ -532,25 +640,73 @@ impl Renderer {
             timeout: None,
         })?;
         pending.mapped.recv()??;
-        let cam = self.settings.intrinsics;
-        frame.width_px = cam.width_px;
-        frame.height_px = cam.height_px;
-        frame
-            .rgba
-            .resize(4 * cam.width_px as usize * cam.height_px as usize, 0);
-        let row_bytes = 4 * cam.width_px as usize;
+        let region = pending.region;
+        frame.width_px = region.width_px;
+        frame.height_px = region.height_px;
+        frame.rgba.resize(4 * region.pixel_count(), 0);
+        let row_bytes = 4 * region.width_px as usize;
         {
-            let mapped = self.staging.slice(..).get_mapped_range()?;
+            let mapped = self
+                .staging
+                .slice(..staging_bytes(&region))
+                .get_mapped_range()?;
             for (dst, src) in frame
                 .rgba
                 .chunks_exact_mut(row_bytes)
-                .zip(mapped.chunks_exact(self.padded_bytes_per_row as usize))
+                .zip(mapped.chunks_exact(padded_bytes_per_row(region.width_px) as usize))
             {
                 dst.copy_from_slice(&src[..row_bytes]);
             }
         }
         self.staging.unmap();
         Ok(())
+    }
+}
+
+/// Window framebuffers by size, made when first needed; the least recently used goes when
+/// more than [`WindowTargetsCache::CAPACITY`] sizes are kept.
+#[derive(Debug, Default)]
+struct WindowTargetsCache {
+    /// (width, height, frame last used, framebuffers).
+    entries: Vec<(u32, u32, u64, RenderTargets)>,
+    /// Frames drawn with a window.
+    uses: u64,
+}
+
+impl WindowTargetsCache {
+    /// Sizes kept: a target's window changes size with its range and attitude, a few sizes
+    /// at a time.
+    const CAPACITY: usize = 12;
+
+    /// The slot of the framebuffers of `window`'s size with `samples` per pixel, made when
+    /// missing.
+    fn slot_for(&mut self, device: &wgpu::Device, window: &PixelWindow, samples: u32) -> usize {
+        self.uses += 1;
+        let size = (window.width_px, window.height_px);
+        let found = self.entries.iter().position(|e| (e.0, e.1) == size);
+        let index = found.unwrap_or_else(|| {
+            if self.entries.len() >= Self::CAPACITY
+                && let Some(oldest) = (0..self.entries.len()).min_by_key(|&i| self.entries[i].2)
+            {
+                self.entries.swap_remove(oldest);
+            }
+            let targets = RenderTargets::new(
+                device,
+                "window ",
+                extent_px(size.0, size.1),
+                samples,
+                wgpu::TextureUsages::COPY_SRC,
+            );
+            self.entries.push((size.0, size.1, 0, targets));
+            self.entries.len() - 1
+        });
+        self.entries[index].2 = self.uses;
+        index
+    }
+
+    /// The framebuffers in `slot` (from [`Self::slot_for`]).
+    fn targets(&self, slot: usize) -> &RenderTargets {
+        &self.entries[slot].3
     }
 }
 
@@ -633,7 +789,7 @@ struct Pipelines {
     /// The gradient sky in the target's pass (none for a uniform sky: the clear colour is
     /// the sky).
     background: Option<wgpu::RenderPipeline>,
-    /// The one-sample sky of a windowed frame (gradient sky with multisampling only).
+    /// The one-sample sky of a frame whose target is drawn in a window (gradient sky only).
     one_sample_sky: Option<wgpu::RenderPipeline>,
 }
 
@@ -681,7 +837,7 @@ impl Pipelines {
         Self {
             target,
             background: needs_background_pass.then(|| sky(samples, true)),
-            one_sample_sky: (needs_background_pass && samples > 1).then(|| sky(1, false)),
+            one_sample_sky: needs_background_pass.then(|| sky(1, false)),
         }
     }
 }
@@ -835,6 +991,11 @@ fn depth_state(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStenci
 fn padded_bytes_per_row(width_px: u32) -> u32 {
     let align = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     (4 * width_px).div_ceil(align) * align
+}
+
+/// Bytes of the staging buffer that hold `region`, its rows padded.
+fn staging_bytes(region: &ImageRegion) -> u64 {
+    u64::from(padded_bytes_per_row(region.width_px)) * u64::from(region.height_px)
 }
 
 /// The sky's colours at the top and at the bottom of the image (RGB, 0-255).

@@ -84,9 +84,10 @@ pub struct RenderSettings {
     /// Samples per pixel: 1 (aliased edges; pixel drawn when its centre is covered) or 4 (edge
     /// pixels blend target and sky by coverage; about 5x slower on lavapipe).
     pub msaa_samples: u32,
-    /// With several samples, multisample only a window around the target and draw the sky
-    /// with one sample (see [`crate::render::window`]); false multisamples the whole image.
-    pub multisample_window: bool,
+    /// Draw the target (multisampled when there are several samples) only in a window around
+    /// its projected bounding box, over a one-sample sky (see [`crate::render::window`]);
+    /// false draws target and sky together over the whole image.
+    pub target_window: bool,
     /// Sky and noise.
     pub background: Background,
     /// Target grey levels and light.
@@ -134,7 +135,7 @@ impl RenderSettings {
         Self {
             intrinsics,
             msaa_samples: 1,
-            multisample_window: true,
+            target_window: true,
             background: Background::default(),
             shading: TargetShading::default(),
         }

@@ -1,65 +1,65 @@
-//! Multisampling only around the target.
+//! Drawing the target only around itself.
 //!
 //! On a software adapter (lavapipe) a 4x multisampled frame costs its clear and its resolve
 //! over every sample of the image, whatever the target covers: at 640x480 that is most of a
 //! frame's time (measured: 3.6 ms against 1.1 ms with one sample). The target covers a small
 //! window of the image, and the sky needs no multisampling (it is the same at every sample of
-//! a pixel). So a frame is drawn as a one-sample sky over the whole image, and the target,
-//! multisampled, into a square framebuffer that covers its projection
-//! ([`crate::render::projection::clip_from_body_in_window`]), resolved and copied into place.
-//! The window moves by whole pixels, so every sample falls where it would in the whole image.
+//! a pixel). So a frame is drawn as a one-sample sky over the image, and the target (with
+//! depth, multisampled when the camera has several samples) into a framebuffer that covers
+//! the bounding box of its projected vertices
+//! ([`crate::render::projection::clip_from_body_in_window`]), resolved and copied into place. The window moves by whole pixels, so every sample falls where it
+//! would in the whole image. One-sample cameras draw the target the same way, so that a frame
+//! drawn only in a region of the image (`render::region`) has, there, the pixels of the whole
+//! frame: the target's window does not depend on the region.
 
 use crate::frames::Vec3;
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use crate::render::projection::{NEAR_PLANE_FT, PixelWindow};
+use crate::render::region::ImageRegion;
 
 /// Pixels of sky kept around the target's projected bounding box.
 const MARGIN_PX: f64 = 2.0;
 /// The smallest window side, px.
-const MIN_SIDE_PX: u32 = 32;
+const MIN_SIDE_PX: u32 = 16;
 
 /// How one frame is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FramePlan {
     /// Everything multisampled over the whole image: the target is near the camera (part of
-    /// its bounding box is behind the near plane) or its window would cover a quarter of the
-    /// image or more.
+    /// it is behind the near plane) or its window would cover a quarter of the image or more.
     Whole,
-    /// Only sky: the target's bounding box projects outside the image.
+    /// Only sky: the target projects outside the image.
     SkyOnly,
-    /// Sky over the image, the target multisampled in this square window.
+    /// Sky over the image, the target multisampled in this window.
     Window(PixelWindow),
 }
 
-/// The eight corners of the axis-aligned box around `vertices_ft` (target axes, ft).
-pub fn bounding_corners(vertices_ft: &[Vec3]) -> [Vec3; 8] {
-    let mut lo = Vec3::repeat(f64::INFINITY);
-    let mut hi = Vec3::repeat(f64::NEG_INFINITY);
-    for v in vertices_ft {
-        lo = lo.inf(v);
-        hi = hi.sup(v);
-    }
-    std::array::from_fn(|i| {
-        Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        )
-    })
+/// The side of a window framebuffer holding `extent_px` pixels: the next of 16, 20, 24, 28,
+/// 32, 40, 48, 56, 64, 80... (four sizes an octave), so that few framebuffers serve every
+/// frame (they are kept, [`WindowTargets`]) and a window is at most 25% wider than its
+/// target. The clear and resolve of a multisampled framebuffer cost in proportion to its
+/// area on lavapipe (measured: 256² costs 2.5 times 128² for the same target), so a tight
+/// window is most of a frame's saving.
+pub fn window_side_px(extent_px: u32) -> u32 {
+    let extent = extent_px.max(MIN_SIDE_PX);
+    let step = 1u32 << (31 - (extent - 1).leading_zeros()).saturating_sub(2);
+    extent.div_ceil(step) * step
 }
 
-/// Plans a frame: the window around the projection of the target's bounding box `corners_ft`
-/// at `pose`. The box is convex and in front of the camera, so the hull of its projected
-/// corners contains the projected target.
+/// Plans a frame: the window around the projection of the target's vertices
+/// `vertices_ft` (target axes) at `pose`, a rectangle of [`window_side_px`] sides. The
+/// silhouette lies in the convex hull of the projected vertices (every vertex in front of the
+/// camera), so in their bounding box. Planned from the pose: the renderer draws the truth, and
+/// a frame drawn in a region of the image has the window the whole frame has.
 pub fn plan_frame(
-    corners_ft: &[Vec3; 8],
+    vertices_ft: &[Vec3],
     pose: &TargetPoseInCamera,
     intrinsics: &CameraIntrinsics,
 ) -> FramePlan {
     let (mut u_min, mut u_max) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut v_min, mut v_max) = (f64::INFINITY, f64::NEG_INFINITY);
-    for corner in corners_ft {
-        let p = pose.body_from_target * corner + pose.position_body_ft;
+    for vertex in vertices_ft {
+        let p = pose.body_from_target * vertex + pose.position_body_ft;
         // (A NaN depth is not in front either.)
         if p.x.is_nan() || p.x <= 2.0 * NEAR_PLANE_FT {
             return FramePlan::Whole;
@@ -84,9 +84,12 @@ pub fn plan_frame(
     }
     let u0 = (u_min - MARGIN_PX).floor();
     let v0 = (v_min - MARGIN_PX).floor();
-    let extent = ((u_max + MARGIN_PX).ceil() - u0).max((v_max + MARGIN_PX).ceil() - v0);
-    let side = (extent as u32).next_power_of_two().max(MIN_SIDE_PX);
-    if 4 * u64::from(side) * u64::from(side)
+    let side = |extent: f64| window_side_px(extent.min(f64::from(u32::MAX / 2)) as u32);
+    let (width_px, height_px) = (
+        side((u_max + MARGIN_PX).ceil() - u0),
+        side((v_max + MARGIN_PX).ceil() - v0),
+    );
+    if 4 * u64::from(width_px) * u64::from(height_px)
         >= u64::from(intrinsics.width_px) * u64::from(intrinsics.height_px)
     {
         return FramePlan::Whole;
@@ -94,13 +97,13 @@ pub fn plan_frame(
     FramePlan::Window(PixelWindow {
         u0_px: u0 as i64,
         v0_px: v0 as i64,
-        width_px: side,
-        height_px: side,
+        width_px,
+        height_px,
     })
 }
 
-/// The part of `window` inside the image: where it starts in the window and in the image,
-/// and its size (None when they do not overlap).
+/// The part of `window` inside a region of the image: where it starts in the window and in
+/// the image, and its size (None when they do not overlap).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct WindowCopy {
     /// First column and row in the window, px.
@@ -112,15 +115,22 @@ pub struct WindowCopy {
 }
 
 impl WindowCopy {
-    /// The overlap of `window` and an image of `intrinsics`' size.
-    pub fn of(window: &PixelWindow, intrinsics: &CameraIntrinsics) -> Option<Self> {
-        let axis = |start: i64, len: u32, image: u32| {
-            let first = start.max(0);
-            let last = (start + i64::from(len)).min(i64::from(image));
+    /// The overlap of `window` and `region` (the whole image, or the part of it a frame
+    /// draws).
+    pub fn of(window: &PixelWindow, region: &ImageRegion) -> Option<Self> {
+        let axis = |start: i64, len: u32, region_start: u32, region_len: u32| {
+            let first = start.max(i64::from(region_start));
+            let last =
+                (start + i64::from(len)).min(i64::from(region_start) + i64::from(region_len));
             (last > first).then(|| ((first - start) as u32, first as u32, (last - first) as u32))
         };
-        let (fu, tu, w) = axis(window.u0_px, window.width_px, intrinsics.width_px)?;
-        let (fv, tv, h) = axis(window.v0_px, window.height_px, intrinsics.height_px)?;
+        let (fu, tu, w) = axis(window.u0_px, window.width_px, region.u0_px, region.width_px)?;
+        let (fv, tv, h) = axis(
+            window.v0_px,
+            window.height_px,
+            region.v0_px,
+            region.height_px,
+        )?;
         Some(Self {
             from_px: [fu, fv],
             to_px: [tu, tv],
@@ -141,21 +151,40 @@ mod tests {
         }
     }
 
-    fn wing() -> [Vec3; 8] {
-        bounding_corners(&[Vec3::new(-3.0, -4.0, -0.5), Vec3::new(2.0, 4.0, 1.0)])
+    fn wing() -> Vec<Vec3> {
+        vec![
+            Vec3::new(-3.0, -4.0, -0.5),
+            Vec3::new(2.0, 4.0, 1.0),
+            Vec3::new(0.0, 0.5, -0.2),
+        ]
     }
 
-    /// The window contains every projected corner, with the margin, and is a power of two.
+    /// Sides grow by a quarter of their octave at most.
     #[test]
-    fn window_covers_the_projected_box() {
+    fn window_sides_come_in_four_sizes_an_octave() {
+        assert_eq!(window_side_px(1), 16);
+        assert_eq!(window_side_px(16), 16);
+        assert_eq!(window_side_px(17), 20);
+        assert_eq!(window_side_px(33), 40);
+        assert_eq!(window_side_px(64), 64);
+        assert_eq!(window_side_px(65), 80);
+        assert_eq!(window_side_px(210), 224);
+        for extent in 1..5000 {
+            let side = window_side_px(extent);
+            assert!(side >= extent && (side <= 16 || 4 * side < 5 * extent + 4 * 16));
+        }
+    }
+
+    /// The window contains every projected vertex, with the margin.
+    #[test]
+    fn window_covers_the_projected_vertices() {
         let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
-        let corners = wing();
+        let vertices = wing();
         let p = pose(100.0, 20.0, -5.0);
-        let FramePlan::Window(w) = plan_frame(&corners, &p, &cam) else {
+        let FramePlan::Window(w) = plan_frame(&vertices, &p, &cam) else {
             panic!("expected a window");
         };
-        assert!(w.width_px.is_power_of_two() && w.width_px == w.height_px);
-        for c in &corners {
+        for c in &vertices {
             let b = p.body_from_target * c + p.position_body_ft;
             let u = cam.cx() + cam.focal_px * b.y / b.x;
             let v = cam.cy() + cam.focal_px * b.z / b.x;
@@ -171,29 +200,29 @@ mod tests {
     #[test]
     fn plans_fall_back() {
         let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
-        let corners = wing();
+        let vertices = wing();
         assert_eq!(
-            plan_frame(&corners, &pose(2.0, 0.0, 0.0), &cam),
+            plan_frame(&vertices, &pose(2.0, 0.0, 0.0), &cam),
             FramePlan::Whole
         );
         assert_eq!(
-            plan_frame(&corners, &pose(12.0, 0.0, 0.0), &cam),
+            plan_frame(&vertices, &pose(6.0, 0.0, 0.0), &cam),
             FramePlan::Whole
         );
         assert_eq!(
-            plan_frame(&corners, &pose(100.0, 500.0, 0.0), &cam),
+            plan_frame(&vertices, &pose(100.0, 500.0, 0.0), &cam),
             FramePlan::SkyOnly
         );
         assert_eq!(
-            plan_frame(&corners, &pose(-100.0, 0.0, 0.0), &cam),
+            plan_frame(&vertices, &pose(-100.0, 0.0, 0.0), &cam),
             FramePlan::Whole
         );
     }
 
-    /// The copy is the overlap of window and image, at both ends.
+    /// The copy is the overlap of window and image (or region), at both ends.
     #[test]
     fn copy_is_clipped_to_the_image() {
-        let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
+        let cam = ImageRegion::whole(&CameraIntrinsics::from_hfov(640, 480, 60.0));
         let window = |u0, v0| PixelWindow {
             u0_px: u0,
             v0_px: v0,
@@ -217,5 +246,19 @@ mod tests {
             })
         );
         assert_eq!(WindowCopy::of(&window(640, 0), &cam), None);
+        let region = ImageRegion {
+            u0_px: 30,
+            v0_px: 40,
+            width_px: 20,
+            height_px: 100,
+        };
+        assert_eq!(
+            WindowCopy::of(&window(10, 20), &region),
+            Some(WindowCopy {
+                from_px: [20, 20],
+                to_px: [30, 40],
+                size_px: [20, 44]
+            })
+        );
     }
 }

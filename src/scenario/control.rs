@@ -74,6 +74,13 @@ pub struct AutopilotSection {
     /// 0.05: with the data file's C_TδT = 0.3 that is the thrust the controller's author kept
     /// with 0.1 of C_TδT = 0.15 (a steeper descent costs speed control near idle).
     pub thrust_margin_fraction: f64,
+    /// The steepest climb keeps the thrust the airspeed law needs to reach its reference
+    /// (true): below the commanded speed at full throttle the climb waits until the speed is
+    /// there. With false (the limits of steady speed) a follower slowed by a climb keeps
+    /// climbing at the speed it has, and, the seed's thrust T ∝ V² being least at low speed,
+    /// may never gain the thrust to speed up (measured: held at 32-35 ft/s by a target
+    /// climbing 6 ft/s while accelerating to 50 ft/s, it fell 190 ft behind).
+    pub climb_waits_for_speed: bool,
     /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
     /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below
     /// the target profile's slowest 35.4 ft/s.
@@ -140,6 +147,7 @@ impl Default for AutopilotSection {
             max_bank_deg: 30.0,
             flight_path_limits: true,
             thrust_margin_fraction: 0.05,
+            climb_waits_for_speed: false,
             min_airspeed_cmd_fps: 35.0,
             max_airspeed_cmd_fps: 65.0,
             min_control_airspeed_fps: 15.0,

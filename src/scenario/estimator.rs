@@ -17,6 +17,19 @@ pub enum EstimatorKind {
     Kalman,
 }
 
+/// What the size b the filter estimates is (seed 8.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SizeModel {
+    /// The seed's: the silhouette's maximal length, taken as constant whatever the aspect.
+    Apparent,
+    /// The target's wing span, foreshortened by its attitude as inferred from the estimated
+    /// velocity and acceleration (`estimation::aspect`): the frames' lengths are corrected
+    /// for the aspect, and count for their bearing only where the span is seen too
+    /// obliquely to be the silhouette's longest dimension.
+    Span,
+}
+
 /// `[estimator]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -57,6 +70,13 @@ pub struct EstimatorSection {
     /// b counts as known once σ_b / b̂ falls below this (reported as `b_known_time_s`; the
     /// target command frame follows the estimated target velocity from then on).
     pub known_sigma_fraction: f64,
+    /// What b is: the apparent size (the seed's) or the wing span seen through the aspect.
+    pub size_model: SizeModel,
+    /// With the span model, the smallest aspect factor s (the span's image length over its
+    /// length across the optical axis) at which a frame's length is used. Choice: 0.8, the
+    /// span seen up to 37° off the target's plane of symmetry: the fuselage, at most as long
+    /// as the span on an aircraft, is then at most 0.6 of it in the image.
+    pub span_aspect_min: f64,
 }
 
 impl Default for EstimatorSection {
@@ -73,6 +93,8 @@ impl Default for EstimatorSection {
             initial_relative_velocity_sigma_fps: 15.0,
             initial_acceleration_sigma_fps2: 3.0,
             known_sigma_fraction: 0.05,
+            size_model: SizeModel::Apparent,
+            span_aspect_min: 0.8,
         }
     }
 }
@@ -125,7 +147,8 @@ impl EstimatorSection {
             self.known_sigma_fraction,
             1e-6,
             1.0,
-        )
+        )?;
+        check::in_closed("estimator.span_aspect_min", self.span_aspect_min, 0.0, 1.0)
     }
 }
 

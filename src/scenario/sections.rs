@@ -133,6 +133,13 @@ pub struct FollowerSection {
     /// the law; its roll, pitch and yaw are then the trim's and `initial_attitude_deg` is not
     /// used.
     pub initial_velocity_fps: [f64; 3],
+    /// Beyond the seed (whose aircraft has none): a speed brake on the 6-DOF follower, its
+    /// drag coefficient ΔC_D at full deflection (referred to the wing area), 0 for none. The
+    /// flight controller deploys it where it would command less than idle thrust, and its
+    /// steepest descent then includes it. Without one the follower descends at most at its
+    /// idle glide, about 7° (L/D ≈ 8) at 60 ft/s, and an updraft it cannot glide through
+    /// leaves it above a descending target.
+    pub speed_brake_c_drag: f64,
 }
 
 impl Default for FollowerSection {
@@ -143,6 +150,7 @@ impl Default for FollowerSection {
             initial_attitude_deg: [0.0; 3],
             attitude_lag_s: 0.2,
             initial_velocity_fps: [50.0, 0.0, 0.0],
+            speed_brake_c_drag: 0.0,
         }
     }
 }
@@ -159,6 +167,12 @@ impl FollowerSection {
         )?;
         check::in_closed("follower.attitude_lag_s", self.attitude_lag_s, 1e-3, 10.0)?;
         check::finite_vec("follower.initial_velocity_fps", &self.initial_velocity_fps)?;
+        check::in_closed(
+            "follower.speed_brake_c_drag",
+            self.speed_brake_c_drag,
+            0.0,
+            1.0,
+        )?;
         if self.model == FollowerModel::Aircraft {
             let [n, e, d] = self.initial_velocity_fps;
             let speed = n.hypot(e);

@@ -3,6 +3,14 @@
 //! turns the measurement into r* through the sensing transform (3.3)-(3.12). Measurements
 //! reach the guidance `latency_frames` frames after their frame was taken and are held
 //! between frames; a frame whose status is not `Ok` is a lost frame: the guidance then coasts.
+//!
+//! With `camera.pipeline = "window"` (issue 13) a frame is drawn, read back and measured only
+//! in the tracking window `vision::tracking` predicts from the last measured frame and the
+//! follower's attitude. The whole image is drawn at acquisition and after a lost frame (no
+//! track), for a frame that will be saved (`output.frames_every`: saved frames are whole
+//! images), and when the window's measurement is not a clean `Ok` or its target pixels reach
+//! an edge of the window inside the image: that frame is then drawn and measured again whole,
+//! before its record is made, so the record is the whole image's.
 
 use super::transform::scaled_relative_position;
 use crate::frames::{EulerAngles, Mat3, Vec3};
@@ -10,12 +18,13 @@ use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use crate::render::gpu::{GpuContext, GpuError};
 use crate::render::image::CameraImage;
 use crate::render::mesh::{MeshError, TargetMesh};
+use crate::render::region::ImageRegion;
 use crate::render::renderer::{PendingFrame, RenderError, RenderTimings, Renderer};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
-use crate::scenario::{BearingPoint, BlobChoice, CameraSection, Scenario, SkyKind};
+use crate::scenario::{BearingPoint, BlobChoice, CameraPipeline, CameraSection, Scenario, SkyKind};
 use crate::vision::{
     BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ImageSizeError, ImageTruth,
-    TruthProjector, VisionConfig, VisionConfigError, VisionPipeline,
+    TrackingWindow, TruthProjector, VisionConfig, VisionConfigError, VisionPipeline,
 };
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
@@ -112,6 +121,19 @@ fn buffer_of(index: u64) -> usize {
     (index % 2) as usize
 }
 
+/// Copies the pixels of `window` out of `rgba`, the pixels of `drawn` (which contains it),
+/// into `out`.
+fn cut_window(rgba: &[u8], drawn: &ImageRegion, window: &ImageRegion, out: &mut Vec<u8>) {
+    out.clear();
+    let stride = 4 * drawn.width_px as usize;
+    let first = 4 * (window.u0_px - drawn.u0_px) as usize;
+    let row_bytes = 4 * window.width_px as usize;
+    for v in window.v0_px..window.v_end_px() {
+        let start = (v - drawn.v0_px) as usize * stride + first;
+        out.extend_from_slice(&rgba[start..start + row_bytes]);
+    }
+}
+
 /// Wall-clock time spent in each stage of the camera, summed over the run.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CameraTimings {
@@ -130,6 +152,32 @@ impl CameraTimings {
         self.render += Duration::from_secs_f64(t.submit_s);
         self.readback += Duration::from_secs_f64(t.readback_s + t.noise_s);
     }
+}
+
+/// How the frames were drawn and measured (`camera.pipeline = "window"`), counted over the
+/// run; every frame is in exactly one of the first three. Frames are measured in their
+/// tracking window when there is one, those drawn whole to be saved included.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct WindowCounts {
+    /// Drawn in the tracking window (measured there, or redrawn whole).
+    pub windowed: u64,
+    /// Drawn whole: no track (acquisition, after a lost frame) or the `whole` pipeline.
+    pub whole_untracked: u64,
+    /// Drawn whole to be saved.
+    pub whole_saved: u64,
+    /// Of the `windowed`, drawn again whole: the window's measurement was not a clean `Ok`
+    /// or reached its edge.
+    pub redrawn_whole: u64,
+}
+
+/// A frame taken in a region: whether its measurement stands or the frame must be measured
+/// whole.
+#[derive(Debug, Clone, Copy)]
+enum RegionOutcome {
+    /// The measurement (of the whole image, or of a region, in image coordinates).
+    Measured(BlobMeasurement),
+    /// The region's measurement cannot stand for the whole image's.
+    NeedsWholeImage,
 }
 
 /// Accumulated measurement-error statistics over `Ok` frames.
@@ -164,6 +212,8 @@ pub struct CameraSensor {
     mesh_vertices_ft: Vec<Vec3>,
     selection: BlobChoice,
     bearing_point: BearingPoint,
+    /// Frames taken in [start, end) s show no target (`camera.occlusion_s`).
+    occlusion_s: [f64; 2],
     period_ticks: u64,
     latency_frames: u64,
     pending: VecDeque<FrameRecord>,
@@ -174,6 +224,17 @@ pub struct CameraSensor {
     previous_centroid_px: Option<(f64, f64)>,
     /// Pixels of the even and the odd frames: one is measured while the other is drawn.
     pixels: [CameraImage; 2],
+    /// The part of the image each of `pixels` holds.
+    regions: [ImageRegion; 2],
+    /// The tracking window each of `pixels` is measured in (None: the whole image).
+    windows: [Option<ImageRegion>; 2],
+    /// A window's pixels cut from a whole frame (a frame drawn whole to be saved).
+    window_pixels: Vec<u8>,
+    pipeline: CameraPipeline,
+    tracker: TrackingWindow,
+    /// Frames whose index is a multiple of this are saved, so drawn whole.
+    saved_every: Option<u64>,
+    window_counts: WindowCounts,
     /// The frame read back but not measured yet (latency of a frame or more).
     unmeasured: Option<Exposure>,
     frames: u64,
@@ -189,6 +250,8 @@ impl std::fmt::Debug for CameraSensor {
             .field("intrinsics", &self.intrinsics)
             .field("adapter", &self.adapter)
             .field("frames", &self.frames)
+            .field("pipeline", &self.pipeline)
+            .field("window_counts", &self.window_counts)
             .finish_non_exhaustive()
     }
 }
@@ -211,7 +274,7 @@ pub fn render_settings(camera: &CameraSection, seed: u64) -> RenderSettings {
     RenderSettings {
         intrinsics: intrinsics(camera),
         msaa_samples: camera.msaa_samples,
-        multisample_window: true,
+        target_window: true,
         background: Background { sky, noise },
         shading: TargetShading::default(),
     }
@@ -258,7 +321,22 @@ impl CameraSensor {
         vision_config.segmentation.mask_coverage = camera.mask_coverage;
         vision_config.link_radius_px = camera.link_radius_px as usize;
         let vision = VisionPipeline::new(vision_config)?;
+        let frame_period_s = 1.0 / camera.rate_hz;
+        let tracker = TrackingWindow::new(
+            settings.intrinsics,
+            frame_period_s,
+            vision.region_clearance_px(),
+        );
+        let whole = ImageRegion::whole(&settings.intrinsics);
+        let saved_every = scenario.output.frames_every;
         Ok(Self {
+            regions: [whole, whole],
+            windows: [None, None],
+            window_pixels: Vec::new(),
+            pipeline: camera.pipeline,
+            tracker,
+            saved_every: (saved_every > 0).then_some(u64::from(saved_every)),
+            window_counts: WindowCounts::default(),
             intrinsics: settings.intrinsics,
             renderer,
             vision,
@@ -266,6 +344,7 @@ impl CameraSensor {
             mesh_vertices_ft: mesh.vertices_ft.clone(),
             selection: camera.selection,
             bearing_point: camera.bearing_point,
+            occlusion_s: camera.occlusion_s,
             period_ticks: camera.period_ticks(scenario.run.dt_s),
             latency_frames: u64::from(camera.latency_frames),
             pending: VecDeque::new(),
@@ -301,15 +380,18 @@ impl CameraSensor {
         t_s: f64,
         geometry: &CaptureGeometry,
     ) -> Result<Option<FrameRecord>, SensorError> {
-        let (exposure, pending) = self.expose(t_s, geometry)?;
+        let (region, window) = self.regions_of(self.frames, geometry);
+        let (exposure, pending) = self.expose(t_s, geometry, &region)?;
+        self.windows[buffer_of(exposure.index)] = window;
+        let mut in_flight = Some((pending, exposure.index));
         if self.latency_frames == 0 {
-            self.finish(pending, exposure.index)?;
-            self.measure(&exposure)?;
+            self.finish_in_flight(&mut in_flight)?;
+            self.measure(&exposure, &mut in_flight)?;
         } else {
             if let Some(previous) = self.unmeasured.take() {
-                self.measure(&previous)?;
+                self.measure(&previous, &mut in_flight)?;
             }
-            self.finish(pending, exposure.index)?;
+            self.finish_in_flight(&mut in_flight)?;
             self.unmeasured = Some(exposure);
         }
         while self
@@ -322,22 +404,56 @@ impl CameraSensor {
         Ok(self.held)
     }
 
-    /// Takes and measures one frame at once, whatever the latency (`wingman render`).
+    /// Takes and measures one frame of the whole image at once, whatever the latency and the
+    /// pipeline (`wingman render`).
     pub fn capture_now(
         &mut self,
         t_s: f64,
         geometry: &CaptureGeometry,
     ) -> Result<FrameRecord, SensorError> {
-        let (exposure, pending) = self.expose(t_s, geometry)?;
-        self.finish(pending, exposure.index)?;
-        self.measure(&exposure)
+        let whole = ImageRegion::whole(&self.intrinsics);
+        let (exposure, pending) = self.expose(t_s, geometry, &whole)?;
+        self.windows[buffer_of(exposure.index)] = None;
+        let mut in_flight = Some((pending, exposure.index));
+        self.finish_in_flight(&mut in_flight)?;
+        self.measure(&exposure, &mut in_flight)
     }
 
-    /// Numbers the next frame and starts drawing it.
+    /// The part of the image to draw for frame `index`, taken in `geometry`, and the tracking
+    /// window to measure it in (see the module documentation), counted in [`WindowCounts`].
+    /// A frame to be saved is drawn whole and measured in its window all the same.
+    fn regions_of(
+        &mut self,
+        index: u64,
+        geometry: &CaptureGeometry,
+    ) -> (ImageRegion, Option<ImageRegion>) {
+        let whole = ImageRegion::whole(&self.intrinsics);
+        let window = match self.pipeline {
+            CameraPipeline::Window => self.tracker.predict(index, &geometry.camera_from_ned()),
+            CameraPipeline::Whole => None,
+        };
+        if self.saved_every.is_some_and(|n| index.is_multiple_of(n)) {
+            self.window_counts.whole_saved += 1;
+            return (whole, window);
+        }
+        match window {
+            Some(region) => {
+                self.window_counts.windowed += 1;
+                (region, window)
+            }
+            None => {
+                self.window_counts.whole_untracked += 1;
+                (whole, None)
+            }
+        }
+    }
+
+    /// Numbers the next frame and starts drawing `region` of it.
     fn expose(
         &mut self,
         t_s: f64,
         geometry: &CaptureGeometry,
+        region: &ImageRegion,
     ) -> Result<(Exposure, PendingFrame), SensorError> {
         let exposure = Exposure {
             index: self.frames,
@@ -345,31 +461,124 @@ impl CameraSensor {
             geometry: *geometry,
         };
         self.frames += 1;
-        let pending = self.renderer.begin_frame(&geometry.pose())?;
+        let pending = self
+            .renderer
+            .begin_frame_in(&self.drawn_pose(&exposure), region)?;
         Ok((exposure, pending))
     }
 
-    /// Reads frame `index` back into its buffer.
-    fn finish(&mut self, pending: PendingFrame, index: u64) -> Result<(), SensorError> {
+    /// The target's pose as a frame draws it: where it is, or nowhere while the occlusion
+    /// hides it.
+    fn drawn_pose(&self, exposure: &Exposure) -> TargetPoseInCamera {
+        let [hide_s, show_s] = self.occlusion_s;
+        if (hide_s..show_s).contains(&exposure.t_s) {
+            TargetPoseInCamera::hidden()
+        } else {
+            exposure.geometry.pose()
+        }
+    }
+
+    /// Reads the frame in flight, if any, back into its buffer.
+    fn finish_in_flight(
+        &mut self,
+        in_flight: &mut Option<(PendingFrame, u64)>,
+    ) -> Result<(), SensorError> {
+        let Some((pending, index)) = in_flight.take() else {
+            return Ok(());
+        };
+        let buffer = buffer_of(index);
+        self.regions[buffer] = pending.region();
         self.renderer
-            .finish_frame(pending, index, &mut self.pixels[buffer_of(index)])?;
+            .finish_frame(pending, index, &mut self.pixels[buffer])?;
         self.timings.add_render(self.renderer.last_timings());
         Ok(())
     }
 
-    /// Measures a read-back frame, computes its truth and r*, and queues its record.
-    fn measure(&mut self, exposure: &Exposure) -> Result<FrameRecord, SensorError> {
-        let vision_started = Instant::now();
+    /// Measures a read-back frame (drawing and measuring it again whole when its region's
+    /// measurement cannot stand; the frame in flight is read back first, as the renderer
+    /// draws one frame at a time), computes its truth and r*, and queues its record.
+    fn measure(
+        &mut self,
+        exposure: &Exposure,
+        in_flight: &mut Option<(PendingFrame, u64)>,
+    ) -> Result<FrameRecord, SensorError> {
         let selection = match (self.selection, self.previous_centroid_px) {
             (BlobChoice::Nearest, Some((u_px, v_px))) => BlobSelection::NearestTo { u_px, v_px },
             _ => BlobSelection::Largest,
         };
-        let frame = &self.pixels[buffer_of(exposure.index)];
+        let blob = match self.measure_pixels(exposure.index, selection)? {
+            RegionOutcome::Measured(blob) => blob,
+            RegionOutcome::NeedsWholeImage => {
+                self.finish_in_flight(in_flight)?;
+                self.window_counts.redrawn_whole += 1;
+                let whole = ImageRegion::whole(&self.intrinsics);
+                let pose = self.drawn_pose(exposure);
+                let redrawn = self.renderer.begin_frame_in(&pose, &whole)?;
+                self.finish_in_flight(&mut Some((redrawn, exposure.index)))?;
+                self.windows[buffer_of(exposure.index)] = None;
+                self.measure_whole(exposure.index, selection)?
+            }
+        };
+        let camera_from_ned = exposure.geometry.camera_from_ned();
+        self.tracker
+            .observe(exposure.index, &blob, &camera_from_ned);
+        Ok(self.record(exposure, blob))
+    }
+
+    /// Measures the pixels of frame `index` as read back: in its tracking window, or the
+    /// whole image. A window's measurement that cannot stand is replaced by the whole image's
+    /// when the frame was drawn whole, and asks for the frame to be drawn whole otherwise.
+    fn measure_pixels(
+        &mut self,
+        index: u64,
+        selection: BlobSelection,
+    ) -> Result<RegionOutcome, SensorError> {
+        let buffer = buffer_of(index);
+        let (drawn, frame) = (self.regions[buffer], &self.pixels[buffer]);
+        let Some(window) = self.windows[buffer] else {
+            return Ok(RegionOutcome::Measured(
+                self.measure_whole(index, selection)?,
+            ));
+        };
+        let vision_started = Instant::now();
+        let pixels = if drawn == window {
+            &frame.rgba
+        } else {
+            cut_window(&frame.rgba, &drawn, &window, &mut self.window_pixels);
+            &self.window_pixels
+        };
+        let measured = self
+            .vision
+            .measure_region(pixels, &window, &self.intrinsics, selection)?;
+        self.timings.vision += vision_started.elapsed();
+        if !measured.reaches_inner_edge && measured.blob.status == BlobStatus::Ok {
+            Ok(RegionOutcome::Measured(measured.blob))
+        } else if drawn.is_whole(&self.intrinsics) {
+            Ok(RegionOutcome::Measured(
+                self.measure_whole(index, selection)?,
+            ))
+        } else {
+            Ok(RegionOutcome::NeedsWholeImage)
+        }
+    }
+
+    /// Measures the pixels of frame `index`, a whole image.
+    fn measure_whole(
+        &mut self,
+        index: u64,
+        selection: BlobSelection,
+    ) -> Result<BlobMeasurement, SensorError> {
+        let vision_started = Instant::now();
+        let frame = &self.pixels[buffer_of(index)];
         let blob = self
             .vision
             .measure(&frame.rgba, frame.width_px, frame.height_px, selection)?;
         self.timings.vision += vision_started.elapsed();
+        Ok(blob)
+    }
 
+    /// Computes the truth and r* of a measured frame and queues its record.
+    fn record(&mut self, exposure: &Exposure, blob: BlobMeasurement) -> FrameRecord {
         let truth_started = Instant::now();
         let geometry = &exposure.geometry;
         let pose = geometry.pose();
@@ -413,13 +622,17 @@ impl CameraSensor {
         self.last_frame = Some(record);
         self.last_measurement = Some(blob);
         self.pending.push_back(record);
-        Ok(record)
+        record
     }
 
-    /// The last frame taken and its measurement record.
+    /// The last frame measured, its record and its measurement, when it was drawn whole
+    /// (frames to be saved always are; a frame drawn in its tracking window only is `None`
+    /// here: see [`Self::last_record`]).
     pub fn last_frame(&self) -> Option<(&CameraImage, &FrameRecord, &BlobMeasurement)> {
         match (&self.last_frame, &self.last_measurement) {
-            (Some(record), Some(blob)) => {
+            (Some(record), Some(blob))
+                if self.regions[buffer_of(record.index)].is_whole(&self.intrinsics) =>
+            {
                 Some((&self.pixels[buffer_of(record.index)], record, blob))
             }
             _ => None,
@@ -460,6 +673,11 @@ impl CameraSensor {
     /// Time spent per stage.
     pub fn timings(&self) -> CameraTimings {
         self.timings
+    }
+
+    /// How the frames were drawn: in the tracking window or whole, and why.
+    pub fn window_counts(&self) -> WindowCounts {
+        self.window_counts
     }
 
     /// The adapter, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) (Cpu, Vulkan)".

@@ -186,7 +186,8 @@ impl BackgroundFitter {
         let mut scale = self.trim(&model);
         let fit_surface = matches!(source, BackgroundSource::BorderFit { .. })
             && frame.width >= MIN_SIDE_FOR_SURFACE_PX
-            && frame.height >= MIN_SIDE_FOR_SURFACE_PX;
+            && frame.height >= MIN_SIDE_FOR_SURFACE_PX
+            && !self.inliers_exact();
         if fit_surface {
             for _ in 0..FIT_ITERATIONS {
                 match self.least_squares(&model) {
@@ -234,6 +235,17 @@ impl BackgroundFitter {
                 (w - border_px..w).for_each(|u| push(u, v));
             }
         }
+    }
+
+    /// Whether every inlier lies exactly on the model of the last [`Self::trim`] (a noise-free
+    /// uniform sky): that model is then their least-squares surface, exactly, where a fit
+    /// would leave rounding errors that depend on which border it was fitted on (the image's
+    /// or a region's).
+    fn inliers_exact(&self) -> bool {
+        self.residuals
+            .iter()
+            .zip(self.inlier.iter())
+            .all(|(r, keep)| !*keep || *r == 0.0)
     }
 
     /// Residual distances to `model`; marks samples within the trimming distance as inliers

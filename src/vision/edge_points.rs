@@ -260,18 +260,24 @@ impl EdgePointFinder {
 fn run_line(e: &PixelEdge, feet: &[(f64, f64)], grid: &CoverageGrid) -> Option<EdgeLine> {
     let (cu, cv) = grid.centre(e.x, e.y);
     let mut line = e.line;
+    let mut on_line = [(0.0f64, 0.0f64); 25];
     for gate in RUN_GATES_PX {
-        let on_line =
-            |f: &&(f64, f64)| (line.nx * f.0 + line.ny * f.1 - line.offset_px).abs() <= gate;
-        let n = feet.iter().filter(on_line).count();
-        if n < RUN_MIN_PIXELS {
+        let mut count = 0;
+        for f in feet {
+            if (line.nx * f.0 + line.ny * f.1 - line.offset_px).abs() <= gate {
+                on_line[count] = *f;
+                count += 1;
+            }
+        }
+        if count < RUN_MIN_PIXELS {
             return None;
         }
-        let n = n as f64;
-        let mu = feet.iter().filter(on_line).map(|f| f.0).sum::<f64>() / n;
-        let mv = feet.iter().filter(on_line).map(|f| f.1).sum::<f64>() / n;
+        let run = &on_line[..count];
+        let n = count as f64;
+        let mu = run.iter().map(|f| f.0).sum::<f64>() / n;
+        let mv = run.iter().map(|f| f.1).sum::<f64>() / n;
         let (mut suu, mut suv, mut svv) = (0.0, 0.0, 0.0);
-        for &(fu, fv) in feet.iter().filter(on_line) {
+        for &(fu, fv) in run {
             suu += (fu - mu) * (fu - mu);
             suv += (fu - mu) * (fv - mv);
             svv += (fv - mv) * (fv - mv);

@@ -50,7 +50,8 @@ pub(crate) fn check_rgba_len(
     }
 }
 
-/// A read-only RGBA8 frame whose buffer length has been checked.
+/// A read-only RGBA8 frame whose buffer length has been checked: a whole image, or a region
+/// of one whose first pixel is at `origin` in the image.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RgbaView<'a> {
     rgba: &'a [u8],
@@ -58,6 +59,8 @@ pub(crate) struct RgbaView<'a> {
     pub width: usize,
     /// Height, px.
     pub height: usize,
+    /// Image column and row of the view's first pixel (0, 0 for a whole image).
+    pub origin: [usize; 2],
 }
 
 impl<'a> RgbaView<'a> {
@@ -75,7 +78,17 @@ impl<'a> RgbaView<'a> {
             rgba,
             width: width_px as usize,
             height: height_px as usize,
+            origin: [0, 0],
         })
+    }
+
+    /// The same view, as the region of an image whose first pixel is at image column
+    /// `u0_px`, row `v0_px`.
+    pub fn at_origin(self, u0_px: u32, v0_px: u32) -> Self {
+        Self {
+            origin: [u0_px as usize, v0_px as usize],
+            ..self
+        }
     }
 
     /// The bytes of row `v` (`width * 4` of them).

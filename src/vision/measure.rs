@@ -23,6 +23,52 @@ const RING: u8 = 1;
 const BOUNDARY: u8 = 2;
 const INTERIOR: u8 = 3;
 
+/// The 8 neighbours of a pixel, (du, dv).
+const NEIGHBOURS: [(isize, isize); 8] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
+
+/// What pixel (u, v) of a `w` x `h` frame is to the blob `label`: [`INTERIOR`] (in the blob,
+/// with its 8 neighbours), [`BOUNDARY`] (in the blob, not all its neighbours), [`RING`] (in no
+/// blob, beside this one), or `None` (in another blob, or not beside this one).
+fn pixel_kind(labels: &[u32], w: usize, h: usize, u: usize, v: usize, label: u32) -> Option<u8> {
+    let idx = v * w + u;
+    let own = labels[idx];
+    if own != label && own != 0 {
+        return None;
+    }
+    let inside_frame = u > 0 && v > 0 && u + 1 < w && v + 1 < h;
+    let in_blob = |&(du, dv): &(isize, isize)| {
+        if inside_frame {
+            // All 8 neighbours are in the frame: no bounds to check.
+            labels[(idx as isize + dv * w as isize + du) as usize] == label
+        } else {
+            let (x, y) = (u as isize + du, v as isize + dv);
+            x >= 0
+                && y >= 0
+                && x < w as isize
+                && y < h as isize
+                && labels[y as usize * w + x as usize] == label
+        }
+    };
+    if own == label {
+        Some(if NEIGHBOURS.iter().all(in_blob) {
+            INTERIOR
+        } else {
+            BOUNDARY
+        })
+    } else {
+        NEIGHBOURS.iter().any(in_blob).then_some(RING)
+    }
+}
+
 /// What the moments and the edge points say about one blob.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct BlobGeometry {
@@ -90,46 +136,23 @@ impl Region {
 }
 
 impl BlobMeasurer {
-    /// Measures `blob` in `frame`.
+    /// Measures `blob` (its box in the frame's own pixels) in `frame`; the centroid and the
+    /// outline points are in image coordinates (the frame's origin added before any
+    /// arithmetic, so that a region of an image gives the image's numbers to the bit).
     pub fn measure(&mut self, frame: &RgbaView<'_>, blob: &BlobToMeasure<'_>) -> BlobGeometry {
         let (w, h) = (frame.width, frame.height);
+        let [ou, ov] = frame.origin;
         // Weights live on the bbox + 2 (ring + one more for the gradient stencil).
         let region = Region::around(blob.bbox, 2, w, h);
         self.grid
-            .reset(region.u0, region.v0, region.width, region.height);
-        let labels = blob.labels;
-        let label_at = |u: isize, v: isize| -> u32 {
-            if u < 0 || v < 0 || u >= w as isize || v >= h as isize {
-                0
-            } else {
-                labels[v as usize * w + u as usize]
-            }
-        };
+            .reset(ou + region.u0, ov + region.v0, region.width, region.height);
         let inner = Region::around(blob.bbox, 1, w, h);
         let (mut sum_w, mut sum_wu, mut sum_wv) = (0.0, 0.0, 0.0);
         let mut truncated = false;
         for v in inner.v0..inner.v0 + inner.height {
             for u in inner.u0..inner.u0 + inner.width {
                 let idx = v * w + u;
-                let own = labels[idx];
-                let (ui, vi) = (u as isize, v as isize);
-                let mut blob_neighbours = 0;
-                for dv in -1..=1 {
-                    for du in -1..=1 {
-                        if (du, dv) != (0, 0) && label_at(ui + du, vi + dv) == blob.label {
-                            blob_neighbours += 1;
-                        }
-                    }
-                }
-                let kind = if own == blob.label {
-                    if blob_neighbours == 8 {
-                        INTERIOR
-                    } else {
-                        BOUNDARY
-                    }
-                } else if own == 0 && blob_neighbours > 0 {
-                    RING
-                } else {
+                let Some(kind) = pixel_kind(blob.labels, w, h, u, v, blob.label) else {
                     continue;
                 };
                 let weight = if kind == INTERIOR {
@@ -145,16 +168,16 @@ impl BlobMeasurer {
                 self.grid.weights[local] = weight as f32;
                 self.grid.is_edge[local] = kind != INTERIOR;
                 sum_w += weight;
-                sum_wu += weight * (u as f64 + 0.5);
-                sum_wv += weight * (v as f64 + 0.5);
+                sum_wu += weight * ((ou + u) as f64 + 0.5);
+                sum_wv += weight * ((ov + v) as f64 + 0.5);
             }
         }
         let (centroid_u_px, centroid_v_px) = if sum_w > 0.0 {
             (sum_wu / sum_w, sum_wv / sum_w)
         } else {
             (
-                0.5 * f64::from(blob.bbox.min_u + blob.bbox.max_u + 1),
-                0.5 * f64::from(blob.bbox.min_v + blob.bbox.max_v + 1),
+                (ou as f64) + 0.5 * f64::from(blob.bbox.min_u + blob.bbox.max_u + 1),
+                (ov as f64) + 0.5 * f64::from(blob.bbox.min_v + blob.bbox.max_v + 1),
             )
         };
         self.finder.find(

@@ -14,6 +14,10 @@
 //!    straight edges meet).
 //! 5. [`BlobStatus`]: `Ok`, `NotFound`, `Truncated` (touches the border), `TooSmall`.
 //!
+//! A tracking camera measures only a region of the image: [`TrackingWindow`] predicts it from
+//! the last measurement and the follower's attitude, and [`VisionPipeline::measure_region`]
+//! measures it, in the image's coordinates.
+//!
 //! Pixel conventions are those of [`crate::render::camera`]: pixel (i, j) covers
 //! [i, i+1) x [j, j+1), u right, v down; [`BlobMeasurement::image_measurement`] converts to the
 //! SPEC's (yI, zI, bI).
@@ -35,6 +39,7 @@ mod subpixel_edge;
 mod synthetic;
 #[cfg(test)]
 mod tests;
+pub mod tracking;
 pub mod truth;
 
 pub use components::{BlobSummary, PixelBox};
@@ -45,5 +50,6 @@ pub use config::{
 pub use feret::{FeretDiameter, FeretFinder, PixelPoint, convex_hull_into, max_feret_diameter};
 pub use image_measurement::ImageMeasurement;
 pub use image_view::ImageSizeError;
-pub use pipeline::{BlobMeasurement, BlobStatus, VisionPipeline};
+pub use pipeline::{BlobMeasurement, BlobStatus, RegionMeasurement, VisionPipeline};
+pub use tracking::TrackingWindow;
 pub use truth::{ImageTruth, TruthProjector, image_truth};

@@ -1,9 +1,18 @@
 //! The frame-to-measurement pipeline: background model, segmentation, connected components,
 //! blob selection, centroid and maximal length. [`VisionPipeline`] owns every scratch buffer,
 //! so measuring frames of an unchanged size allocates nothing once the buffers have grown.
+//!
+//! [`VisionPipeline::measure_region`] measures the pixels of a region of the image only (issue
+//! 13: a tracking camera looks where the target is predicted to be), with the background
+//! fitted on the region's border, and returns the measurement in the image's coordinates. It
+//! equals the whole image's measurement when the region's border is background like the
+//! image's (noise-free: the same colour surface) and no blob comes within
+//! [`VisionPipeline::region_clearance_px`] of an edge of the region inside the image; when
+//! one does, it says so, and the caller measures the whole image instead.
 
 use super::ImageMeasurement;
 use crate::render::camera::CameraIntrinsics;
+use crate::render::region::ImageRegion;
 use crate::scenario::BearingPoint;
 
 use super::background::BackgroundFitter;
@@ -120,6 +129,19 @@ impl BlobMeasurement {
     }
 }
 
+/// A measurement of a region of the image, and whether to trust it as the whole image's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RegionMeasurement {
+    /// The measurement, in the image's coordinates (its `Truncated` status means the blob
+    /// touches the region's border).
+    pub blob: BlobMeasurement,
+    /// A blob of at least `min_pixel_count` mask pixels comes within
+    /// [`VisionPipeline::region_clearance_px`] of an edge of the region that is inside the
+    /// image: the target may reach beyond the region, so the measurement may differ from the
+    /// whole image's.
+    pub reaches_inner_edge: bool,
+}
+
 /// Measures the target's centroid and maximal length in RGBA frames; reuse one per camera.
 #[derive(Debug, Clone)]
 pub struct VisionPipeline {
@@ -149,7 +171,8 @@ impl VisionPipeline {
     }
 
     /// Every blob of the last measured frame (mask pixels, 8-connected), in raster order of
-    /// their first pixel.
+    /// their first pixel, in the coordinates of the pixels measured (a region's own, after
+    /// [`Self::measure_region`]).
     pub fn blobs(&self) -> &[BlobSummary] {
         &self.labeller.blobs
     }
@@ -163,7 +186,17 @@ impl VisionPipeline {
         height_px: u32,
         selection: BlobSelection,
     ) -> Result<BlobMeasurement, ImageSizeError> {
-        let frame = RgbaView::new(rgba, width_px, height_px)?;
+        self.measure_view(&RgbaView::new(rgba, width_px, height_px)?, selection)
+    }
+
+    /// Measures `frame` (a whole image, or a region of one): centroid and outline in image
+    /// coordinates, blob boxes in the frame's own pixels.
+    fn measure_view(
+        &mut self,
+        frame: &RgbaView<'_>,
+        selection: BlobSelection,
+    ) -> Result<BlobMeasurement, ImageSizeError> {
+        let frame = *frame;
         if frame.pixel_count() == 0 {
             self.labeller.label(&[], 0, 0);
             return Ok(BlobMeasurement::not_found(0, f64::NAN));
@@ -218,6 +251,67 @@ impl VisionPipeline {
             feret: geometry.feret,
             blob_count,
             background_noise_sigma: sigma,
+        })
+    }
+}
+
+impl VisionPipeline {
+    /// How close to an inner edge of a region a blob may come, px, before the region's
+    /// measurement may differ from the whole image's: a blob takes in mask pixels up to
+    /// `link_radius_px` away, and its measurement reads the coverage of pixels up to 2 px
+    /// beyond its mask (the ring and the gradient stencil), plus one for a core pixel's
+    /// neighbours. Smaller blobs (below `min_pixel_count`: noise, or a sliver of target whose
+    /// link to the measured blob would pass outside the region, which the measured blob's
+    /// own clearance rules out) are not measured and do not count.
+    pub fn region_clearance_px(&self) -> u32 {
+        self.config.link_radius_px as u32 + 3
+    }
+
+    /// Measures `rgba`, the pixels of `region` of an image of `intrinsics`' size (row-major,
+    /// `region.width_px * 4` bytes per row), as [`Self::measure`] does, the background fitted
+    /// on the region's border; `selection` and the result are in the image's coordinates.
+    pub fn measure_region(
+        &mut self,
+        rgba: &[u8],
+        region: &ImageRegion,
+        intrinsics: &CameraIntrinsics,
+        selection: BlobSelection,
+    ) -> Result<RegionMeasurement, ImageSizeError> {
+        let local_selection = match selection {
+            BlobSelection::NearestTo { u_px, v_px } => BlobSelection::NearestTo {
+                u_px: u_px - f64::from(region.u0_px),
+                v_px: v_px - f64::from(region.v0_px),
+            },
+            BlobSelection::Largest => BlobSelection::Largest,
+        };
+        let frame = RgbaView::new(rgba, region.width_px, region.height_px)?
+            .at_origin(region.u0_px, region.v0_px);
+        let mut blob = self.measure_view(&frame, local_selection)?;
+        blob.bbox = blob.bbox.map(|b| PixelBox {
+            min_u: b.min_u + region.u0_px,
+            min_v: b.min_v + region.v0_px,
+            max_u: b.max_u + region.u0_px,
+            max_v: b.max_v + region.v0_px,
+        });
+        let [left, top, right, bottom] = region.inner_edges(intrinsics);
+        let clearance = self.region_clearance_px() as usize;
+        let (w, h) = (region.width_px as usize, region.height_px as usize);
+        let reaches_inner_edge = self
+            .labeller
+            .blobs
+            .iter()
+            .filter(|b| b.pixel_count >= self.config.min_pixel_count)
+            .any(|b| {
+                let (u0, v0) = (b.bbox.min_u as usize, b.bbox.min_v as usize);
+                let (u1, v1) = (b.bbox.max_u as usize, b.bbox.max_v as usize);
+                (left && u0 < clearance)
+                    || (top && v0 < clearance)
+                    || (right && u1 + clearance >= w)
+                    || (bottom && v1 + clearance >= h)
+            });
+        Ok(RegionMeasurement {
+            blob,
+            reaches_inner_edge,
         })
     }
 }

@@ -7,6 +7,8 @@ use std::sync::OnceLock;
 use wingman::frames::{EulerAngles, Vec3};
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{CameraImage, GpuContext, TargetMesh};
+use wingman::sensing::line_of_sight_body;
+use wingman::vision::VisionConfig;
 
 /// The shared GPU context. Panics (fails the test) with the install hint when there is no
 /// adapter: a skipped GPU test would hide a broken set-up (DESIGN §3).
@@ -36,6 +38,85 @@ pub fn pose(position_body_ft: [f64; 3], attitude_rad: [f64; 3]) -> TargetPoseInC
             .body_from_ned()
             .transpose(),
     }
+}
+
+/// Target attitudes relative to the camera (roll, pitch, yaw of the target in camera axes),
+/// each at least 15° from a wing seen edge-on (asserted in [`sixty_poses`]). The first is the
+/// symmetric view: pitched up 90°, the camera sees the planform with the nose up,
+/// mirror-symmetric in u.
+pub const POSE_ATTITUDES: [[f64; 3]; 6] = [
+    [0.0, std::f64::consts::FRAC_PI_2, 0.0],
+    [0.3, 0.9, 0.4],
+    [-0.4, 1.1, 2.0],
+    [0.2, -1.2, 2.8],
+    [0.0, -1.0, 0.5],
+    [0.0, 0.7, -0.5],
+];
+
+/// One of the 60 poses of the image pipeline's tests.
+#[derive(Debug, Clone, Copy)]
+pub struct PoseCase {
+    /// Range, ft.
+    pub range_ft: f64,
+    /// Bearing, deg.
+    pub bearing_deg: f64,
+    /// Elevation, deg.
+    pub elevation_deg: f64,
+    /// One of [`POSE_ATTITUDES`].
+    pub attitude: [f64; 3],
+    /// The pose.
+    pub pose: TargetPoseInCamera,
+}
+
+/// The 60-pose test set at 640x480, 60° field of view: ranges 20-250 ft, bearings and
+/// elevations across the field of view where the whole 8 ft target fits in the image (shrunk
+/// close in), three attitudes per position (the planform, and two of the other five in turn).
+pub fn sixty_poses() -> Vec<PoseCase> {
+    let positions = [20.0, 45.0, 90.0, 160.0, 250.0]
+        .into_iter()
+        .flat_map(|range_ft| {
+            [(-18.0, 8.0), (0.0, 0.0), (20.0, -10.0), (8.0, 15.0)].map(
+                |(bearing_deg, elevation_deg)| {
+                    let scale = f64::min(1.0, range_ft / 60.0);
+                    (range_ft, bearing_deg * scale, elevation_deg * scale)
+                },
+            )
+        });
+    let mut cases = Vec::new();
+    for (k, (range_ft, bearing_deg, elevation_deg)) in positions.enumerate() {
+        for i in [0, 1 + k % 5, 1 + (k + 2) % 5] {
+            let attitude = POSE_ATTITUDES[i];
+            let position =
+                line_of_sight_body(f64::to_radians(bearing_deg), f64::to_radians(elevation_deg))
+                    * range_ft;
+            let p = pose([position.x, position.y, position.z], attitude);
+            let wing_normal = p.body_from_target * Vec3::z();
+            let off_edge_on = wing_normal.dot(&position.normalize()).abs().asin();
+            assert!(
+                off_edge_on > 15f64.to_radians(),
+                "{attitude:?} is near edge-on"
+            );
+            cases.push(PoseCase {
+                range_ft,
+                bearing_deg,
+                elevation_deg,
+                attitude,
+                pose: p,
+            });
+        }
+    }
+    cases
+}
+
+/// The image pipeline as the camera scenarios configure it: thin, partly covered pixels kept
+/// in the mask and one-pixel gaps bridged.
+pub fn scenario_vision_config() -> VisionConfig {
+    let mut config = VisionConfig {
+        link_radius_px: 2,
+        ..VisionConfig::default()
+    };
+    config.segmentation.mask_coverage = 0.2;
+    config
 }
 
 /// Grey levels of `frame` below `threshold`: the target's silhouette.

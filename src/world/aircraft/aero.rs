@@ -4,6 +4,12 @@
 //! Y is positive along +y_w (to the right), so the seed's side force C of (7.16) is C = -Y.
 //! Moments act about the body axes at the centre of gravity; thrust acts along body x through
 //! the centre of gravity (no thrust moments: L_T = M_T = N_T = 0 in (7.17)).
+//!
+//! Beyond the seed, an optional speed brake (`follower.speed_brake_c_drag`) shares the
+//! throttle's channel: δT < 0 deploys it, adding ΔC_D = C_TδT |δT| to the drag, along the
+//! airflow (so the channel's force per unit δT is ½ρV² S C_TδT either way, and the flight
+//! controller's inversion of (7.20) commands it as it commands thrust). The seed's aircraft
+//! has none: its δT stays in [0, 1].
 
 use crate::frames::{Mat3, Vec3};
 
@@ -80,7 +86,7 @@ pub struct CoefficientValues {
 pub struct Loads {
     /// Dynamic pressure ½ρV², lbf/ft².
     pub dynamic_pressure_lbf_ft2: f64,
-    /// Drag D (after the drag perturbation factor), lbf.
+    /// Drag D (after the drag perturbation factor; the speed brake's included), lbf.
     pub drag_lbf: f64,
     /// Lift L, lbf.
     pub lift_lbf: f64,
@@ -191,10 +197,16 @@ impl AircraftParams {
         let c = self.coefficients(air, body_rates_rps, controls);
         let qbar = 0.5 * density_slug_ft3 * air.airspeed_fps * air.airspeed_fps;
         let qs = qbar * self.geometry.wing_area_ft2;
-        let drag_lbf = drag_factor * qs * c.drag;
+        let channel_lbf = qs * self.propulsion.c_thrust_throttle * controls.throttle;
+        // δT < 0 is the speed brake's drag, not a reversed thrust.
+        let (thrust_lbf, brake_drag_lbf) = if channel_lbf >= 0.0 {
+            (channel_lbf, 0.0)
+        } else {
+            (0.0, -channel_lbf)
+        };
+        let drag_lbf = drag_factor * qs * c.drag + brake_drag_lbf;
         let lift_lbf = qs * c.lift;
         let side_force_lbf = qs * c.side;
-        let thrust_lbf = qs * self.propulsion.c_thrust_throttle * controls.throttle;
         let aero_body = air.body_from_wind() * Vec3::new(-drag_lbf, side_force_lbf, -lift_lbf);
         let moment = Vec3::new(
             qs * self.geometry.span_ft * c.roll,
@@ -265,6 +277,38 @@ mod tests {
         assert!(stall_blend(0.8, 0.4712, 50.0) > 1.0 - 1e-6);
         assert!(stall_blend(-0.8, 0.4712, 50.0) > 1.0 - 1e-6);
         assert!(stall_blend(100.0, 0.4712, 50.0).is_finite());
+    }
+
+    /// A negative δT is the speed brake: no thrust, ΔD = ½ρV² S C_TδT |δT| along the airflow,
+    /// the moments untouched; with a brake the channel's range reaches -ΔC_D / C_TδT.
+    #[test]
+    fn negative_throttle_is_drag_along_the_airflow() {
+        let p = params().with_speed_brake(0.06);
+        assert!(
+            (p.actuators.throttle.min + 0.2).abs() < 1e-12,
+            "0.06 / C_TδT 0.3"
+        );
+        let air = AirAngles {
+            airspeed_fps: 50.0,
+            alpha_rad: 0.1,
+            beta_rad: 0.02,
+        };
+        let controls = |throttle: f64| Controls {
+            throttle,
+            elevator_rad: -0.1,
+            aileron_rad: 0.0,
+            rudder_rad: 0.0,
+        };
+        let rates = Vec3::zeros();
+        let loads = |t: f64| p.loads(&air, &rates, &controls(t), 0.002377, 1.0, &Vec3::zeros());
+        let (clean, braked) = (loads(0.0), loads(-0.2));
+        let qs = 0.5 * 0.002377 * 2500.0 * p.geometry.wing_area_ft2;
+        assert_eq!(braked.thrust_lbf, 0.0);
+        assert!((braked.drag_lbf - clean.drag_lbf - qs * 0.06).abs() < 1e-12);
+        let along_airflow = air.body_from_wind() * Vec3::new(-qs * 0.06, 0.0, 0.0);
+        assert!((braked.force_body_lbf - clean.force_body_lbf - along_airflow).norm() < 1e-12);
+        assert_eq!(braked.moment_body_lbf_ft, clean.moment_body_lbf_ft);
+        assert_eq!(params().with_speed_brake(0.0).actuators.throttle.min, 0.0);
     }
 
     #[test]

@@ -428,6 +428,16 @@ impl AircraftParams {
         Self::from_toml_str(SEED_FOLLOWER_TOML, Path::new(SEED_FOLLOWER_PATH))
     }
 
+    /// These parameters with a speed brake of ΔC_D = `c_drag` at full deflection on the
+    /// throttle's channel (see [`super::aero`]): δT's range becomes [-c_drag / C_TδT, 1].
+    /// 0 leaves the aircraft as it is.
+    pub fn with_speed_brake(mut self, c_drag: f64) -> Self {
+        if c_drag > 0.0 {
+            self.actuators.throttle.min = -c_drag / self.propulsion.c_thrust_throttle;
+        }
+        self
+    }
+
     /// Validates parsed file contents and converts them to the simulator's units.
     pub fn from_file(file: AircraftFile) -> Result<Self, InvalidValue> {
         file.validate()?;

@@ -1,0 +1,101 @@
+//! The target's aspect (seed 8.2, beyond the seed's constant apparent size): with
+//! `estimator.size_model = "span"`, b is the target's wing span, and the maximal length a frame
+//! measures is that span as the camera sees it, foreshortened by the target's attitude
+//! relative to the line of sight.
+//!
+//! The attitude is not measured; it is inferred from the filter's own estimates, as a pilot
+//! would: an aircraft in coordinated flight points its nose along its velocity and its lift,
+//! the body's -z axis, along the part of its specific force f = â_T - g (NED, g = [0, 0, g];
+//! what an accelerometer reads, -g in level flight) across that velocity. The wing (body y)
+//! axis is then ŵ = ẑ × x̂ with x̂ = V̂_T/‖V̂_T‖ and ẑ the unit vector of -(f - (f·x̂)x̂).
+//!
+//! A segment of length b along ŵ, at the image position (yI, zI) and depth x_c, projects to
+//! the length f b s / x_c to first order in b / x_c, with the aspect factor
+//! s = ‖(w_y - w_x yI/f, w_z - w_x zI/f)‖ (ŵ in camera axes): s = 1 for a span across the
+//! optical axis, as the sensing transform (3.3)-(3.12) assumes. So r* computed from the frame
+//! is R / (b s), and R / b = s r*. The span is the silhouette's maximal length only while it
+//! is the longest of its dimensions in view: seen near the wing axis the fuselage is, and
+//! the frame's length then says nothing about the span (the tracker keeps only its bearing).
+
+use crate::frames::{GRAVITY_FPS2, Mat3, Vec3};
+
+/// The wing axis ŵ (unit, NED) of an aircraft flying at `velocity_ned_fps` with acceleration
+/// `accel_ned_fps2`, in coordinated flight; `None` when it is not moving.
+pub fn wing_axis_ned(velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<Vec3> {
+    let forward = velocity_ned_fps.try_normalize(1e-9)?;
+    let specific_force = accel_ned_fps2 - Vec3::new(0.0, 0.0, GRAVITY_FPS2);
+    let lift = specific_force - forward * specific_force.dot(&forward);
+    let up = lift.try_normalize(1e-9)?;
+    // Body z points down, opposite to the lift: ŵ = ẑ_B × x̂_B = (-up) × forward.
+    Some((-up).cross(&forward))
+}
+
+/// The aspect factor s of a span along `wing_camera` (unit, camera axes) seen at the image
+/// position (`y_i_px`, `z_i_px`) of a camera of focal length `focal_px`.
+pub fn span_aspect(wing_camera: &Vec3, y_i_px: f64, z_i_px: f64, focal_px: f64) -> f64 {
+    let (ty, tz) = (y_i_px / focal_px, z_i_px / focal_px);
+    (wing_camera.y - wing_camera.x * ty).hypot(wing_camera.z - wing_camera.x * tz)
+}
+
+/// The aspect factor of a target flying at `velocity_ned_fps` with `accel_ned_fps2`, seen at
+/// (`y_i_px`, `z_i_px`) by a camera whose orientation is `ned_from_camera`.
+pub fn target_span_aspect(
+    velocity_ned_fps: &Vec3,
+    accel_ned_fps2: &Vec3,
+    ned_from_camera: &Mat3,
+    (y_i_px, z_i_px): (f64, f64),
+    focal_px: f64,
+) -> Option<f64> {
+    let wing = wing_axis_ned(velocity_ned_fps, accel_ned_fps2)?;
+    Some(span_aspect(
+        &(ned_from_camera.transpose() * wing),
+        y_i_px,
+        z_i_px,
+        focal_px,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frames::EulerAngles;
+
+    /// Level flight north: the right wing points east; in a right turn (acceleration east)
+    /// it dips, as the coordinated bank atan(a/g) says.
+    #[test]
+    fn wing_axis_banks_with_the_turn() {
+        let v = Vec3::new(50.0, 0.0, 0.0);
+        let level = wing_axis_ned(&v, &Vec3::zeros()).expect("moving");
+        assert!((level - Vec3::new(0.0, 1.0, 0.0)).norm() < 1e-12);
+        let a = 10.0;
+        let turning = wing_axis_ned(&v, &Vec3::new(0.0, a, 0.0)).expect("moving");
+        let bank = (a / GRAVITY_FPS2).atan();
+        assert!((turning - Vec3::new(0.0, bank.cos(), bank.sin())).norm() < 1e-12);
+        assert!(wing_axis_ned(&Vec3::zeros(), &Vec3::zeros()).is_none());
+    }
+
+    /// Seen from behind on the optical axis the span is whole (s = 1); seen ψ off the tail
+    /// it is foreshortened to cos ψ; the first-order factor matches the projection of the
+    /// two wing tips off the axis.
+    #[test]
+    fn aspect_factor_is_the_projected_span() {
+        let behind = Mat3::identity();
+        let s = |ned_from_camera: &Mat3, px: (f64, f64)| {
+            let v = Vec3::new(50.0, 0.0, 0.0);
+            target_span_aspect(&v, &Vec3::zeros(), ned_from_camera, px, 554.0).expect("moving")
+        };
+        assert!((s(&behind, (0.0, 0.0)) - 1.0).abs() < 1e-12);
+        let psi = 14f64.to_radians();
+        let off_tail = EulerAngles::new(0.0, 0.0, psi).body_from_ned().transpose();
+        assert!((s(&off_tail, (0.0, 0.0)) - psi.cos()).abs() < 1e-12);
+        // Off the image centre: project the tips of an 8 ft span 300 ft ahead.
+        let (f, depth, b) = (554.0, 300.0, 8.0);
+        let centre = Vec3::new(depth, 40.0, -25.0);
+        let wing = Vec3::new(0.3, 0.9, 0.1).normalize();
+        let project = |p: Vec3| Vec3::new(0.0, f * p.y / p.x, f * p.z / p.x);
+        let exact = (project(centre + wing * b / 2.0) - project(centre - wing * b / 2.0)).norm();
+        let model =
+            f * b * span_aspect(&wing, f * centre.y / depth, f * centre.z / depth, f) / depth;
+        assert!((exact - model).abs() < 1e-3 * exact, "{exact} {model}");
+    }
+}
