@@ -58,7 +58,8 @@ fn sweep(study: &Path, out: &Path, extra: &[&str]) -> Output {
         .expect("wingman runs");
     assert!(
         output.status.success(),
-        "{}",
+        "{}: {}",
+        output.status,
         String::from_utf8_lossy(&output.stderr)
     );
     output

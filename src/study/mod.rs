@@ -5,8 +5,8 @@
 //!
 //! - [`spec`]: the study file's schema; [`plan`]: its cases, validated before anything runs,
 //!   and the shards; [`layout`]: `plan.json`, what the results are made of.
-//! - [`run`]: the cases in parallel, resumable; [`apparent_size`] and [`view`]: the
-//!   apparent-size case.
+//! - [`run`]: the cases in parallel, resumable; [`workers`]: what each worker keeps across
+//!   cases; [`apparent_size`] and [`view`]: the apparent-size case.
 //! - [`results`]: a case's record and `results.csv`; [`outputs`]: the sweep folder;
 //!   [`plots`]; [`merge`]: shards into one folder.
 
@@ -20,6 +20,7 @@ pub mod results;
 pub mod run;
 pub mod spec;
 pub mod view;
+pub mod workers;
 
 pub use merge::{MergeReport, merge_shards};
 pub use plan::{Plan, Shard};

@@ -2,20 +2,19 @@
 //! the cases a previous run completed, with progress (cases done, failed, time left).
 //!
 //! Camera cases render on one GPU device per worker thread, opened at its first camera case
-//! (measured on lavapipe, 2 cores, 8 runs of 20 s of `vision_ch4_formation` on 2 workers:
+//! and kept in [`super::workers`] (measured on lavapipe, 2 cores, 8 runs of 20 s of `vision_ch4_formation` on 2 workers:
 //! one device per worker was the fastest; `examples/sweep_gpu_sharing.rs` measures it).
 
-use super::apparent_size::ViewCamera;
 use super::layout::StudyLayout;
 use super::plan::{Case, Plan, Shard};
 use super::results::{CaseRecord, Column, read_record, summary_columns, write_record};
 use super::spec::StudyKind;
+use super::workers::Workers;
 use super::{StudyError, outputs};
 use crate::output::run_to_directory_on;
 use crate::render::GpuContext;
 use crate::scenario::{Scenario, SensorMode};
 use rayon::prelude::*;
-use std::cell::{OnceCell, RefCell};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
@@ -61,21 +60,6 @@ pub struct SweepReport {
     pub warnings: Vec<String>,
 }
 
-thread_local! {
-    /// The worker's GPU device, opened at its first camera case (or why it could not be).
-    static WORKER_GPU: OnceCell<Result<GpuContext, String>> = const { OnceCell::new() };
-    /// The worker's apparent-size camera, kept while its cases share a scenario.
-    static VIEW_CAMERA: RefCell<Option<ViewCamera>> = const { RefCell::new(None) };
-}
-
-/// Runs `f` with this worker's GPU device.
-fn with_worker_gpu<T>(f: impl FnOnce(Result<&GpuContext, &str>) -> T) -> T {
-    WORKER_GPU.with(|cell| {
-        let gpu = cell.get_or_init(|| GpuContext::new().map_err(|e| e.to_string()));
-        f(gpu.as_ref().map_err(String::as_str))
-    })
-}
-
 /// Runs the plan's cases (of `options.shard`) that `options.out_dir` does not hold complete,
 /// then writes `results.csv` and, for a whole study, the plots.
 pub fn run_sweep(plan: &Plan, options: &SweepOptions) -> Result<SweepReport, StudyError> {
@@ -101,18 +85,20 @@ pub fn run_sweep(plan: &Plan, options: &SweepOptions) -> Result<SweepReport, Stu
         .build()
         .map_err(|e| StudyError::Threads(e.to_string()))?;
     let tracker = Tracker::new(pending.len(), options.progress);
+    let workers = Workers::new(options.jobs);
     let written: Vec<Result<(), StudyError>> = pool.install(|| {
         pending
             .par_iter()
             .map(|case| {
                 let dir = outputs::case_folder(&options.out_dir, case.index);
-                let record = run_case(plan, case, &dir);
+                let record = run_case(plan, case, &dir, &workers);
                 tracker.finished(case, &record);
                 write_record(&dir, &record).map_err(StudyError::from)
             })
             .collect()
     });
     tracker.close();
+    drop(workers);
     written.into_iter().collect::<Result<(), _>>()?;
     let indices: Vec<usize> = cases.iter().map(|c| c.index).collect();
     let records = outputs::read_records(&plan.layout, &options.out_dir, &indices)?;
@@ -142,7 +128,7 @@ fn report(records: &[CaseRecord], skipped: usize, warnings: Vec<String>) -> Swee
 
 /// Runs one case into `dir` (emptied first) and returns its record; a case that cannot start
 /// or that diverges is a record with its status, never an error.
-fn run_case(plan: &Plan, case: &Case, dir: &Path) -> CaseRecord {
+fn run_case(plan: &Plan, case: &Case, dir: &Path, workers: &Workers) -> CaseRecord {
     let _ = std::fs::remove_dir_all(dir);
     let mut record = CaseRecord {
         case: case.index,
@@ -161,8 +147,9 @@ fn run_case(plan: &Plan, case: &Case, dir: &Path) -> CaseRecord {
     let outcome = Scenario::load(&plan.scenario_path, &overrides)
         .map_err(|e| e.to_string())
         .and_then(|scenario| match plan.kind {
-            StudyKind::Sweep => Ok(run_scenario(&plan.layout, &scenario, dir)),
-            StudyKind::ApparentSize => measure_view(overrides, scenario, case, dir)
+            StudyKind::Sweep => Ok(run_scenario(&plan.layout, &scenario, dir, workers)),
+            StudyKind::ApparentSize => workers
+                .measure_view(overrides, scenario, case, dir)
                 .map(|columns| ("completed".to_string(), None, columns)),
         });
     match outcome {
@@ -182,11 +169,12 @@ fn run_scenario(
     layout: &StudyLayout,
     scenario: &Scenario,
     dir: &Path,
+    workers: &Workers,
 ) -> (String, Option<String>, Vec<Column>) {
     let run =
         |gpu: Option<&GpuContext>| run_to_directory_on(scenario, &layout.study, dir, gpu, |_| {});
     let result = if scenario.sensor.mode == SensorMode::Camera {
-        with_worker_gpu(|gpu| match gpu {
+        workers.with_gpu(|gpu| match gpu {
             Ok(gpu) => run(Some(gpu)).map(|_| ()).map_err(|e| e.to_string()),
             Err(message) => Err(message.to_string()),
         })
@@ -207,27 +195,6 @@ fn run_scenario(
         }
         None => ("failed".into(), result.err(), vec![]),
     }
-}
-
-/// An apparent-size case on this worker's camera (set up anew when the scenario changes).
-fn measure_view(
-    overrides: Vec<String>,
-    scenario: Scenario,
-    case: &Case,
-    dir: &Path,
-) -> Result<Vec<Column>, String> {
-    VIEW_CAMERA.with(|slot| {
-        let mut slot = slot.borrow_mut();
-        if !slot.as_ref().is_some_and(|c| c.is_for(&overrides)) {
-            *slot = None;
-            let camera = with_worker_gpu(|gpu| ViewCamera::new(overrides, scenario, gpu?))?;
-            *slot = Some(camera);
-        }
-        match slot.as_mut() {
-            Some(camera) => camera.measure(case, dir),
-            None => Err("no camera".into()),
-        }
-    })
 }
 
 /// Counts finished cases and shows them.
