@@ -294,3 +294,21 @@ fn a_case_that_cannot_run_is_a_row() {
         rows[2]
     );
 }
+
+/// Every study in `studies/` passes the checks a sweep makes before it runs, with the number
+/// of cases docs/studies.md gives (the Monte Carlo study over at least 50 streams).
+#[test]
+fn shipped_studies_are_valid() {
+    let expected = [
+        ("field_of_view", 21),
+        ("resolution", 15),
+        ("rate_latency", 16),
+        ("monte_carlo", 50),
+        ("apparent_size", 13 * 13 * 4 * 5),
+    ];
+    for (name, cases) in expected {
+        let path = common::repo_root().join(format!("studies/{name}.toml"));
+        let plan = wingman::study::Plan::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(plan.cases.len(), cases, "{name}");
+    }
+}
