@@ -5,25 +5,22 @@
 //!
 //! Runs CASES copies (seeds 1..=CASES) of `scenarios/vision_ch4_formation.toml`, shortened to
 //! DURATION_S, on JOBS rayon threads in each mode, twice in alternating order, and prints the
-//! wall time of each. The sweep (`src/study/run.rs`) uses the mode this measured fastest.
+//! wall time of each. The sweep (`src/study/run.rs`) uses the mode this measured fastest, one
+//! device per worker, kept as here by `wingman::study::workers::Workers`.
 
 use rayon::prelude::*;
-use std::cell::OnceCell;
 use std::path::Path;
 use std::time::Instant;
 use wingman::output::run_to_directory_on;
 use wingman::render::GpuContext;
 use wingman::scenario::Scenario;
+use wingman::study::workers::Workers;
 
 #[derive(Debug, Clone, Copy)]
 enum Mode {
     Shared,
     PerWorker,
     PerRun,
-}
-
-thread_local! {
-    static WORKER_GPU: OnceCell<GpuContext> = const { OnceCell::new() };
 }
 
 fn run_one(scenario: &Scenario, out: &Path, gpu: Option<&GpuContext>) {
@@ -43,6 +40,7 @@ fn sweep(
         Mode::Shared => Some(GpuContext::new()?),
         _ => None,
     };
+    let workers = Workers::new(jobs);
     let started = Instant::now();
     pool.install(|| {
         scenarios.par_iter().enumerate().for_each(|(k, s)| {
@@ -50,14 +48,7 @@ fn sweep(
             match mode {
                 Mode::Shared => run_one(s, &out, shared.as_ref()),
                 Mode::PerRun => run_one(s, &out, None),
-                Mode::PerWorker => WORKER_GPU.with(|cell| {
-                    if cell.get().is_none()
-                        && let Ok(gpu) = GpuContext::new()
-                    {
-                        let _ = cell.set(gpu);
-                    }
-                    run_one(s, &out, cell.get());
-                }),
+                Mode::PerWorker => workers.with_gpu(|gpu| run_one(s, &out, gpu.ok())),
             }
         })
     });

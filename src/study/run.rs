@@ -2,8 +2,9 @@
 //! the cases a previous run completed, with progress (cases done, failed, time left).
 //!
 //! Camera cases render on one GPU device per worker thread, opened at its first camera case
-//! and kept in [`super::workers`] (measured on lavapipe, 2 cores, 8 runs of 20 s of `vision_ch4_formation` on 2 workers:
-//! one device per worker was the fastest; `examples/sweep_gpu_sharing.rs` measures it).
+//! and kept in [`super::workers`]: on lavapipe (2 cores, 8 runs of 20 s of
+//! `vision_ch4_formation` on 2 workers) one device per worker took 4.2-4.4 s, one shared
+//! 5.5-7.0 s and one per run 5.7-6.6 s (`examples/sweep_gpu_sharing.rs`).
 
 use super::layout::StudyLayout;
 use super::plan::{Case, Plan, Shard};
