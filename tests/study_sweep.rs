@@ -305,6 +305,8 @@ fn shipped_studies_are_valid() {
         ("rate_latency", 16),
         ("monte_carlo", 50),
         ("apparent_size", 13 * 13 * 4 * 5),
+        ("formation_streams", 10),
+        ("vision_ch4_filter", 9),
     ];
     for (name, cases) in expected {
         let path = common::repo_root().join(format!("studies/{name}.toml"));
