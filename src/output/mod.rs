@@ -61,6 +61,23 @@ pub fn run_to_directory(
     run_to_directory_on(scenario, name, out_dir, None, progress)
 }
 
+/// Offers the camera's latest frame to the saver; a frame that cannot be saved becomes a
+/// warning and ends the saving (the run goes on).
+fn save_frame(
+    frame_saver: &mut Option<frame_images::FrameSaver>,
+    sim: &Simulation,
+    warnings: &mut Vec<String>,
+) {
+    if let (Some(saver), Some(camera)) = (frame_saver.as_mut(), sim.camera())
+        && let Err(e) = saver.offer(camera, || {
+            frame_images::gimbal_captions(sim.gimbal_reading())
+        })
+    {
+        warnings.push(format!("frame not saved: {e}"));
+        *frame_saver = None;
+    }
+}
+
 /// [`run_to_directory`], with a camera rendering on `gpu` when given (a device shared by the
 /// runs of a sweep) and on a device of its own otherwise.
 pub fn run_to_directory_on(
@@ -101,14 +118,7 @@ pub fn run_to_directory_on(
     log(sim.snapshot(), &mut telemetry)?;
     let failure = loop {
         let outcome = sim.step();
-        if let (Some(saver), Some(camera)) = (frame_saver.as_mut(), sim.camera())
-            && let Err(e) = saver.offer(camera, || {
-                frame_images::gimbal_captions(sim.gimbal_reading())
-            })
-        {
-            warnings.push(format!("frame not saved: {e}"));
-            frame_saver = None;
-        }
+        save_frame(&mut frame_saver, &sim, &mut warnings);
         match outcome {
             Ok(StepOutcome::Running) => {
                 if sim.tick().is_multiple_of(log_every) {
