@@ -6,8 +6,10 @@ use std::io::IsTerminal;
 use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Instant;
 use wingman::output::frame_images::render_frame_at;
-use wingman::output::{RunError, run_to_directory};
+use wingman::output::summary::{RunStatus, Summary};
+use wingman::output::{RunReport, folder, interrupt, preflight, run_to_directory};
 use wingman::scenario::Scenario;
 use wingman::study::{Plan, Progress, Shard, StudyError, SweepOptions, merge_shards, run_sweep};
 
@@ -97,6 +99,7 @@ fn stem(path: &Path) -> String {
 }
 
 fn main() -> ExitCode {
+    quiet_mesa_runtime_dir();
     let cli = Cli::parse();
     match cli.command {
         Command::Run {
@@ -207,8 +210,50 @@ fn merge(shards: &[PathBuf], out: &Path) -> ExitCode {
     }
 }
 
+/// Mesa's Vulkan layers print "XDG_RUNTIME_DIR is invalid or not set" when the variable
+/// names no folder: point it at a private one first (before any thread starts).
+fn quiet_mesa_runtime_dir() {
+    if let Some(dir) = wingman::render::gpu::runtime_dir_to_set() {
+        // SAFETY: called first thing in main, while the program has one thread.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", dir) };
+    }
+}
+
+/// Loads the scenario and checks its assets and resources; the error line on failure.
+fn load_checked(path: &Path, overrides: &[String]) -> Result<Scenario, String> {
+    let (scenario, source) =
+        Scenario::load_with_source(path, overrides).map_err(|e| e.to_string())?;
+    preflight::check(&scenario, &source).map_err(|e| e.to_string())?;
+    Ok(scenario)
+}
+
+/// `--out` of `render`: a PNG file, not a folder.
+fn check_png_out(out: &Path) -> Result<(), String> {
+    if out.is_dir() {
+        return Err(format!(
+            "--out {}: is a folder, not a .png file",
+            out.display()
+        ));
+    }
+    if !out
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+    {
+        return Err(format!(
+            "--out {}: frames are written as PNG: name a .png file",
+            out.display()
+        ));
+    }
+    Ok(())
+}
+
 fn render(path: &Path, at_s: f64, out: Option<PathBuf>, overrides: &[String]) -> ExitCode {
-    let scenario = match Scenario::load(path, overrides) {
+    let out = out.unwrap_or_else(|| {
+        PathBuf::from("runs")
+            .join(stem(path))
+            .join(format!("frame_{at_s:.3}s.png"))
+    });
+    let scenario = match check_png_out(&out).and_then(|()| load_checked(path, overrides)) {
         Ok(s) => s,
         Err(e) => {
             eprintln!("error: {e}");
@@ -222,11 +267,6 @@ fn render(path: &Path, at_s: f64, out: Option<PathBuf>, overrides: &[String]) ->
         );
         return ExitCode::from(2);
     }
-    let out = out.unwrap_or_else(|| {
-        PathBuf::from("runs")
-            .join(stem(path))
-            .join(format!("frame_{at_s:.3}s.png"))
-    });
     match render_frame_at(&scenario, at_s, &out) {
         Ok(record) => {
             let describe = |m: Option<wingman::vision::ImageMeasurement>, none: &str| {
@@ -257,67 +297,154 @@ fn render(path: &Path, at_s: f64, out: Option<PathBuf>, overrides: &[String]) ->
     }
 }
 
+/// A progress bar on a terminal: done, elapsed, time left and the realtime factor.
+fn progress_bar(name: &str, quiet: bool) -> Option<indicatif::ProgressBar> {
+    let show = !quiet && std::io::stderr().is_terminal();
+    show.then(|| {
+        let bar = indicatif::ProgressBar::new(1000);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{prefix} [{bar:30}] {percent}% {elapsed} elapsed, {msg}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        bar.set_prefix(name.to_string());
+        bar
+    })
+}
+
 fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> ExitCode {
-    let scenario = match Scenario::load(path, overrides) {
+    let name = stem(path);
+    let out_dir = out.unwrap_or_else(|| PathBuf::from("runs").join(&name));
+    let checked = load_checked(path, overrides).and_then(|s| {
+        folder::check(&out_dir)
+            .map(|()| s)
+            .map_err(|e| e.to_string())
+    });
+    let scenario = match checked {
         Ok(s) => s,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
         }
     };
-    let name = stem(path);
-    let out_dir = out.unwrap_or_else(|| PathBuf::from("runs").join(&name));
-    let show_progress = !quiet && std::io::stderr().is_terminal();
-    let bar = show_progress.then(|| {
-        let bar = indicatif::ProgressBar::new(1000);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template("{prefix} [{bar:40}] {percent}% {elapsed}")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        bar.set_prefix(name.clone());
-        bar
-    });
+    if let Err(e) = interrupt::install_sigint_handler() {
+        eprintln!("warning: Ctrl-C will not stop the run cleanly: {e}");
+    }
+    let bar = progress_bar(&name, quiet);
+    let duration_s = scenario.run.duration_s;
+    let started = Instant::now();
     let result = run_to_directory(&scenario, &name, &out_dir, |fraction| {
         if let Some(bar) = &bar {
             bar.set_position((fraction * 1000.0) as u64);
+            let wall_s = started.elapsed().as_secs_f64();
+            bar.set_message(progress_message(fraction, duration_s, wall_s));
         }
     });
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
     match result {
-        Ok(report) => {
-            for note in &report.summary.notes {
-                eprintln!("note: {note}");
-            }
-            for warning in &report.warnings {
-                eprintln!("warning: {warning}");
-            }
-            let s = &report.summary;
-            if !quiet {
-                eprintln!(
-                    "{}: {:?} at t = {:.2} s in {:.3} s wall ({:.0}x real time); b_hat = {:.3} ft (true {} ft); RMS error last 20 s [{:.3}, {:.3}, {:.3}] ft{}; outputs in {}",
-                    s.scenario,
-                    s.status,
-                    s.duration_s,
-                    s.wall_s,
-                    s.realtime_factor,
-                    s.b_hat_final_ft,
-                    s.b_true_ft,
-                    s.rms_error_last20s_ft[0],
-                    s.rms_error_last20s_ft[1],
-                    s.rms_error_last20s_ft[2],
-                    s.intercept_time_s
-                        .map(|t| format!("; intercepted at {t:.3} s"))
-                        .unwrap_or_default(),
-                    out_dir.display()
-                );
-            }
-            ExitCode::SUCCESS
+        Ok(report) => finish(&report, &out_dir, quiet),
+        Err(e) if e.is_input_error() => {
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(2)
         }
-        Err(e @ RunError::Sim(..)) | Err(e @ RunError::Io { .. }) => {
+        Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(1)
         }
+    }
+}
+
+/// The progress bar's message: the wall time left at the pace so far and the realtime
+/// factor (simulated seconds per wall second).
+fn progress_message(fraction: f64, duration_s: f64, wall_s: f64) -> String {
+    if fraction.is_nan() || fraction <= 0.0 || wall_s <= 0.0 {
+        return "starting".to_string();
+    }
+    let left_s = (wall_s * (1.0 - fraction) / fraction).max(0.0).round() as u64;
+    format!(
+        "{}m {:02}s left, {:.1}x real time",
+        left_s / 60,
+        left_s % 60,
+        fraction * duration_s / wall_s
+    )
+}
+
+/// Prints the run's notes, warnings and final line; the exit code of its status (0
+/// completed or intercepted, 1 lost, 130 interrupted).
+fn finish(report: &RunReport, out_dir: &Path, quiet: bool) -> ExitCode {
+    for note in &report.summary.notes {
+        eprintln!("note: {note}");
+    }
+    for warning in &report.warnings {
+        eprintln!("warning: {warning}");
+    }
+    let s = &report.summary;
+    let line = final_line(s, out_dir);
+    match s.status {
+        RunStatus::Completed | RunStatus::Intercepted => {
+            if !quiet {
+                eprintln!("{line}");
+            }
+            ExitCode::SUCCESS
+        }
+        RunStatus::Lost | RunStatus::Diverged => {
+            eprintln!(
+                "error: {}; {line}",
+                s.message.as_deref().unwrap_or("stopped")
+            );
+            ExitCode::from(1)
+        }
+        RunStatus::Interrupted => {
+            eprintln!("interrupted: {line}");
+            ExitCode::from(130)
+        }
+    }
+}
+
+/// One line on the run: status, time, speed, b̂, errors, frames lost, where the outputs are.
+fn final_line(s: &Summary, out_dir: &Path) -> String {
+    let frames = if s.frames > 0 {
+        format!("; {} frames, {} lost", s.frames, s.lost_frames)
+    } else {
+        String::new()
+    };
+    format!(
+        "{}: {:?} at t = {:.2} s in {:.3} s wall ({:.0}x real time); b_hat = {:.3} ft (true {} ft); RMS error last 20 s [{:.3}, {:.3}, {:.3}] ft{}{frames}; outputs in {}",
+        s.scenario,
+        s.status,
+        s.duration_s,
+        s.wall_s,
+        s.realtime_factor,
+        s.b_hat_final_ft,
+        s.b_true_ft,
+        s.rms_error_last20s_ft[0],
+        s.rms_error_last20s_ft[1],
+        s.rms_error_last20s_ft[2],
+        s.intercept_time_s
+            .map(|t| format!("; intercepted at {t:.3} s"))
+            .unwrap_or_default(),
+        out_dir.display()
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A quarter of a 140 s run done in 10 s: 30 s left at 3.5 times real time.
+    #[test]
+    fn progress_shows_time_left_and_realtime_factor() {
+        assert_eq!(
+            progress_message(0.25, 140.0, 10.0),
+            "0m 30s left, 3.5x real time"
+        );
+        assert_eq!(
+            progress_message(0.5, 140.0, 100.0),
+            "1m 40s left, 0.7x real time"
+        );
+        assert_eq!(progress_message(0.0, 140.0, 0.0), "starting");
     }
 }

@@ -105,6 +105,24 @@ impl<'a> StateWriter<'a> {
     }
 }
 
+/// The components of a vector in NED axes, for [`element_names`].
+pub const NED: &[&str] = &["n", "e", "d"];
+/// The components of a vector along x, y, z, for [`element_names`].
+pub const XYZ: &[&str] = &["x", "y", "z"];
+
+/// The names of a state slice's elements (for messages): each group is a quantity and its
+/// components (none for a scalar), in the slice's order; every name starts with `prefix`.
+pub fn element_names(prefix: &str, groups: &[(&str, &[&str])]) -> Vec<String> {
+    let mut names = Vec::new();
+    for (quantity, parts) in groups {
+        if parts.is_empty() {
+            names.push(format!("{prefix}: {quantity}"));
+        }
+        names.extend(parts.iter().map(|p| format!("{prefix}: {quantity} ({p})")));
+    }
+    names
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

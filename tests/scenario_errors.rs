@@ -4,6 +4,9 @@
 use std::path::Path;
 use std::process::Command;
 
+/// The smallest scenario that is not empty.
+const MINIMAL: &str = "[run]\nseed = 1\n";
+
 fn wingman_run(scenario: &Path, extra: &[&str], out: &Path) -> (i32, String) {
     let output = Command::new(env!("CARGO_BIN_EXE_wingman"))
         .arg("run")
@@ -34,7 +37,19 @@ fn assert_rejected(text: &str, extra: &[&str], expected: &[&str]) {
         1,
         "not one line: {stderr}"
     );
-    assert!(stderr.contains("bad.toml"), "file not named: {stderr}");
+    // A value from a `--set` is blamed on it, never on the file (issue 12).
+    if extra.contains(&"--set") {
+        assert!(
+            stderr.contains("error: --set "),
+            "--set not named: {stderr}"
+        );
+    } else {
+        assert!(stderr.contains("bad.toml"), "file not named: {stderr}");
+    }
+    assert!(stderr.len() < 200, "{} characters: {stderr}", stderr.len());
+    for rust_name in ["f64", "u32", "u64", "u8", "struct "] {
+        assert!(!stderr.contains(rust_name), "Rust type name: {stderr}");
+    }
     for fragment in expected {
         assert!(
             stderr.contains(fragment),
@@ -84,8 +99,8 @@ fn wrong_type() {
 
 #[test]
 fn bad_override() {
-    assert_rejected("", &["--set", "run.dt_s=0"], &["run.dt_s = 0"]);
-    assert_rejected("", &["--set", "nodot=1"], &["nodot=1"]);
+    assert_rejected(MINIMAL, &["--set", "run.dt_s=0"], &["run.dt_s = 0"]);
+    assert_rejected(MINIMAL, &["--set", "nodot=1"], &["nodot=1"]);
 }
 
 #[test]
@@ -138,7 +153,7 @@ fn chapter_5_and_6_keys() {
         &["guidance.estimator_noise_psd = 0", "> 0"],
     );
     assert_rejected(
-        "",
+        MINIMAL,
         &["--set", "follower.initial_velocity_fps=[50.0, nan, 0.0]"],
         &["follower.initial_velocity_fps", "three finite numbers"],
     );
@@ -199,4 +214,114 @@ fn aircraft_follower_values_are_checked() {
         &[],
         &["guidance.k_aircraft = 0", "[0.001, 100]"],
     );
+}
+
+/// Where a value came from: the file's line and column, or the `--set` argument alone.
+#[test]
+fn origin_is_line_and_column_or_the_set_argument() {
+    assert_rejected(
+        "[run]\nseed = 1\ndt_s = \"fast\"\n",
+        &[],
+        &["bad.toml:3:8:", "run.dt_s = \"fast\"", "a number"],
+    );
+    assert_rejected(
+        MINIMAL,
+        &["--set", "run.dt_s=fast"],
+        &["--set run.dt_s=fast:", "a number"],
+    );
+    assert_rejected(
+        "[guidance]\nsigmaa = 3.0\n",
+        &[],
+        &["bad.toml:2:", "guidance.sigmaa", "did you mean sigma"],
+    );
+    assert_rejected(
+        "[run]\nlog_every = -1\n",
+        &[],
+        &["run.log_every = -1", "a whole number in [0, 4294967295]"],
+    );
+}
+
+/// Numbers are printed short: 1e308, not 309 digits.
+#[test]
+fn numbers_are_short() {
+    assert_rejected(
+        "[run]\nduration_s = 1e308\n",
+        &[],
+        &["run.duration_s = 1e308", "[0.001, 100000]"],
+    );
+}
+
+/// A file with nothing in it (or only comments) is an error, not the defaults.
+#[test]
+fn empty_file_is_an_error() {
+    assert_rejected("", &[], &["empty"]);
+    assert_rejected("# nothing but a comment\n", &[], &["empty"]);
+}
+
+/// Values that passed validation and failed later are rejected up front, naming the key: a
+/// field of view whose focal length is infinite, a rising air mass the trim cannot hold.
+#[test]
+fn late_failures_are_rejected_up_front() {
+    assert_rejected(
+        "[sensor]\nmode = \"camera\"\n[camera]\nrate_hz = 25.0\nhfov_deg = 1e-320\n",
+        &[],
+        &["camera.hfov_deg = 1e-320", "focal length"],
+    );
+    assert_rejected(
+        "[follower]\nmodel = \"aircraft\"\n[run]\ndt_s = 0.002\n[atmosphere]\nwind_ned_fps = [0.0, 0.0, 3.0]\n",
+        &[],
+        &["atmosphere.wind_ned_fps", "[n, e, 0]"],
+    );
+}
+
+/// A run that would log 10^10 rows is refused before it starts, with the estimate and the
+/// key to change.
+#[test]
+fn runs_beyond_the_resource_limits_are_refused() {
+    assert_rejected(
+        MINIMAL,
+        &[
+            "--set",
+            "run.duration_s=1e5",
+            "--set",
+            "run.dt_s=1e-5",
+            "--set",
+            "run.log_every=1",
+        ],
+        &["--set run.log_every=1", "1.00e10 telemetry rows", "2000000"],
+    );
+}
+
+/// Every key of the resolved scenario can be set with `--set`: each is set to its own
+/// resolved value (arrays and strings as TOML writes them) and the scenario loads.
+#[test]
+fn every_key_can_be_set() {
+    let resolved = wingman::scenario::Scenario::default().to_toml_string();
+    let table: toml::Table = resolved.parse().expect("resolved scenario parses");
+    let mut overrides = Vec::new();
+    collect_overrides("", &table, &mut overrides);
+    assert!(overrides.len() > 150, "only {} keys", overrides.len());
+    assert!(
+        overrides
+            .iter()
+            .any(|o| o.starts_with("atmosphere.disturbances.drag_factor="))
+    );
+    for set in &overrides {
+        let result = wingman::scenario::Scenario::from_toml_str(
+            "",
+            std::path::Path::new("s.toml"),
+            std::slice::from_ref(set),
+        );
+        assert!(result.is_ok(), "--set {set}: {}", result.unwrap_err());
+    }
+}
+
+fn collect_overrides(prefix: &str, table: &toml::Table, out: &mut Vec<String>) {
+    for (key, value) in table {
+        let key = format!("{prefix}{key}");
+        match value {
+            toml::Value::Table(t) => collect_overrides(&format!("{key}."), t, out),
+            other => out.push(format!("{key}={other}")),
+        }
+    }
 }

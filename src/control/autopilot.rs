@@ -920,3 +920,28 @@ fn air_velocity_ned_fps(air: &AirData) -> Vec3 {
 pub fn measured_wind_ned_fps(air: &AirData) -> Vec3 {
     air.velocity_ned_fps - air_velocity_ned_fps(air)
 }
+/// The names of the controller's state elements, in [`AutopilotState`]'s order (for
+/// messages): "autopilot: RBF weight 3 of the pitch channel".
+pub fn autopilot_state_names() -> Vec<String> {
+    use crate::state_block::{NED, element_names};
+    let filter = ["filtered command", "its rate"];
+    let mut names = element_names(
+        "autopilot",
+        &[
+            ("airspeed prefilter", &["integral", "V_m"]),
+            ("roll prefilter", &["integral", "φ_m", "φ̇_m"]),
+            ("pitch prefilter", &["integral", "θ_m", "θ̇_m"]),
+            ("heading prefilter", &["integral", "ψ_m", "ψ̇_m"]),
+            ("p command filter", &filter),
+            ("q command filter", &filter),
+            ("r command filter", &filter),
+            ("wind estimate, ft/s", NED),
+        ],
+    );
+    for channel in ["drag", "roll", "pitch", "yaw"] {
+        names.extend(
+            (0..RBF_CENTRES).map(|k| format!("autopilot: RBF weight {k} of the {channel} channel")),
+        );
+    }
+    names
+}

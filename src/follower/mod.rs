@@ -201,4 +201,30 @@ impl Follower {
             Self::Kinematic(_) => None,
         }
     }
+
+    /// The names of the state slice's elements (for messages): the kinematic follower's
+    /// position, attitude and velocity; the aircraft's plant, its controller and the V_F it
+    /// integrates (acceleration law).
+    pub fn state_names(&self) -> Vec<String> {
+        use crate::state_block::{NED, element_names};
+        match self {
+            Self::Kinematic(_) => element_names(
+                "follower",
+                &[
+                    ("position, ft", NED),
+                    ("attitude, rad", &["φ", "θ", "ψ"]),
+                    ("velocity, ft/s", NED),
+                ],
+            ),
+            Self::Aircraft(_) => {
+                let mut names = crate::world::aircraft::state::state_names();
+                names.extend(crate::control::autopilot::autopilot_state_names());
+                names.extend(element_names(
+                    "autopilot",
+                    &[("V_F integrated from a_F, ft/s", NED)],
+                ));
+                names
+            }
+        }
+    }
 }

@@ -541,6 +541,28 @@ pub fn smooth_sign(v: f64, chi: f64) -> f64 {
     }
 }
 
+impl AccelerationGuidance {
+    /// The names of the state slice's elements, in [`AccelerationState`]'s order (for
+    /// messages).
+    pub fn state_names(&self) -> Vec<String> {
+        use crate::state_block::{XYZ, element_names};
+        let per_axis: &[&str] = &["x, r", "x, ṙ", "y, r", "y, ṙ", "z, r", "z, ṙ"];
+        let mut groups = vec![
+            ("w (filtered follower acceleration), ft/s", XYZ),
+            ("reference model z_m", per_axis),
+            ("observer ẑ", per_axis),
+            ("filtered sign S_f", XYZ),
+            ("b̂ (target size estimate), ft", &[]),
+            ("d̂ (filtered acceleration bound), ft/s", XYZ),
+            ("shaping filter r_cf", XYZ),
+        ];
+        if self.compensation.is_some() {
+            groups.push(("lead, ft", XYZ));
+        }
+        element_names("guidance", &groups)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -40,6 +40,12 @@ use crate::sensing::line_of_sight_body;
 /// Length of the command's state slice.
 pub const STATE_LEN: usize = 2;
 
+/// The names of the command's state elements (for messages).
+pub const STATE_NAMES: [&str; STATE_LEN] = [
+    "command frame: heading, rad",
+    "command frame: flight-path angle, rad",
+];
+
 /// What the command frames follow at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CommandInput {

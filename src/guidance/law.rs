@@ -93,6 +93,15 @@ impl GuidanceLaw {
         }
     }
 
+    /// The names of the state slice's elements (for messages).
+    pub fn state_names(&self) -> Vec<String> {
+        match self {
+            Self::Velocity(law) => law.state_names(),
+            Self::Acceleration(law) => law.state_names(),
+            Self::VelocityOnEstimate(_) => on_estimate::state_names(),
+        }
+    }
+
     /// Initial state with the filters started at the first measurement r(0).
     pub fn initial_state(&self, r0: &Vec3) -> Vec<f64> {
         match self {

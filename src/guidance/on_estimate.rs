@@ -83,6 +83,14 @@ impl VelocityOnEstimate {
     }
 }
 
+/// The names of the state slice's elements (for messages).
+pub fn state_names() -> Vec<String> {
+    crate::state_block::element_names(
+        "guidance",
+        &[("shaping filter r_cf", crate::state_block::XYZ)],
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -266,6 +266,25 @@ fn compensated(error: Vec3, lag_error: Option<Vec3>) -> Vec3 {
     lag_error.map_or(error, |chi| error - chi)
 }
 
+impl VelocityGuidance {
+    /// The names of the state slice's elements, in [`VelocityState`]'s order (for messages).
+    pub fn state_names(&self) -> Vec<String> {
+        use crate::state_block::{XYZ, element_names};
+        let mut groups: Vec<(&str, &[&str])> = vec![
+            ("b̂ (target size estimate), ft", &[]),
+            ("d̂ (scaled target velocity estimate), 1/s", XYZ),
+            ("shaping filter r_cf", XYZ),
+        ];
+        if self.estimator.is_some() {
+            groups.push(("estimator r̂", XYZ));
+        }
+        if self.compensation.is_some() {
+            groups.push(("lag error", XYZ));
+        }
+        element_names("guidance", &groups)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

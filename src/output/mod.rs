@@ -3,8 +3,11 @@
 
 pub mod aircraft_figures;
 pub mod figures;
+pub mod folder;
 pub mod frame_images;
+pub mod interrupt;
 pub mod plots;
+pub mod preflight;
 pub mod summary;
 pub mod telemetry;
 
@@ -13,14 +16,20 @@ use crate::scenario::Scenario;
 use crate::sim::{SimError, Simulation, Snapshot, StepOutcome};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use summary::Summary;
+use summary::{RunStatus, Summary};
 use telemetry::{TelemetryWriter, row_of};
 
-/// Why a run could not finish.
+/// Why a run could not start or finish.
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
+    /// The simulation could not be set up from the scenario; nothing was written.
+    #[error("{0}")]
+    Setup(Box<SimError>),
+    /// The output folder cannot take the run; nothing was written.
+    #[error("{0}")]
+    Folder(#[from] folder::FolderError),
     /// An output file could not be written.
-    #[error("cannot write {}: {source}", path.display())]
+    #[error("{}", io_message(path, source))]
     Io {
         /// The file.
         path: PathBuf,
@@ -28,16 +37,42 @@ pub enum RunError {
         source: std::io::Error,
     },
     /// The simulation stopped; telemetry up to that point and a summary were written.
-    #[error("{0} (telemetry up to that point is in {1})")]
+    #[error("{} (telemetry up to that point is in {})", .0, .1.display())]
     Sim(Box<SimError>, PathBuf),
+    /// The run's plots could not be drawn (telemetry and summary were written).
+    #[error("plots not drawn: {0}")]
+    Plots(#[from] plots::PlotError),
+}
+
+impl RunError {
+    /// Whether the scenario or the command line is to blame (rather than the run or the
+    /// machine): a set-up the scenario's values do not allow, or an output folder that
+    /// cannot take the run. A machine without a graphics adapter is not the scenario's fault.
+    pub fn is_input_error(&self) -> bool {
+        match self {
+            Self::Setup(e) => !e.is_missing_adapter(),
+            Self::Folder(_) => true,
+            _ => false,
+        }
+    }
+}
+
+/// An I/O failure in one line: a full disk says so plainly.
+fn io_message(path: &Path, source: &std::io::Error) -> String {
+    if source.kind() == std::io::ErrorKind::StorageFull {
+        format!("no space left on device writing {}", path.display())
+    } else {
+        format!("cannot write {}: {source}", path.display())
+    }
 }
 
 /// What a finished run reports.
 #[derive(Debug, Clone)]
 pub struct RunReport {
-    /// The summary as written to `summary.json`.
+    /// The summary as written to `summary.json` (its status says whether the run completed,
+    /// intercepted, lost the target or was interrupted).
     pub summary: Summary,
-    /// Warnings that did not stop the run (e.g. plots that could not be drawn).
+    /// Warnings that did not stop the run (e.g. frames that could not be saved).
     pub warnings: Vec<String>,
     /// Every logged snapshot, as written to `telemetry.csv`.
     pub logged: Vec<Snapshot>,
@@ -50,8 +85,20 @@ fn io_error(path: &Path) -> impl Fn(std::io::Error) -> RunError + '_ {
     }
 }
 
+/// Why the stepping loop ended before the scenario's end (or interception).
+enum EarlyStop {
+    Failed(SimError),
+    Lost { since_s: f64 },
+    Interrupted,
+}
+
 /// Runs `scenario` (named `name` in the summary) and writes every output into `out_dir`.
-/// `progress` is called with the fraction done now and then.
+/// The simulation is set up before anything is written, and an earlier run's files in
+/// `out_dir` are cleared (see [`folder`]). `progress` is called with the fraction done now and
+/// then. The run stops early when a state diverges (an error), when the target has gone
+/// unmeasured longer than `run.stop_after_lost_s` (status `lost`) and when a stop is asked
+/// for ([`interrupt`], status `interrupted`); telemetry, summary and plots are written in
+/// every case.
 pub fn run_to_directory(
     scenario: &Scenario,
     name: &str,
@@ -59,23 +106,6 @@ pub fn run_to_directory(
     progress: impl FnMut(f64),
 ) -> Result<RunReport, RunError> {
     run_to_directory_on(scenario, name, out_dir, None, progress)
-}
-
-/// Offers the camera's latest frame to the saver; a frame that cannot be saved becomes a
-/// warning and ends the saving (the run goes on).
-fn save_frame(
-    frame_saver: &mut Option<frame_images::FrameSaver>,
-    sim: &Simulation,
-    warnings: &mut Vec<String>,
-) {
-    if let (Some(saver), Some(camera)) = (frame_saver.as_mut(), sim.camera())
-        && let Err(e) = saver.offer(camera, || {
-            frame_images::gimbal_captions(sim.gimbal_reading())
-        })
-    {
-        warnings.push(format!("frame not saved: {e}"));
-        *frame_saver = None;
-    }
 }
 
 /// [`run_to_directory`], with a camera rendering on `gpu` when given (a device shared by the
@@ -87,72 +117,174 @@ pub fn run_to_directory_on(
     gpu: Option<&GpuContext>,
     mut progress: impl FnMut(f64),
 ) -> Result<RunReport, RunError> {
+    folder::check(out_dir)?;
+    let started = Instant::now();
+    let mut sim = Simulation::on_gpu(scenario, gpu).map_err(|e| RunError::Setup(Box::new(e)))?;
+    folder::prepare(out_dir)?;
     std::fs::create_dir_all(out_dir).map_err(io_error(out_dir))?;
     let scenario_path = out_dir.join("scenario.toml");
     std::fs::write(&scenario_path, scenario.to_toml_string()).map_err(io_error(&scenario_path))?;
     let telemetry_path = out_dir.join("telemetry.csv");
-    let mut telemetry =
-        TelemetryWriter::create(&telemetry_path).map_err(io_error(&telemetry_path))?;
-
-    let started = Instant::now();
-    let mut sim = Simulation::on_gpu(scenario, gpu)
-        .map_err(|e| RunError::Sim(Box::new(e), telemetry_path.clone()))?;
-    let mut logged: Vec<Snapshot> = Vec::new();
-    let log_every = u64::from(scenario.run.log_every);
-    let progress_every = (sim.total_ticks() / 100).max(1);
-    let mut frame_saver = (scenario.output.frames_every > 0).then(|| {
-        frame_images::FrameSaver::new(
-            &out_dir.join("frames"),
-            scenario.output.frames_every,
-            scenario.output.overlay,
-        )
-    });
-    let mut warnings = Vec::new();
-    let mut log = |snapshot: Snapshot, telemetry: &mut TelemetryWriter| -> Result<(), RunError> {
-        telemetry
-            .write(&row_of(&snapshot))
-            .map_err(io_error(&telemetry_path))?;
-        logged.push(snapshot);
-        Ok(())
+    let mut recorder = Recorder {
+        telemetry: TelemetryWriter::create(&telemetry_path).map_err(io_error(&telemetry_path))?,
+        telemetry_path: telemetry_path.clone(),
+        logged: Vec::new(),
+        warnings: Vec::new(),
+        frame_saver: (scenario.output.frames_every > 0).then(|| {
+            frame_images::FrameSaver::new(
+                &out_dir.join("frames"),
+                scenario.output.frames_every,
+                scenario.output.overlay,
+            )
+        }),
     };
-    log(sim.snapshot(), &mut telemetry)?;
-    let failure = loop {
+    recorder.log(sim.snapshot())?;
+    let early = step_to_end(&mut sim, &mut recorder, &mut progress)?;
+    recorder
+        .telemetry
+        .flush()
+        .map_err(io_error(&telemetry_path))?;
+    let wall_s = started.elapsed().as_secs_f64();
+    let stopped = early.as_ref().map(|e| match e {
+        EarlyStop::Failed(e) => (RunStatus::Diverged, e.to_string()),
+        EarlyStop::Lost { since_s } => (RunStatus::Lost, lost_message(&sim, *since_s)),
+        EarlyStop::Interrupted => (RunStatus::Interrupted, "interrupted (Ctrl-C)".to_string()),
+    });
+    let summary = Summary::build(name, &recorder.logged, &sim, wall_s, stopped);
+    let summary_path = out_dir.join("summary.json");
+    std::fs::write(&summary_path, summary.to_json()).map_err(io_error(&summary_path))?;
+    if scenario.output.plots {
+        figures::draw_all(&out_dir.join("plots"), scenario, &recorder.logged)?;
+    }
+    match early {
+        Some(EarlyStop::Failed(e)) => Err(RunError::Sim(Box::new(e), telemetry_path)),
+        _ => Ok(RunReport {
+            summary,
+            warnings: recorder.warnings,
+            logged: recorder.logged,
+        }),
+    }
+}
+
+/// Why a lost run stopped.
+fn lost_message(sim: &Simulation, since_s: f64) -> String {
+    format!(
+        "target lost: unmeasured from t = {since_s:.3} s to t = {:.3} s, longer than \
+         run.stop_after_lost_s = {} s",
+        sim.time_s(),
+        sim.scenario().run.stop_after_lost_s
+    )
+}
+
+/// What the run writes as it goes: telemetry rows (kept for the summary and plots) and
+/// saved frames.
+struct Recorder {
+    telemetry: TelemetryWriter,
+    telemetry_path: PathBuf,
+    logged: Vec<Snapshot>,
+    warnings: Vec<String>,
+    frame_saver: Option<frame_images::FrameSaver>,
+}
+
+impl Recorder {
+    fn log(&mut self, snapshot: Snapshot) -> Result<(), RunError> {
+        self.telemetry
+            .write(&row_of(&snapshot))
+            .map_err(io_error(&self.telemetry_path))?;
+        self.logged.push(snapshot);
+        Ok(())
+    }
+
+    /// Saves the camera's latest frame when it is one to keep; a failure to save is a
+    /// warning, and no frame is offered after it.
+    fn save_frame(&mut self, sim: &Simulation) {
+        if let (Some(saver), Some(camera)) = (self.frame_saver.as_mut(), sim.camera())
+            && let Err(e) = saver.offer(camera, || {
+                frame_images::gimbal_captions(sim.gimbal_reading())
+            })
+        {
+            self.warnings.push(format!("frame not saved: {e}"));
+            self.frame_saver = None;
+        }
+    }
+}
+
+/// Steps `sim` to its end, logging every `run.log_every` ticks; returns why it stopped
+/// early, if it did.
+fn step_to_end(
+    sim: &mut Simulation,
+    recorder: &mut Recorder,
+    progress: &mut impl FnMut(f64),
+) -> Result<Option<EarlyStop>, RunError> {
+    let log_every = u64::from(sim.scenario().run.log_every);
+    let lost_limit_s = sim.scenario().run.stop_after_lost_s;
+    let progress_every = (sim.total_ticks() / 1000).max(1);
+    loop {
         let outcome = sim.step();
-        save_frame(&mut frame_saver, &sim, &mut warnings);
+        recorder.save_frame(sim);
         match outcome {
             Ok(StepOutcome::Running) => {
                 if sim.tick().is_multiple_of(log_every) {
-                    log(sim.snapshot(), &mut telemetry)?;
+                    recorder.log(sim.snapshot())?;
                 }
                 if sim.tick().is_multiple_of(progress_every) {
                     progress(sim.tick() as f64 / sim.total_ticks() as f64);
                 }
+                let lost_since = sim
+                    .unmeasured_since_s()
+                    .filter(|since| lost_limit_s > 0.0 && sim.time_s() - since > lost_limit_s);
+                let stop = match (lost_since, interrupt::requested()) {
+                    (Some(since_s), _) => EarlyStop::Lost { since_s },
+                    (None, true) => EarlyStop::Interrupted,
+                    (None, false) => continue,
+                };
+                if !sim.tick().is_multiple_of(log_every) {
+                    recorder.log(sim.snapshot())?;
+                }
+                return Ok(Some(stop));
             }
             Ok(StepOutcome::Finished | StepOutcome::Intercepted { .. }) => {
-                log(sim.snapshot(), &mut telemetry)?;
-                break None;
+                recorder.log(sim.snapshot())?;
+                return Ok(None);
             }
-            Err(e) => break Some(e),
+            Err(e) => return Ok(Some(EarlyStop::Failed(e))),
         }
-    };
-    telemetry.flush().map_err(io_error(&telemetry_path))?;
-    let wall_s = started.elapsed().as_secs_f64();
-
-    let summary = Summary::build(name, &logged, &sim, wall_s, failure.as_ref());
-    let summary_path = out_dir.join("summary.json");
-    std::fs::write(&summary_path, summary.to_json()).map_err(io_error(&summary_path))?;
-
-    if scenario.output.plots
-        && let Err(e) = figures::draw_all(&out_dir.join("plots"), scenario, &logged)
-    {
-        warnings.push(format!("plots not drawn: {e}"));
     }
-    match failure {
-        Some(e) => Err(RunError::Sim(Box::new(e), telemetry_path)),
-        None => Ok(RunReport {
-            summary,
-            warnings,
-            logged,
-        }),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A full disk is said plainly, in one line.
+    #[test]
+    fn full_disk_is_said_plainly() {
+        let e = RunError::Io {
+            path: PathBuf::from("runs/x/telemetry.csv"),
+            source: std::io::ErrorKind::StorageFull.into(),
+        };
+        assert_eq!(
+            e.to_string(),
+            "no space left on device writing runs/x/telemetry.csv"
+        );
+    }
+
+    /// Plots that cannot be drawn fail the run (after telemetry and summary were written).
+    #[test]
+    fn failed_plots_fail_the_run() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        // A file where the plots' folder goes.
+        std::fs::write(dir.path().join("plots"), "in the way").expect("file");
+        std::fs::write(
+            dir.path().join("summary.json"),
+            r#"{"scenario": "x", "status": "completed", "steps": 0, "duration_s": 0}"#,
+        )
+        .expect("an earlier run");
+        let scenario =
+            Scenario::from_toml_str("[run]\nduration_s = 0.1\n", Path::new("s.toml"), &[])
+                .expect("valid");
+        let result = run_to_directory(&scenario, "s", dir.path(), |_| {});
+        assert!(matches!(result, Err(RunError::Plots(_))), "{result:?}");
+        assert!(dir.path().join("summary.json").is_file());
     }
 }

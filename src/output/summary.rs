@@ -4,7 +4,7 @@ use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::GimbalSection;
 use crate::scenario::{EstimatorKind, GuidanceLawKind};
 use crate::sensing::losses::LossEpisode;
-use crate::sim::{GimbalReading, SimError, Simulation, Snapshot, StageTimes};
+use crate::sim::{GimbalReading, Simulation, Snapshot, StageTimes};
 use crate::vision::BlobStatus;
 use crate::vision::ImageMeasurement;
 use serde::Serialize;
@@ -19,6 +19,10 @@ pub enum RunStatus {
     Intercepted,
     /// Stopped because a state diverged.
     Diverged,
+    /// Stopped because the target went unmeasured longer than `run.stop_after_lost_s`.
+    Lost,
+    /// Stopped because the user asked (Ctrl-C).
+    Interrupted,
 }
 
 /// The summary of one run.
@@ -76,8 +80,12 @@ pub struct Summary {
     /// What the set-up had to say (e.g. a Riccati observer gain that fell back to the fixed
     /// gain, the estimator gain designed from the covariance).
     pub notes: Vec<String>,
-    /// RMS of measured minus true centroid, px (camera runs).
+    /// RMS of the measured centroid minus the projection of the target's reference point (the
+    /// mesh origin), px (camera runs): a definition's difference as well as the vision's.
     pub centroid_rms_px: Option<f64>,
+    /// RMS of the measured centroid minus the true centroid of the silhouette (the union of
+    /// the projected mesh triangles), px (camera runs): the vision's own centroid error.
+    pub centroid_vs_silhouette_rms_px: Option<f64>,
     /// RMS of measured minus true maximal length, px (camera runs).
     pub length_rms_px: Option<f64>,
     /// The target size the camera saw over the last 20 s (camera runs): see
@@ -241,18 +249,19 @@ pub struct PerFrameCost {
 }
 
 impl Summary {
-    /// Builds the summary from the logged snapshots and the final simulation.
+    /// Builds the summary from the logged snapshots and the final simulation; `stopped` is
+    /// why and how the run stopped early, if it did.
     pub fn build(
         name: &str,
         logged: &[Snapshot],
         sim: &Simulation,
         wall_s: f64,
-        failure: Option<&SimError>,
+        stopped: Option<(RunStatus, String)>,
     ) -> Self {
-        let status = match (failure, sim.intercept_time_s()) {
-            (Some(_), _) => RunStatus::Diverged,
-            (None, Some(_)) => RunStatus::Intercepted,
-            (None, None) => RunStatus::Completed,
+        let (status, message) = match (stopped, sim.intercept_time_s()) {
+            (Some((status, message)), _) => (status, Some(message)),
+            (None, Some(_)) => (RunStatus::Intercepted, None),
+            (None, None) => (RunStatus::Completed, None),
         };
         let duration_s = sim.time_s();
         let last = logged.last();
@@ -262,7 +271,7 @@ impl Summary {
         Self {
             scenario: name.to_string(),
             status,
-            message: failure.map(|e| e.to_string()),
+            message,
             duration_s,
             steps: sim.tick(),
             frames: camera.map_or(0, |c| c.frames()),
@@ -288,6 +297,8 @@ impl Summary {
             noise_snr_db: sim.noisy_sensor().and_then(|n| n.realised_snr_db()),
             notes: sim.notes().to_vec(),
             centroid_rms_px: camera.and_then(|c| c.errors().centroid_rms_px()),
+            centroid_vs_silhouette_rms_px: camera
+                .and_then(|c| c.errors().silhouette_centroid_rms_px()),
             length_rms_px: camera.and_then(|c| c.errors().length_rms_px()),
             apparent_size_last20s_ft: camera.and_then(|c| {
                 ApparentSize::since(logged, c.intrinsics().focal_px, duration_s - 20.0)

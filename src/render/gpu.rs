@@ -47,6 +47,25 @@ fn one_line(error: &dyn std::error::Error) -> String {
         .join(" ")
 }
 
+/// The folder to give `XDG_RUNTIME_DIR` before the first GPU context is made, when it
+/// names none: Mesa's Vulkan layers print "XDG_RUNTIME_DIR is invalid or not set" otherwise
+/// (twice a run; a user must not see it). A private folder (mode 0700) in the temporary
+/// folder, made here; None when the variable already names a folder, or none can be made.
+pub fn runtime_dir_to_set() -> Option<std::path::PathBuf> {
+    use std::os::unix::fs::DirBuilderExt;
+    let current = std::env::var_os("XDG_RUNTIME_DIR").map(std::path::PathBuf::from);
+    if current.is_some_and(|dir| dir.is_absolute() && dir.is_dir()) {
+        return None;
+    }
+    // SAFETY: getuid has no preconditions and cannot fail.
+    let uid = unsafe { libc::getuid() };
+    let dir = std::env::temp_dir().join(format!("wingman-runtime-{uid}"));
+    if !dir.is_dir() {
+        std::fs::DirBuilder::new().mode(0o700).create(&dir).ok()?;
+    }
+    Some(dir)
+}
+
 /// A wgpu device and queue without a surface, with the adapter's description.
 #[derive(Debug)]
 pub struct GpuContext {

@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 use std::fs::File;
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, Read};
 use std::path::{Path, PathBuf};
 
 use crate::frames::Vec3;
@@ -13,6 +13,9 @@ pub const TARGET_AIRCRAFT_OBJ: &str = include_str!("../../assets/target_aircraft
 
 /// Path of the committed target aircraft asset, relative to the crate root.
 pub const TARGET_AIRCRAFT_OBJ_PATH: &str = "assets/target_aircraft.obj";
+
+/// Largest mesh file read, bytes (64 MiB: about a million triangles of OBJ text).
+pub const MAX_MESH_FILE_BYTES: u64 = 64 << 20;
 
 /// Why a target mesh could not be loaded.
 #[derive(Debug, thiserror::Error)]
@@ -36,6 +39,24 @@ pub enum MeshError {
     /// The file holds no triangle.
     #[error("target mesh {path} has no triangles (expected `f` lines with 3 or more vertices)")]
     NoTriangles {
+        /// The mesh file.
+        path: PathBuf,
+    },
+    /// The path is not a regular file (a folder, a device, a pipe).
+    #[error("target mesh {path} is not a regular file")]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+    },
+    /// The file is larger than [`MAX_MESH_FILE_BYTES`].
+    #[error("target mesh {path} is larger than the limit of {} MiB", MAX_MESH_FILE_BYTES >> 20)]
+    TooLarge {
+        /// The mesh file.
+        path: PathBuf,
+    },
+    /// Every triangle has zero area: nothing to draw.
+    #[error("target mesh {path} has no area (every triangle is degenerate)")]
+    ZeroArea {
         /// The mesh file.
         path: PathBuf,
     },
@@ -70,11 +91,47 @@ impl TargetMesh {
     /// Loads an OBJ file (all objects merged, polygons triangulated) and multiplies every vertex
     /// by `scale` (e.g. b / 8 ft to resize the 8 ft seed aircraft to a span b).
     pub fn load_obj(path: &Path, scale: f64) -> Result<Self, MeshError> {
-        let file = File::open(path).map_err(|source| MeshError::Read {
+        let read_error = |source| MeshError::Read {
             path: path.to_path_buf(),
             source,
-        })?;
-        Self::from_obj_reader(&mut BufReader::new(file), scale, path)
+        };
+        let file = File::open(path).map_err(read_error)?;
+        if !file.metadata().map_err(read_error)?.is_file() {
+            return Err(MeshError::NotAFile {
+                path: path.to_path_buf(),
+            });
+        }
+        // A file that grows while it is read is cut at the limit too.
+        let mut bytes = Vec::new();
+        file.take(MAX_MESH_FILE_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(read_error)?;
+        if bytes.len() as u64 > MAX_MESH_FILE_BYTES {
+            return Err(MeshError::TooLarge {
+                path: path.to_path_buf(),
+            });
+        }
+        Self::from_obj_reader(&mut bytes.as_slice(), scale, path)
+    }
+
+    /// The mesh with every vertex multiplied by `factor`.
+    pub fn scaled(mut self, factor: f64) -> Self {
+        for v in &mut self.vertices_ft {
+            *v *= factor;
+        }
+        self
+    }
+
+    /// Total area of the triangles, ft².
+    pub fn area_ft2(&self) -> f64 {
+        let v = &self.vertices_ft;
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| v[i as usize]);
+                0.5 * (b - a).cross(&(c - a)).norm()
+            })
+            .sum()
     }
 
     /// The committed seed target aircraft (8 ft span) times `scale`, parsed from the copy of
@@ -137,18 +194,18 @@ impl TargetMesh {
                 path: path.to_path_buf(),
             });
         }
+        let area = mesh.area_ft2();
+        if !(area.is_finite() && area > 0.0) {
+            return Err(MeshError::ZeroArea {
+                path: path.to_path_buf(),
+            });
+        }
         Ok(mesh)
     }
 
     /// Largest distance between two vertices, ft: the target's maximal size b (SPEC §1).
     pub fn max_dimension_ft(&self) -> f64 {
-        let mut max_sq: f64 = 0.0;
-        for (i, a) in self.vertices_ft.iter().enumerate() {
-            for b in &self.vertices_ft[i + 1..] {
-                max_sq = max_sq.max((a - b).norm_squared());
-            }
-        }
-        max_sq.sqrt()
+        super::diameter::diameter(&self.vertices_ft)
     }
 
     /// The mesh as OBJ text (`v` and `f` lines, 1-based), after `# `-prefixed header lines.
@@ -196,6 +253,33 @@ mod tests {
             TargetMesh::from_obj_reader(&mut text.as_bytes(), 2.0, Path::new("q.obj")).unwrap();
         assert_eq!(mesh.triangles.len(), 2);
         assert!((mesh.max_dimension_ft() - 2.0 * 2f64.sqrt()).abs() < 1e-12);
+    }
+
+    /// A device that never ends, a folder and a degenerate mesh are refused at once.
+    #[test]
+    fn unbounded_folder_and_flat_inputs_are_refused() {
+        let err = TargetMesh::load_obj(Path::new("/dev/zero"), 1.0).unwrap_err();
+        assert!(matches!(err, MeshError::NotAFile { .. }), "{err}");
+        let err = TargetMesh::load_obj(Path::new("."), 1.0).unwrap_err();
+        assert!(
+            matches!(err, MeshError::NotAFile { .. } | MeshError::Read { .. }),
+            "{err}"
+        );
+        let text = "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+        let err =
+            TargetMesh::from_obj_reader(&mut text.as_bytes(), 1.0, Path::new("l.obj")).unwrap_err();
+        assert!(matches!(err, MeshError::ZeroArea { .. }), "{err}");
+    }
+
+    /// A file over the limit is refused without parsing it.
+    #[test]
+    fn oversized_file_is_refused() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("big.obj");
+        let file = File::create(&path).expect("create");
+        file.set_len(MAX_MESH_FILE_BYTES + 1).expect("sparse file");
+        let err = TargetMesh::load_obj(&path, 1.0).unwrap_err();
+        assert!(matches!(err, MeshError::TooLarge { .. }), "{err}");
     }
 
     #[test]

@@ -8,6 +8,7 @@
 
 pub mod aircraft_mesh;
 pub mod camera;
+pub mod diameter;
 pub mod gpu;
 pub mod image;
 pub mod mesh;

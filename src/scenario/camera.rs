@@ -52,6 +52,13 @@ pub enum CameraPipeline {
     Whole,
 }
 
+/// The default `camera.mesh`: the seed's target, shipped in `assets/` and built into the
+/// program.
+pub const DEFAULT_MESH: &str = "assets/target_aircraft.obj";
+
+/// Largest focal length, px (a field of view of about 0.04° at 640 px).
+pub const MAX_FOCAL_PX: f64 = 1e6;
+
 /// `[camera]` section.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -81,8 +88,8 @@ pub struct CameraSection {
     /// Per-pixel Gaussian noise, grey levels (0 = none).
     pub noise_std_grey: f64,
     /// Target mesh (OBJ), scaled so that its maximal dimension is `target.size_ft`; a relative
-    /// path is looked up from the working directory, then from the scenario file's directory
-    /// and its parent.
+    /// path is looked up from the scenario file's folder (the default one, when that folder
+    /// has none, is the shipped mesh).
     pub mesh: String,
     /// Blob selection.
     pub selection: BlobChoice,
@@ -134,7 +141,7 @@ impl Default for CameraSection {
             sky_top_rgb: [150, 180, 225],
             sky_bottom_rgb: [215, 225, 235],
             noise_std_grey: 0.0,
-            mesh: "assets/target_aircraft.obj".to_string(),
+            mesh: DEFAULT_MESH.to_string(),
             selection: BlobChoice::Nearest,
             min_pixel_count: 4,
             mask_coverage: 0.5,
@@ -221,7 +228,16 @@ impl CameraSection {
     pub fn validate_focal_length(&self) -> Check {
         check::int_in("camera.width_px", i64::from(self.width_px), 8, 8192)?;
         check::in_open("camera.hfov_deg", self.hfov_deg, 0.0, 179.0, "(0, 179)")?;
-        check::in_closed("camera.focal_px", self.focal_px, 0.0, 1e6)
+        check::in_closed("camera.focal_px", self.focal_px, 0.0, MAX_FOCAL_PX)?;
+        let focal_px = self.focal_length_px();
+        check::require(
+            focal_px.is_finite() && focal_px <= MAX_FOCAL_PX,
+            "camera.hfov_deg",
+            self.hfov_deg,
+            format!(
+                "(0, 179) giving a focal length <= {MAX_FOCAL_PX:e} px (it gives {focal_px:e})"
+            ),
+        )
     }
 
     /// Focal length, px: `focal_px`, or from `hfov_deg` when that is 0.

@@ -34,9 +34,18 @@ pub type Check = Result<(), InvalidValue>;
 fn invalid(key: &str, value: impl Display, allowed: impl Display) -> Check {
     Err(InvalidValue {
         key: key.to_string(),
-        value: value.to_string(),
+        value: short_number(value.to_string()),
         allowed: allowed.to_string(),
     })
+}
+
+/// A number written out in full (`1e308` displays as 309 digits) in exponent form; any other
+/// text as it is.
+pub fn short_number(text: String) -> String {
+    match text.parse::<f64>() {
+        Ok(x) if text.len() > 12 => format!("{x:e}"),
+        _ => text,
+    }
 }
 
 /// `value` is finite and > 0.
@@ -110,5 +119,20 @@ pub fn require(ok: bool, key: &str, value: impl Display, allowed: impl Display) 
         Ok(())
     } else {
         invalid(key, value, allowed)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Huge and tiny numbers are printed in exponent form, ordinary ones as they are.
+    #[test]
+    fn numbers_are_printed_short() {
+        let err = in_closed("run.duration_s", 1e308, 1e-3, 1e5).unwrap_err();
+        assert_eq!(err.value, "1e308");
+        let err = in_closed("k", 1e-320, 1.0, 2.0).unwrap_err();
+        assert_eq!(err.value, "1e-320");
+        assert_eq!(in_closed("k", 250.5, 0.0, 1.0).unwrap_err().value, "250.5");
     }
 }

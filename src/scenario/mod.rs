@@ -8,6 +8,7 @@ pub mod check;
 mod control;
 mod estimator;
 mod gimbal;
+pub mod origin;
 mod sections;
 mod sensor;
 
@@ -17,12 +18,14 @@ pub use camera::*;
 pub use control::*;
 pub use estimator::*;
 pub use gimbal::*;
+pub use origin::{Origin, ScenarioSource};
 pub use sections::*;
 pub use sensor::*;
 
 use std::path::{Path, PathBuf};
 
-/// Why a scenario could not be used. Every variant names the file.
+/// Why a scenario could not be used. Every variant says where the offending value came
+/// from: the file (with the line and column of the key), or the `--set` argument.
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
     /// The file could not be read.
@@ -33,56 +36,114 @@ pub enum ScenarioError {
         /// What the operating system said.
         source: std::io::Error,
     },
-    /// TOML syntax error or a key/value the schema does not accept.
-    #[error("{}: {}", path.display(), check::one_line(source))]
-    Schema {
+    /// The file holds no setting at all.
+    #[error(
+        "{}: the scenario file is empty: write at least one section (see scenarios/)",
+        path.display()
+    )]
+    Empty {
         /// The file.
         path: PathBuf,
-        /// The parser's error (key and line included).
-        source: toml::de::Error,
     },
-    /// A `--set` override that is not `section.key=value`, or names an unknown key.
-    #[error("{}: bad override `{text}`: {reason}", path.display())]
+    /// A `--set` override that is not `section.key=value`.
+    #[error("--set {text}: {reason}")]
     Override {
-        /// The file being overridden.
-        path: PathBuf,
         /// The override as given.
         text: String,
         /// What is wrong with it.
         reason: OverrideError,
     },
-    /// A value out of its allowed range.
-    #[error("{path}: {invalid}")]
-    Invalid {
-        /// The file.
-        path: PathBuf,
-        /// The key, value and allowed range.
-        invalid: check::InvalidValue,
+    /// A TOML syntax error, a key or value the schema does not accept, a value out of its
+    /// allowed range, or an asset or resource the scenario asks for that cannot be had.
+    #[error("{origin}: {message}")]
+    Rejected {
+        /// Where the value came from.
+        origin: Origin,
+        /// The key, when one is to blame.
+        key: Option<String>,
+        /// The value, what is wrong with it and what is allowed.
+        message: String,
     },
+}
+
+impl ScenarioSource {
+    /// A rejection of the value of `key`, with its origin.
+    pub fn reject(&self, key: &str, message: impl Into<String>) -> ScenarioError {
+        ScenarioError::Rejected {
+            origin: self.origin(key),
+            key: Some(key.to_string()),
+            message: origin::shorten(&message.into()),
+        }
+    }
+
+    /// The schema's error (syntax, type, unknown key) with its origin: the `--set` that
+    /// wrote the key, else the key's place in the file, else the place the parser names.
+    fn schema_error(&self, error: &toml::de::Error) -> ScenarioError {
+        // An error of the text has a span (and a message without the excerpt around it); an
+        // error of the overridden table names its key at the end of its message.
+        let (key, message) = match error.span() {
+            Some(_) => origin::schema_message(error.message()),
+            None => origin::schema_message(&error.to_string()),
+        };
+        let origin = match (&key, error.span()) {
+            (Some(key), _) => self.origin(key),
+            (None, Some(span)) => self.at_offset(span.start),
+            (None, None) => self.file(),
+        };
+        ScenarioError::Rejected {
+            origin,
+            key,
+            message,
+        }
+    }
 }
 
 impl Scenario {
     /// Reads, overrides, parses and validates a scenario file.
     pub fn load(path: &Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
+        Self::load_with_source(path, overrides).map(|(scenario, _)| scenario)
+    }
+
+    /// [`Scenario::load`], with the source that says where each value came from (for
+    /// checks made after loading, e.g. of the assets).
+    pub fn load_with_source(
+        path: &Path,
+        overrides: &[String],
+    ) -> Result<(Scenario, ScenarioSource), ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Unreadable {
             path: path.to_path_buf(),
             source,
         })?;
-        let mut scenario = Self::from_toml_str(&text, path, overrides)?;
+        if text.parse::<toml::Table>().is_ok_and(|t| t.is_empty()) {
+            return Err(ScenarioError::Empty {
+                path: path.to_path_buf(),
+            });
+        }
+        let source = ScenarioSource {
+            path: path.to_path_buf(),
+            text,
+            overrides: overrides.to_vec(),
+        };
+        let mut scenario = Self::from_source(&source)?;
         scenario.resolve_mesh_path(path);
-        Ok(scenario)
+        Ok((scenario, source))
     }
 
-    /// A relative mesh path not found from the working directory is looked up from the
-    /// scenario file's directory and its parent; the path found is written back so that the
+    /// A relative mesh path is looked up from the scenario file's folder; the default mesh,
+    /// when that folder has none, is the shipped one (`assets/` of this program's source,
+    /// else the copy built into the program). The path found is written back so that the
     /// resolved scenario runs from anywhere.
     fn resolve_mesh_path(&mut self, scenario_path: &Path) {
         let mesh = PathBuf::from(&self.camera.mesh);
-        if mesh.is_absolute() || mesh.exists() {
+        if mesh.is_absolute() {
             return;
         }
         let dir = scenario_path.parent().unwrap_or(Path::new("."));
-        let candidates = [dir.join(&mesh), dir.join("..").join(&mesh)];
+        let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join(&mesh);
+        let mut candidates = vec![dir.join(&mesh)];
+        if self.camera.mesh == DEFAULT_MESH {
+            candidates.push(shipped);
+        }
         if let Some(found) = candidates.iter().find(|p| p.exists()) {
             let found = found.canonicalize().unwrap_or_else(|_| found.clone());
             self.camera.mesh = found.to_string_lossy().into_owned();
@@ -95,25 +156,28 @@ impl Scenario {
         path: &Path,
         overrides: &[String],
     ) -> Result<Scenario, ScenarioError> {
-        let schema_error = |source| ScenarioError::Schema {
+        Self::from_source(&ScenarioSource {
             path: path.to_path_buf(),
-            source,
-        };
-        let mut table: toml::Table = text.parse().map_err(schema_error)?;
-        for text in overrides {
+            text: text.to_string(),
+            overrides: overrides.to_vec(),
+        })
+    }
+
+    /// Parses, overrides and validates a source.
+    fn from_source(source: &ScenarioSource) -> Result<Scenario, ScenarioError> {
+        let mut table: toml::Table = source.text.parse().map_err(|e| source.schema_error(&e))?;
+        for text in &source.overrides {
             apply_override(&mut table, text).map_err(|reason| ScenarioError::Override {
-                path: path.to_path_buf(),
                 text: text.clone(),
                 reason,
             })?;
         }
-        let scenario: Scenario = toml::Value::Table(table).try_into().map_err(schema_error)?;
+        let scenario: Scenario = toml::Value::Table(table)
+            .try_into()
+            .map_err(|e| source.schema_error(&e))?;
         scenario
             .validate()
-            .map_err(|invalid| ScenarioError::Invalid {
-                path: path.to_path_buf(),
-                invalid,
-            })?;
+            .map_err(|invalid| source.reject(&invalid.key, invalid.to_string()))?;
         Ok(scenario)
     }
 
@@ -229,7 +293,10 @@ mod tests {
         ));
         assert!(matches!(
             parse("", &["run.nope=1"]),
-            Err(ScenarioError::Schema { .. })
+            Err(ScenarioError::Rejected {
+                origin: Origin::Override(_),
+                ..
+            })
         ));
         let s = parse("", &["guidance.mission=intercept"]).expect("bare strings work");
         assert_eq!(s.guidance.mission, Mission::Intercept);

@@ -17,6 +17,10 @@ pub struct RunSection {
     pub seed: u64,
     /// Ticks between telemetry rows (1 = every tick).
     pub log_every: u32,
+    /// A camera run whose target has gone unmeasured for longer than this stops with status
+    /// `lost`, s (0: never). Brief losses (a fixed camera's target crossing the image's edge
+    /// for a few frames) are survived: the guidance coasts on its estimator.
+    pub stop_after_lost_s: f64,
 }
 
 impl Default for RunSection {
@@ -26,6 +30,7 @@ impl Default for RunSection {
             dt_s: 0.001,
             seed: 1,
             log_every: 10,
+            stop_after_lost_s: 3.0,
         }
     }
 }
@@ -40,7 +45,8 @@ impl RunSection {
             self.dt_s,
             format!("<= run.duration_s = {}", self.duration_s),
         )?;
-        check::int_in("run.log_every", i64::from(self.log_every), 1, 1_000_000)
+        check::int_in("run.log_every", i64::from(self.log_every), 1, 1_000_000)?;
+        check::in_closed("run.stop_after_lost_s", self.stop_after_lost_s, 0.0, 1e5)
     }
 
     /// Number of ticks of the whole run.
@@ -685,6 +691,14 @@ impl Scenario {
         self.atmosphere.validate()?;
         self.autopilot.validate()?;
         if self.follower.model == FollowerModel::Aircraft {
+            // The aircraft starts trimmed in straight and level flight through the air: an
+            // air mass that rises or sinks has no such trim.
+            check::require(
+                self.atmosphere.wind_ned_fps[2] == 0.0,
+                "atmosphere.wind_ned_fps",
+                format!("{:?}", self.atmosphere.wind_ned_fps),
+                "[n, e, 0] with follower.model = \"aircraft\" (no level trim in rising air)",
+            )?;
             check::require(
                 self.run.dt_s <= AIRCRAFT_MAX_DT_S,
                 "run.dt_s",

@@ -21,7 +21,10 @@ use crate::render::mesh::{MeshError, TargetMesh};
 use crate::render::region::ImageRegion;
 use crate::render::renderer::{PendingFrame, RenderError, RenderTimings, Renderer};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
-use crate::scenario::{BearingPoint, BlobChoice, CameraPipeline, CameraSection, Scenario, SkyKind};
+use crate::scenario::{
+    BearingPoint, BlobChoice, CameraPipeline, CameraSection, DEFAULT_MESH, Scenario, SkyKind,
+};
+use crate::vision::silhouette::SilhouetteCentroid;
 use crate::vision::{
     BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ImageSizeError, ImageTruth,
     TrackingWindow, TruthProjector, VisionConfig, VisionConfigError, VisionPipeline,
@@ -189,12 +192,23 @@ pub struct MeasurementErrors {
     pub centroid_sq_px2: f64,
     /// Σ of squared maximal-length error, px².
     pub length_sq_px2: f64,
+    /// Frames with both a measured centroid and the silhouette's true one.
+    pub silhouette_count: u64,
+    /// Σ of squared distance between the measured and the silhouette's true centroid, px².
+    pub silhouette_centroid_sq_px2: f64,
 }
 
 impl MeasurementErrors {
     /// RMS centroid error, px (None before any frame).
     pub fn centroid_rms_px(&self) -> Option<f64> {
         (self.count > 0).then(|| (self.centroid_sq_px2 / self.count as f64).sqrt())
+    }
+
+    /// RMS distance between the measured centroid and the silhouette's true centroid, px
+    /// (None before any frame).
+    pub fn silhouette_centroid_rms_px(&self) -> Option<f64> {
+        (self.silhouette_count > 0)
+            .then(|| (self.silhouette_centroid_sq_px2 / self.silhouette_count as f64).sqrt())
     }
 
     /// RMS maximal-length error, px (None before any frame).
@@ -209,7 +223,9 @@ pub struct CameraSensor {
     renderer: Renderer,
     vision: VisionPipeline,
     truth: TruthProjector,
+    silhouette: SilhouetteCentroid,
     mesh_vertices_ft: Vec<Vec3>,
+    mesh_triangles: Vec<[u32; 3]>,
     selection: BlobChoice,
     bearing_point: BearingPoint,
     /// Frames taken in [start, end) s show no target (`camera.occlusion_s`).
@@ -292,12 +308,17 @@ pub fn intrinsics(camera: &CameraSection) -> CameraIntrinsics {
 /// Loads the scenario's target mesh, scaled so that its maximal dimension is `target.size_ft`.
 pub fn load_target_mesh(scenario: &Scenario) -> Result<TargetMesh, SensorError> {
     let path = Path::new(&scenario.camera.mesh);
-    let unscaled = TargetMesh::load_obj(path, 1.0)?;
+    // The default mesh where no file of that name is found: the copy built into the program.
+    let unscaled = if scenario.camera.mesh == DEFAULT_MESH && !path.exists() {
+        TargetMesh::target_aircraft(1.0)?
+    } else {
+        TargetMesh::load_obj(path, 1.0)?
+    };
     let span = unscaled.max_dimension_ft();
     if !(span.is_finite() && span > 0.0) {
         return Err(SensorError::MeshWithoutExtent(path.to_path_buf()));
     }
-    Ok(TargetMesh::load_obj(path, scenario.target.size_ft / span)?)
+    Ok(unscaled.scaled(scenario.target.size_ft / span))
 }
 
 impl CameraSensor {
@@ -341,7 +362,9 @@ impl CameraSensor {
             renderer,
             vision,
             truth: TruthProjector::new(),
+            silhouette: SilhouetteCentroid::default(),
             mesh_vertices_ft: mesh.vertices_ft.clone(),
+            mesh_triangles: mesh.triangles.clone(),
             selection: camera.selection,
             bearing_point: camera.bearing_point,
             occlusion_s: camera.occlusion_s,
@@ -602,6 +625,9 @@ impl CameraSensor {
                 (m.y_i_px - t.y_i_px).powi(2) + (m.z_i_px - t.z_i_px).powi(2);
             self.errors.length_sq_px2 += (m.b_i_px - t.b_i_px).powi(2);
         }
+        if ok {
+            self.record_silhouette_error(&blob, &pose);
+        }
         self.timings.truth += truth_started.elapsed();
 
         self.previous_centroid_px = ok.then_some((blob.centroid_u_px, blob.centroid_v_px));
@@ -636,6 +662,23 @@ impl CameraSensor {
                 Some((&self.pixels[buffer_of(record.index)], record, blob))
             }
             _ => None,
+        }
+    }
+
+    /// Adds a measured frame's distance from the silhouette's true centroid to the errors.
+    fn record_silhouette_error(&mut self, blob: &BlobMeasurement, pose: &TargetPoseInCamera) {
+        let truth = self.silhouette.centroid(
+            &self.mesh_vertices_ft,
+            &self.mesh_triangles,
+            pose,
+            &self.intrinsics,
+        );
+        if let Some((y_true, z_true)) = truth {
+            let (y, z) = self
+                .intrinsics
+                .image_from_pixel(blob.centroid_u_px, blob.centroid_v_px);
+            self.errors.silhouette_count += 1;
+            self.errors.silhouette_centroid_sq_px2 += (y - y_true).powi(2) + (z - z_true).powi(2);
         }
     }
 

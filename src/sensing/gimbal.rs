@@ -21,6 +21,9 @@ use crate::scenario::GimbalSection;
 /// Length of the gimbal's state: `[ψ_g, θ_g]`.
 pub const GIMBAL_STATE_LEN: usize = 2;
 
+/// The names of the gimbal's state elements (for messages).
+pub const GIMBAL_STATE_NAMES: [&str; GIMBAL_STATE_LEN] = ["gimbal: pan, rad", "gimbal: tilt, rad"];
+
 /// The gimbal's angles, rad.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct GimbalAngles {

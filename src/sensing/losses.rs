@@ -51,6 +51,11 @@ impl LossLog {
         }
     }
 
+    /// The start of the episode still open (the target not found again yet), s.
+    pub fn open_since_s(&self) -> Option<f64> {
+        self.open.map(|e| e.start_s)
+    }
+
     /// Every episode so far, the one still open (not found) last.
     pub fn episodes(&self) -> Vec<LossEpisode> {
         self.closed

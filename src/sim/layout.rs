@@ -49,6 +49,27 @@ impl StateLayout {
         }
     }
 
+    /// What element `i` of the state is, from each stage's names for its slice (a stage
+    /// that names fewer elements than it has gives "stage, element k").
+    pub fn describe(&self, i: usize, names: &Slices<Vec<String>>) -> String {
+        let stages = [
+            ("follower", &self.follower, &names.follower),
+            ("gimbal", &self.gimbal, &names.gimbal),
+            ("command frame", &self.command, &names.command),
+            ("guidance", &self.guidance, &names.guidance),
+        ];
+        for (stage, range, names) in stages {
+            if range.contains(&i) {
+                let k = i - range.start;
+                return names
+                    .get(k)
+                    .cloned()
+                    .unwrap_or_else(|| format!("{stage}, element {k}"));
+            }
+        }
+        format!("state element {i}")
+    }
+
     /// The slices of a state, mutable.
     pub fn split_mut<'a>(&self, x: &'a mut [f64]) -> Slices<&'a mut [f64]> {
         let (rest, guidance) = x.split_at_mut(self.guidance.start);
@@ -79,5 +100,19 @@ mod tests {
         let mut y = x.clone();
         layout.split_mut(&mut y).gimbal[1] = -1.0;
         assert_eq!(y[4], -1.0);
+    }
+
+    #[test]
+    fn elements_are_named_by_their_stage() {
+        let layout = StateLayout::new(2, 0, 1, 2);
+        let names = Slices {
+            follower: vec!["aircraft: x".to_string(), "autopilot: y".to_string()],
+            gimbal: vec![],
+            command: vec!["command frame: heading".to_string()],
+            guidance: vec!["guidance: b̂".to_string()],
+        };
+        assert_eq!(layout.describe(1, &names), "autopilot: y");
+        assert_eq!(layout.describe(3, &names), "guidance: b̂");
+        assert_eq!(layout.describe(4, &names), "guidance, element 1");
     }
 }

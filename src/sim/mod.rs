@@ -33,7 +33,7 @@ use crate::render::GpuContext;
 use crate::scenario::{
     ExcitationUnits, FollowerModel, GimbalKind, GuidanceLawKind, Mission, Scenario, SensorMode,
 };
-use crate::sensing::gimbal::{Gimbal, GimbalAngles};
+use crate::sensing::gimbal::{GIMBAL_STATE_NAMES, Gimbal, GimbalAngles};
 use crate::sensing::losses::{LossEpisode, LossLog};
 use crate::sensing::{
     CameraSensor, CaptureGeometry, FrameRecord, NoisySensor, Sensor, SensorError,
@@ -72,6 +72,14 @@ pub enum SimError {
         #[source]
         source: Box<SensorError>,
     },
+}
+
+impl SimError {
+    /// Whether the set-up failed for want of a graphics adapter: the machine's fault, not
+    /// the scenario's.
+    pub fn is_missing_adapter(&self) -> bool {
+        matches!(self, Self::Sensor(e) if matches!(**e, SensorError::Gpu(_)))
+    }
 }
 
 /// What a step ended in.
@@ -342,6 +350,12 @@ impl Simulation {
     /// The runs of delivered frames that did not measure the target, in order.
     pub fn loss_episodes(&self) -> Vec<LossEpisode> {
         self.losses.episodes()
+    }
+
+    /// When the loss of the target going on now began (the time of its first unmeasured
+    /// frame), s; None while the last frame measured it.
+    pub fn unmeasured_since_s(&self) -> Option<f64> {
+        self.losses.open_since_s()
     }
 
     /// The noisy sensor, in noisy runs.
@@ -699,7 +713,7 @@ impl Simulation {
         if let Some(i) = self.state.iter().position(|v| !v.is_finite()) {
             return Err(SimError::Diverged {
                 t_s: t_end_s,
-                what: format!("state element {i} is {}", self.state[i]),
+                what: format!("{} is {}", self.state_name(i), self.state[i]),
             });
         }
         let follower_x = self.layout.split(&self.state).follower;
@@ -737,6 +751,23 @@ impl Simulation {
         } else {
             StepOutcome::Running
         })
+    }
+}
+
+impl Simulation {
+    /// What element `i` of the state vector is, named by its stage ("autopilot: RBF weight
+    /// 3 of the pitch channel").
+    fn state_name(&self, i: usize) -> String {
+        let names = layout::Slices {
+            follower: self.follower.state_names(),
+            gimbal: self
+                .gimbal
+                .as_ref()
+                .map_or(vec![], |_| GIMBAL_STATE_NAMES.map(String::from).to_vec()),
+            command: command::STATE_NAMES.map(String::from).to_vec(),
+            guidance: self.guidance.state_names(),
+        };
+        self.layout.describe(i, &names)
     }
 }
 
@@ -792,5 +823,37 @@ fn capture_geometry(
         follower_attitude: follower.attitude(follower_x),
         camera_from_body: *camera_from_body,
         target_attitude: target.state(t_s).attitude,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A state that turns NaN is named by its stage and quantity, not by its index.
+    #[test]
+    fn divergence_names_the_stage_and_quantity() {
+        let text = "[follower]\nmodel = \"aircraft\"\n[run]\ndt_s = 0.002\n";
+        let scenario = Scenario::from_toml_str(text, std::path::Path::new("s.toml"), &[])
+            .expect("valid scenario");
+        let mut sim = Simulation::new(&scenario).expect("set-up");
+        let name = "autopilot: RBF weight 3 of the pitch channel";
+        let i = sim
+            .follower
+            .state_names()
+            .iter()
+            .position(|n| n == name)
+            .expect("the weight is named");
+        sim.state[i] = f64::NAN;
+        let message = sim.after_step().expect_err("diverged").to_string();
+        assert!(message.contains(&format!("{name} is NaN")), "{message}");
+        let i = sim.layout.split(&sim.state).follower.len() + command::STATE_LEN;
+        sim.state.fill(0.0);
+        sim.state[i] = f64::INFINITY;
+        let message = sim.after_step().expect_err("diverged").to_string();
+        assert!(
+            message.contains("guidance: b̂ (target size estimate), ft is inf"),
+            "{message}"
+        );
     }
 }

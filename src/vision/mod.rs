@@ -34,6 +34,7 @@ mod measure;
 pub mod overlay;
 mod pipeline;
 mod segment;
+pub mod silhouette;
 mod subpixel_edge;
 #[cfg(test)]
 mod synthetic;

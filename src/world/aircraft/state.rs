@@ -152,6 +152,24 @@ pub(super) fn actuators_at(x: &[f64; STATE_LEN]) -> Controls {
     }
 }
 
+/// The names of the packed state's elements, in order (for messages).
+pub fn state_names() -> Vec<String> {
+    use crate::state_block::{NED, element_names};
+    element_names(
+        "aircraft",
+        &[
+            ("position, ft", NED),
+            ("body velocity, ft/s", &["u", "v", "w"]),
+            ("attitude quaternion", &["q0", "q1", "q2", "q3"]),
+            ("body rate, rad/s", &["p", "q", "r"]),
+            ("elevator, rad", &[]),
+            ("aileron, rad", &[]),
+            ("rudder, rad", &[]),
+            ("throttle", &[]),
+        ],
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,137 @@
+//! The output folder of a run: a new or empty folder, or the folder of an earlier run (known
+//! by its own `summary.json`), whose files are cleared first so that two runs never mix.
+//! Any other folder with files in it is refused: a run does not write among files it did not
+//! write.
+
+use std::path::{Path, PathBuf};
+
+/// The files a run writes at the top of its folder.
+const RUN_FILES: [&str; 3] = ["scenario.toml", "telemetry.csv", "summary.json"];
+/// The folders a run writes its images into.
+const RUN_FOLDERS: [&str; 2] = ["frames", "plots"];
+
+/// Why an output folder cannot be used.
+#[derive(Debug, thiserror::Error)]
+pub enum FolderError {
+    /// The path names a file.
+    #[error("--out {}: is a file, not a folder", .0.display())]
+    NotAFolder(PathBuf),
+    /// A folder with files in it that are not an earlier run's.
+    #[error(
+        "--out {}: the folder is not empty and holds no wingman run (no summary.json of one): \
+         choose an empty or new folder",
+        .0.display()
+    )]
+    NotARun(PathBuf),
+    /// The folder could not be read or cleared.
+    #[error("--out {}: {source}", path.display())]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+}
+
+fn io_error(path: &Path) -> impl Fn(std::io::Error) -> FolderError + '_ {
+    move |source| FolderError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// Whether `dir` may receive a run: it does not exist, is empty, or holds an earlier run.
+pub fn check(dir: &Path) -> Result<(), FolderError> {
+    if !dir.exists() {
+        return Ok(());
+    }
+    if !dir.is_dir() {
+        return Err(FolderError::NotAFolder(dir.to_path_buf()));
+    }
+    let empty = std::fs::read_dir(dir)
+        .map_err(io_error(dir))?
+        .next()
+        .is_none();
+    if empty || holds_a_run(dir) {
+        Ok(())
+    } else {
+        Err(FolderError::NotARun(dir.to_path_buf()))
+    }
+}
+
+/// Checks `dir` as [`check`] does and removes what an earlier run wrote there: its three
+/// files and the PNG images of its `frames/` and `plots/` (the folders too, once empty).
+pub fn prepare(dir: &Path) -> Result<(), FolderError> {
+    check(dir)?;
+    if !dir.exists() {
+        return Ok(());
+    }
+    for folder in RUN_FOLDERS.map(|f| dir.join(f)) {
+        if !folder.is_dir() {
+            continue;
+        }
+        for entry in std::fs::read_dir(&folder).map_err(io_error(&folder))? {
+            let path = entry.map_err(io_error(&folder))?.path();
+            if path.extension().is_some_and(|e| e == "png") && path.is_file() {
+                std::fs::remove_file(&path).map_err(io_error(&path))?;
+            }
+        }
+        // Files of the user's own stay, and with them the folder.
+        let _ = std::fs::remove_dir(&folder);
+    }
+    for file in RUN_FILES.map(|f| dir.join(f)) {
+        if file.is_file() {
+            std::fs::remove_file(&file).map_err(io_error(&file))?;
+        }
+    }
+    Ok(())
+}
+
+/// Whether `dir` holds a run's `summary.json` (a JSON object with the keys every summary has).
+fn holds_a_run(dir: &Path) -> bool {
+    let Ok(text) = std::fs::read_to_string(dir.join("summary.json")) else {
+        return false;
+    };
+    serde_json::from_str::<serde_json::Value>(&text).is_ok_and(|v| {
+        ["scenario", "status", "steps", "duration_s"]
+            .iter()
+            .all(|k| v.get(k).is_some())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SUMMARY: &str =
+        r#"{"scenario": "s", "status": "completed", "steps": 1, "duration_s": 1.0}"#;
+
+    /// An earlier run's files go, a user's file stays; a folder of other files is refused.
+    #[test]
+    fn earlier_runs_are_cleared_and_other_folders_refused() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let run = dir.path().join("run");
+        std::fs::create_dir_all(run.join("frames")).expect("frames");
+        std::fs::write(run.join("summary.json"), SUMMARY).expect("summary");
+        std::fs::write(run.join("telemetry.csv"), "t_s\n0\n").expect("telemetry");
+        std::fs::write(run.join("frames/000007.png"), "png").expect("frame");
+        std::fs::write(run.join("notes.txt"), "mine").expect("notes");
+        prepare(&run).expect("an earlier run is cleared");
+        assert!(!run.join("summary.json").exists() && !run.join("frames").exists());
+        assert!(!run.join("telemetry.csv").exists());
+        assert!(run.join("notes.txt").exists(), "the user's file stays");
+
+        let other = dir.path().join("other");
+        std::fs::create_dir_all(&other).expect("other");
+        std::fs::write(other.join("thesis.tex"), "x").expect("file");
+        let err = prepare(&other).unwrap_err();
+        assert!(matches!(err, FolderError::NotARun(_)), "{err}");
+        assert!(err.to_string().contains("other"), "{err}");
+        assert!(other.join("thesis.tex").exists());
+
+        let file = dir.path().join("file");
+        std::fs::write(&file, "x").expect("file");
+        let err = check(&file).unwrap_err();
+        assert!(err.to_string().contains("not a folder"), "{err}");
+    }
+}

@@ -1,0 +1,204 @@
+//! The true centroid of the target's silhouette, from the mesh: the area centroid of the union
+//! of its projected triangles. The image pipeline measures the centroid of the silhouette it
+//! segments; the projection of the target's reference point (the mesh origin) is another
+//! point (several pixels away at close range), so the vision's centroid error is measured
+//! against this one.
+//!
+//! The union is integrated on scan lines: each line, every triangle it crosses gives an
+//! interval; the intervals are merged, and their lengths and first moments summed exactly
+//! along the line. Lines are spaced [`LINES_PER_PX`] to a pixel (at most [`MAX_LINES`] over
+//! the silhouette's height), so the centroid is exact across the lines and the midpoint rule's
+//! along them: far below a hundredth of a pixel for silhouettes of a few pixels or more.
+
+use crate::frames::Vec3;
+use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+
+/// Scan lines per pixel of the silhouette's height.
+const LINES_PER_PX: f64 = 16.0;
+/// Most scan lines over the silhouette's height.
+const MAX_LINES: f64 = 4096.0;
+
+/// One line's stretch of one triangle: line index, left and right end (yI, px).
+type Interval = (usize, f64, f64);
+
+/// Computes silhouette centroids, keeping its buffers between frames.
+#[derive(Debug, Default, Clone)]
+pub struct SilhouetteCentroid {
+    projected: Vec<(f64, f64)>,
+    intervals: Vec<Interval>,
+}
+
+impl SilhouetteCentroid {
+    /// The centroid (yI, zI), px, of the silhouette of the mesh (`vertices_target_ft`,
+    /// `triangles`) posed by `pose` and seen through `camera`; None when a vertex is not in
+    /// front of the camera or the silhouette has no area.
+    pub fn centroid(
+        &mut self,
+        vertices_target_ft: &[Vec3],
+        triangles: &[[u32; 3]],
+        pose: &TargetPoseInCamera,
+        camera: &CameraIntrinsics,
+    ) -> Option<(f64, f64)> {
+        self.projected.clear();
+        for vertex in vertices_target_ft {
+            let (y, z) = camera.image_from_body(&pose.body_from_target_point(vertex))?;
+            if !(y.is_finite() && z.is_finite()) {
+                return None;
+            }
+            self.projected.push((y, z));
+        }
+        let (z_min, z_max) = self
+            .projected
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.1), hi.max(p.1))
+            });
+        let lines = ((z_max - z_min) * LINES_PER_PX)
+            .clamp(1.0, MAX_LINES)
+            .ceil();
+        let spacing = (z_max - z_min) / lines;
+        if spacing.is_nan() || spacing <= 0.0 {
+            return None;
+        }
+        self.intervals.clear();
+        for t in triangles {
+            let corners = t.map(|i| self.projected.get(i as usize).copied());
+            if let [Some(a), Some(b), Some(c)] = corners {
+                cross_lines(
+                    [a, b, c],
+                    z_min,
+                    spacing,
+                    lines as usize,
+                    &mut self.intervals,
+                );
+            }
+        }
+        union_centroid(&mut self.intervals, z_min, spacing)
+    }
+}
+
+/// The intervals where the lines z = z_min + (k + ½) spacing cross a triangle.
+fn cross_lines(
+    corners: [(f64, f64); 3],
+    z_min: f64,
+    spacing: f64,
+    lines: usize,
+    out: &mut Vec<Interval>,
+) {
+    let lo = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
+    let hi = corners
+        .iter()
+        .map(|c| c.1)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let first = ((lo - z_min) / spacing - 0.5).ceil().max(0.0) as usize;
+    let last = (((hi - z_min) / spacing - 0.5).floor().max(-1.0) + 1.0) as usize;
+    for k in first..last.min(lines) {
+        let z = z_min + (k as f64 + 0.5) * spacing;
+        let mut left = f64::INFINITY;
+        let mut right = f64::NEG_INFINITY;
+        for (i, a) in corners.iter().enumerate() {
+            let b = corners[(i + 1) % 3];
+            if (a.1 <= z) != (b.1 <= z) {
+                let y = a.0 + (z - a.1) * (b.0 - a.0) / (b.1 - a.1);
+                left = left.min(y);
+                right = right.max(y);
+            }
+        }
+        if left < right {
+            out.push((k, left, right));
+        }
+    }
+}
+
+/// The area centroid of the union of the intervals, line by line (the intervals are sorted).
+fn union_centroid(intervals: &mut [Interval], z_min: f64, spacing: f64) -> Option<(f64, f64)> {
+    intervals.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let (mut area, mut moment_y, mut moment_z) = (0.0, 0.0, 0.0);
+    let mut add = |line: usize, left: f64, right: f64| {
+        let z = z_min + (line as f64 + 0.5) * spacing;
+        let length = right - left;
+        area += length;
+        moment_y += 0.5 * (right * right - left * left);
+        moment_z += z * length;
+    };
+    let mut open: Option<Interval> = None;
+    for &(line, left, right) in intervals.iter() {
+        open = match open {
+            Some((l, a, b)) if l == line && left <= b => Some((l, a, b.max(right))),
+            Some((l, a, b)) => {
+                add(l, a, b);
+                Some((line, left, right))
+            }
+            None => Some((line, left, right)),
+        };
+    }
+    if let Some((l, a, b)) = open {
+        add(l, a, b);
+    }
+    (area > 0.0).then(|| (moment_y / area, moment_z / area))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frames::Mat3;
+
+    /// Two overlapping squares facing the camera: the union's centroid, not the mean of the
+    /// squares' centroids (the overlap counts once).
+    #[test]
+    fn overlapping_squares_count_their_overlap_once() {
+        let square = |y0: f64, z0: f64, base: u32| {
+            let v = vec![
+                Vec3::new(0.0, y0, -z0),
+                Vec3::new(0.0, y0 + 2.0, -z0),
+                Vec3::new(0.0, y0 + 2.0, -z0 - 2.0),
+                Vec3::new(0.0, y0, -z0 - 2.0),
+            ];
+            (v, [[base, base + 1, base + 2], [base, base + 2, base + 3]])
+        };
+        let (mut vertices, t1) = square(0.0, 0.0, 0);
+        let (v2, t2) = square(1.0, 0.0, 4);
+        vertices.extend(v2);
+        let triangles = [t1, t2].concat();
+        let camera = CameraIntrinsics {
+            width_px: 640,
+            height_px: 480,
+            focal_px: 100.0,
+        };
+        let pose = TargetPoseInCamera {
+            position_body_ft: Vec3::new(100.0, 0.0, 0.0),
+            body_from_target: Mat3::identity(),
+        };
+        let (y, z) = SilhouetteCentroid::default()
+            .centroid(&vertices, &triangles, &pose, &camera)
+            .expect("in front");
+        // Union: y in [0, 3] ft, z (up) in [0, 2] ft at range 100 ft, focal 100 px: 1 px per ft.
+        assert!((y - 1.5).abs() < 1e-9, "y {y}");
+        assert!((z - 1.0).abs() < 1e-9, "z {z}");
+    }
+
+    /// A triangle: its centroid is the mean of its corners.
+    #[test]
+    fn triangle_centroid_is_the_mean_of_its_corners() {
+        let vertices = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.0, 30.0, 0.0),
+            Vec3::new(0.0, 0.0, -12.0),
+        ];
+        let camera = CameraIntrinsics {
+            width_px: 640,
+            height_px: 480,
+            focal_px: 100.0,
+        };
+        let pose = TargetPoseInCamera {
+            position_body_ft: Vec3::new(100.0, 0.0, 0.0),
+            body_from_target: Mat3::identity(),
+        };
+        let (y, z) = SilhouetteCentroid::default()
+            .centroid(&vertices, &[[0, 1, 2]], &pose, &camera)
+            .expect("in front");
+        // Exact along lines, midpoint rule across 16 lines per px: within 1e-3 px.
+        assert!((y - 10.0).abs() < 1e-3, "y {y}");
+        assert!((z - 4.0).abs() < 1e-3, "z {z}");
+    }
+}

@@ -1,0 +1,87 @@
+//! An output folder never mixes runs (issue 12): a second run into the folder of a first
+//! clears the first's files (frames and plots it does not write again are gone), and a folder
+//! with other files in it is refused with exit code 2, naming it, and left as it was.
+
+use std::process::Command;
+
+fn wingman(args: &[&str]) -> (i32, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_wingman"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("NODEVICE_SELECT", "1")
+        .output()
+        .expect("binary runs");
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn a_second_run_clears_the_first_and_other_folders_are_refused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("run");
+    let out_s = out.to_str().expect("utf-8");
+    let first = [
+        "run",
+        "scenarios/vision_ch4_formation.toml",
+        "--out",
+        out_s,
+        "--quiet",
+        "--set",
+        "run.duration_s=0.5",
+        "--set",
+        "output.frames_every=5",
+    ];
+    let (code, stderr) = wingman(&first);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(out.join("frames").is_dir() && out.join("plots").is_dir());
+    let (code, stderr) = wingman(&[
+        "run",
+        "scenarios/seed_ch4_formation.toml",
+        "--out",
+        out_s,
+        "--quiet",
+        "--set",
+        "run.duration_s=0.5",
+        "--set",
+        "output.plots=false",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        !out.join("frames").exists(),
+        "the first run's frames stayed"
+    );
+    assert!(!out.join("plots").exists(), "the first run's plots stayed");
+    let summary = std::fs::read_to_string(out.join("summary.json")).expect("summary");
+    assert!(summary.contains("seed_ch4_formation"));
+
+    let other = dir.path().join("thesis");
+    std::fs::create_dir_all(&other).expect("folder");
+    std::fs::write(other.join("chapter1.tex"), "text").expect("file");
+    let (code, stderr) = wingman(&[
+        "run",
+        "scenarios/seed_ch4_formation.toml",
+        "--out",
+        other.to_str().expect("utf-8"),
+        "--quiet",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("thesis") && stderr.contains("not empty"),
+        "{stderr}"
+    );
+    let left: Vec<_> = std::fs::read_dir(&other).expect("read").collect();
+    assert_eq!(left.len(), 1, "the refused folder was written to");
+
+    let file = other.join("chapter1.tex");
+    let (code, stderr) = wingman(&[
+        "run",
+        "scenarios/seed_ch4_formation.toml",
+        "--out",
+        file.to_str().expect("utf-8"),
+        "--quiet",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("is a file, not a folder"), "{stderr}");
+}

@@ -1,0 +1,90 @@
+//! The README is a front page a new user can follow (issue 12): its first command works as
+//! root (no sudo in a container) and as a user, the Rust it asks for is the `rust-version` of
+//! `Cargo.toml`, every link names a file of this repository (none outside it), and the
+//! equations, design and findings it points to are in `docs/`.
+
+use std::path::Path;
+
+fn repo() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn read(path: &str) -> String {
+    std::fs::read_to_string(repo().join(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+#[test]
+fn first_command_needs_no_sudo_as_root() {
+    let readme = read("README.md");
+    let first = readme
+        .lines()
+        .find(|l| l.contains("cargo run --release -- run scenarios/formation.toml"))
+        .expect("command 1");
+    assert!(!first.trim_start().starts_with("sudo"), "{first}");
+    assert!(first.contains("sh scripts/setup.sh"), "{first}");
+    let setup = read("scripts/setup.sh");
+    assert!(
+        setup.contains("id -u") && setup.contains("as_root=\"\""),
+        "root runs apt-get"
+    );
+    let ci = read(".ci/run");
+    assert!(
+        ci.contains("sh scripts/setup.sh"),
+        "CI runs the README's installation"
+    );
+}
+
+#[test]
+fn rust_version_is_the_one_the_readme_asks_for() {
+    let manifest: toml::Table = read("Cargo.toml").parse().expect("Cargo.toml");
+    let version = manifest["package"]["rust-version"]
+        .as_str()
+        .expect("rust-version set");
+    let readme = read("README.md");
+    assert!(
+        readme.contains(&format!("Rust {version} or newer")),
+        "README asks for another Rust"
+    );
+}
+
+#[test]
+fn links_stay_inside_the_repository() {
+    for doc in [
+        "README.md",
+        "docs/equations.md",
+        "docs/design.md",
+        "docs/findings.md",
+        "docs/outputs.md",
+    ] {
+        let text = read(doc);
+        assert!(
+            !text.contains("../shared"),
+            "{doc} points outside the repository"
+        );
+        let base = repo().join(doc).parent().expect("folder").to_path_buf();
+        for link in text.split("](").skip(1) {
+            let target = link.split(')').next().unwrap_or("");
+            let file = target.split('#').next().unwrap_or("");
+            if file.is_empty() || file.starts_with("http") {
+                continue;
+            }
+            assert!(
+                base.join(file).exists(),
+                "{doc}: link to {file} names no file"
+            );
+        }
+    }
+    let readme = read("README.md");
+    for doc in [
+        "docs/equations.md",
+        "docs/design.md",
+        "docs/findings.md",
+        "docs/outputs.md",
+    ] {
+        assert!(readme.contains(doc), "README does not point to {doc}");
+    }
+    assert!(
+        readme.lines().count() < 150,
+        "the front page grew into a notebook"
+    );
+}

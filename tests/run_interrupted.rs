@@ -1,0 +1,53 @@
+//! Ctrl-C stops a run cleanly (issue 12): SIGINT stops it at the next tick, the telemetry is
+//! flushed in whole rows, the summary says `interrupted`, the plots are drawn, and the exit
+//! code is 130.
+
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+#[test]
+fn sigint_writes_summary_and_plots_and_exits_130() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("run");
+    // 10 000 s of the seed's formation: far longer than the test waits.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_wingman"))
+        .args([
+            "run",
+            "scenarios/seed_ch4_formation.toml",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&out)
+        .args(["--set", "run.duration_s=10000"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .spawn()
+        .expect("binary starts");
+    let telemetry = out.join("telemetry.csv");
+    let started = Instant::now();
+    while std::fs::metadata(&telemetry).map_or(0, |m| m.len()) == 0 {
+        assert!(started.elapsed() < Duration::from_secs(60), "no telemetry");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let pid = libc::pid_t::try_from(child.id()).expect("pid");
+    // SAFETY: sends SIGINT to the child this test started.
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGINT) }, 0);
+    let status = child.wait().expect("child ends");
+    assert_eq!(status.code(), Some(130));
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(out.join("summary.json")).expect("summary written"),
+    )
+    .expect("summary is JSON");
+    assert_eq!(summary["status"], "interrupted");
+    assert!(summary["duration_s"].as_f64().expect("duration") < 10_000.0);
+    let text = std::fs::read_to_string(&telemetry).expect("telemetry");
+    let columns = text.lines().next().expect("header").split(',').count();
+    assert!(text.ends_with('\n') && text.lines().count() > 2);
+    assert!(
+        text.lines().all(|l| l.split(',').count() == columns),
+        "a cut-off row"
+    );
+    assert!(
+        out.join("plots/relative_position.png").is_file(),
+        "plots drawn"
+    );
+}
