@@ -2,20 +2,9 @@
 //! clears the first's files (frames and plots it does not write again are gone), and a folder
 //! with other files in it is refused with exit code 2, naming it, and left as it was.
 
-use std::process::Command;
+mod common;
 
-fn wingman(args: &[&str]) -> (i32, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_wingman"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("NODEVICE_SELECT", "1")
-        .output()
-        .expect("binary runs");
-    (
-        output.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
+use common::wingman_cli as wingman;
 
 #[test]
 fn a_second_run_clears_the_first_and_other_folders_are_refused() {

@@ -3,20 +3,9 @@
 //! keeps its telemetry, summary and plots, names the lost frames on its last line and exits
 //! 1. With the limit at 0 the same run goes on to its end.
 
-use std::process::Command;
+mod common;
 
-fn wingman(args: &[&str]) -> (i32, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_wingman"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("NODEVICE_SELECT", "1")
-        .output()
-        .expect("binary runs");
-    (
-        output.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
+use common::wingman_cli as wingman;
 
 #[test]
 fn a_target_lost_longer_than_the_limit_stops_the_run() {
@@ -30,10 +19,6 @@ fn a_target_lost_longer_than_the_limit_stops_the_run() {
         out.to_str().expect("utf-8"),
         "--set",
         "guidance.command_frame=inertial",
-        "--set",
-        "camera.width_px=320",
-        "--set",
-        "camera.height_px=240",
         "--quiet",
     ]);
     assert_eq!(code, 1, "{stderr}");

@@ -2,19 +2,9 @@
 //! telemetry), telemetry.csv, summary.json with its keys, and plots; a diverging run stops
 //! with exit code 1 and keeps the telemetry written so far.
 
-use std::process::Command;
+mod common;
 
-fn wingman(args: &[&str]) -> (i32, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_wingman"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("binary runs");
-    (
-        output.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
+use common::wingman_cli as wingman;
 
 /// Runs the resolved `scenario.toml` of the run in `first` into `second` and checks that it
 /// writes `telemetry` again, byte for byte.

@@ -168,3 +168,18 @@ pub fn assert_noisy_run_bounded(report: &RunReport) {
         assert!(*rms < 3.0, "axis {axis}: RMS {rms} ft");
     }
 }
+
+/// Runs the `wingman` binary in the repository root with `args`; its exit code (-1 when a
+/// signal ended it) and what it wrote to standard error.
+pub fn wingman_cli(args: &[&str]) -> (i32, String) {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_wingman"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("NODEVICE_SELECT", "1")
+        .output()
+        .expect("binary runs");
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
