@@ -143,6 +143,21 @@ mod tests {
     use super::*;
     use crate::frames::Mat3;
 
+    /// A camera of focal length 100 px: 1 px per ft at 100 ft.
+    const CAMERA_1_PX_PER_FT: CameraIntrinsics = CameraIntrinsics {
+        width_px: 640,
+        height_px: 480,
+        focal_px: 100.0,
+    };
+
+    /// The target 100 ft ahead, unrotated.
+    fn ahead_100_ft() -> TargetPoseInCamera {
+        TargetPoseInCamera {
+            position_body_ft: Vec3::new(100.0, 0.0, 0.0),
+            body_from_target: Mat3::identity(),
+        }
+    }
+
     /// Two overlapping squares facing the camera: the union's centroid, not the mean of the
     /// squares' centroids (the overlap counts once).
     #[test]
@@ -160,17 +175,8 @@ mod tests {
         let (v2, t2) = square(1.0, 0.0, 4);
         vertices.extend(v2);
         let triangles = [t1, t2].concat();
-        let camera = CameraIntrinsics {
-            width_px: 640,
-            height_px: 480,
-            focal_px: 100.0,
-        };
-        let pose = TargetPoseInCamera {
-            position_body_ft: Vec3::new(100.0, 0.0, 0.0),
-            body_from_target: Mat3::identity(),
-        };
         let (y, z) = SilhouetteCentroid::default()
-            .centroid(&vertices, &triangles, &pose, &camera)
+            .centroid(&vertices, &triangles, &ahead_100_ft(), &CAMERA_1_PX_PER_FT)
             .expect("in front");
         // Union: y in [0, 3] ft, z (up) in [0, 2] ft at range 100 ft, focal 100 px: 1 px per ft.
         assert!((y - 1.5).abs() < 1e-9, "y {y}");
@@ -185,17 +191,13 @@ mod tests {
             Vec3::new(0.0, 30.0, 0.0),
             Vec3::new(0.0, 0.0, -12.0),
         ];
-        let camera = CameraIntrinsics {
-            width_px: 640,
-            height_px: 480,
-            focal_px: 100.0,
-        };
-        let pose = TargetPoseInCamera {
-            position_body_ft: Vec3::new(100.0, 0.0, 0.0),
-            body_from_target: Mat3::identity(),
-        };
         let (y, z) = SilhouetteCentroid::default()
-            .centroid(&vertices, &[[0, 1, 2]], &pose, &camera)
+            .centroid(
+                &vertices,
+                &[[0, 1, 2]],
+                &ahead_100_ft(),
+                &CAMERA_1_PX_PER_FT,
+            )
             .expect("in front");
         // Exact along lines, midpoint rule across 16 lines per px: within 1e-3 px.
         assert!((y - 10.0).abs() < 1e-3, "y {y}");
