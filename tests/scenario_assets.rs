@@ -105,7 +105,13 @@ fn scenarios_run_from_any_folder() {
     let mesh = std::fs::read_to_string(repo.join("assets/target_aircraft.obj")).expect("mesh");
     std::fs::write(elsewhere.join("mine.obj"), mesh).expect("mesh copy");
     let scenario = elsewhere.join("mine.toml");
-    std::fs::write(&scenario, format!("{CAMERA}mesh = \"mine.obj\"\n")).expect("scenario");
+    let shipped = std::fs::read_to_string(&copy).expect("copy");
+    let mine = shipped.replace(
+        "mesh = \"assets/target_aircraft.obj\"",
+        "mesh = \"mine.obj\"",
+    );
+    assert_ne!(mine, shipped, "formation.toml names its mesh");
+    std::fs::write(&scenario, mine).expect("scenario");
     let (code, stderr) = wingman_in(
         dir.path(),
         &[
@@ -114,6 +120,10 @@ fn scenarios_run_from_any_folder() {
             "--quiet",
             "--out",
             "b",
+            "--set",
+            "run.duration_s=0.2",
+            "--set",
+            "output.plots=false",
         ],
     );
     assert_eq!(code, 0, "{stderr}");
