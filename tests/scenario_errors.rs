@@ -61,7 +61,12 @@ fn assert_rejected(text: &str, extra: &[&str], expected: &[&str]) {
 
 #[test]
 fn syntax_error() {
-    assert_rejected("[run\nduration_s = 1\n", &[], &["bad.toml:1:"]);
+    // Where as file:line:column (issue 12), then what is wrong.
+    assert_rejected(
+        "[run\nduration_s = 1\n",
+        &[],
+        &["bad.toml:1:5", "expected `]`"],
+    );
 }
 
 #[test]

@@ -66,5 +66,8 @@ fn a_fixed_camera_loses_the_target() {
             "output.frames_every=0",
         ],
     );
-    assert!(report.summary.lost_frames > 0, "{:?}", report.summary);
+    let s = &report.summary;
+    assert!(s.lost_frames > 0, "{s:?}");
+    // Lost for good: the run stops as `lost` (run.stop_after_lost_s) rather than completing.
+    assert_eq!(s.status, RunStatus::Lost, "{:?}", s.message);
 }

@@ -142,7 +142,7 @@ fn inertial_command_losses_are_survived_and_counted() {
         &[
             "guidance.command_frame=inertial",
             "run.duration_s=40",
-            // Survive every loss (the default stops a run lost for 3 s: tests/run_lost_target.rs).
+            // Survive every loss (the default stops a run lost for 5 s: tests/run_lost_target.rs).
             "run.stop_after_lost_s=0",
             "camera.width_px=320",
             "camera.height_px=240",

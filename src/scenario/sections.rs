@@ -19,7 +19,9 @@ pub struct RunSection {
     pub log_every: u32,
     /// A camera run whose target has gone unmeasured for longer than this stops with status
     /// `lost`, s (0: never). Brief losses (a fixed camera's target crossing the image's edge
-    /// for a few frames) are survived: the guidance coasts on its estimator.
+    /// for a few frames, a 2 s occlusion and the gimbal's search that finds the target within
+    /// about 1 s after it) are survived: the guidance coasts on its estimator. 5 s leaves
+    /// room above those 3 s; a target gone longer is not coming back by itself.
     pub stop_after_lost_s: f64,
 }
 
@@ -30,7 +32,7 @@ impl Default for RunSection {
             dt_s: 0.001,
             seed: 1,
             log_every: 10,
-            stop_after_lost_s: 3.0,
+            stop_after_lost_s: 5.0,
         }
     }
 }
