@@ -18,14 +18,16 @@ const LINES_PER_PX: f64 = 16.0;
 /// Most scan lines over the silhouette's height.
 const MAX_LINES: f64 = 4096.0;
 
-/// One line's stretch of one triangle: line index, left and right end (yI, px).
-type Interval = (usize, f64, f64);
+/// One line's stretch of one triangle: left and right end (yI, px).
+type Interval = (f64, f64);
 
 /// Computes silhouette centroids, keeping its buffers between frames.
 #[derive(Debug, Default, Clone)]
 pub struct SilhouetteCentroid {
     projected: Vec<(f64, f64)>,
-    intervals: Vec<Interval>,
+    /// The intervals of each scan line (a line's few intervals are sorted alone: sorting all
+    /// lines' together cost more than the rest of the frame's truth).
+    lines: Vec<Vec<Interval>>,
 }
 
 impl SilhouetteCentroid {
@@ -60,31 +62,23 @@ impl SilhouetteCentroid {
         if spacing.is_nan() || spacing <= 0.0 {
             return None;
         }
-        self.intervals.clear();
+        let lines = lines as usize;
+        self.lines
+            .resize_with(self.lines.len().max(lines), Vec::new);
+        self.lines.iter_mut().for_each(Vec::clear);
         for t in triangles {
             let corners = t.map(|i| self.projected.get(i as usize).copied());
             if let [Some(a), Some(b), Some(c)] = corners {
-                cross_lines(
-                    [a, b, c],
-                    z_min,
-                    spacing,
-                    lines as usize,
-                    &mut self.intervals,
-                );
+                cross_lines([a, b, c], z_min, spacing, &mut self.lines[..lines]);
             }
         }
-        union_centroid(&mut self.intervals, z_min, spacing)
+        union_centroid(&mut self.lines[..lines], z_min, spacing)
     }
 }
 
-/// The intervals where the lines z = z_min + (k + ½) spacing cross a triangle.
-fn cross_lines(
-    corners: [(f64, f64); 3],
-    z_min: f64,
-    spacing: f64,
-    lines: usize,
-    out: &mut Vec<Interval>,
-) {
+/// The intervals where the lines z = z_min + (k + ½) spacing cross a triangle, each pushed
+/// to its line's list.
+fn cross_lines(corners: [(f64, f64); 3], z_min: f64, spacing: f64, lines: &mut [Vec<Interval>]) {
     let lo = corners.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
     let hi = corners
         .iter()
@@ -92,7 +86,7 @@ fn cross_lines(
         .fold(f64::NEG_INFINITY, f64::max);
     let first = ((lo - z_min) / spacing - 0.5).ceil().max(0.0) as usize;
     let last = (((hi - z_min) / spacing - 0.5).floor().max(-1.0) + 1.0) as usize;
-    for k in first..last.min(lines) {
+    for k in first..last.min(lines.len()) {
         let z = z_min + (k as f64 + 0.5) * spacing;
         let mut left = f64::INFINITY;
         let mut right = f64::NEG_INFINITY;
@@ -105,37 +99,47 @@ fn cross_lines(
             }
         }
         if left < right {
-            out.push((k, left, right));
+            lines[k].push((left, right));
         }
     }
 }
 
-/// The area centroid of the union of the intervals, line by line (the intervals are sorted).
-fn union_centroid(intervals: &mut [Interval], z_min: f64, spacing: f64) -> Option<(f64, f64)> {
-    intervals.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+/// The area centroid of the union of each line's intervals (sorted here, line by line).
+fn union_centroid(lines: &mut [Vec<Interval>], z_min: f64, spacing: f64) -> Option<(f64, f64)> {
     let (mut area, mut moment_y, mut moment_z) = (0.0, 0.0, 0.0);
-    let mut add = |line: usize, left: f64, right: f64| {
-        let z = z_min + (line as f64 + 0.5) * spacing;
-        let length = right - left;
+    for (k, intervals) in lines.iter_mut().enumerate() {
+        intervals.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        let z = z_min + (k as f64 + 0.5) * spacing;
+        let (length, moment) = union_along_line(intervals);
         area += length;
-        moment_y += 0.5 * (right * right - left * left);
+        moment_y += moment;
         moment_z += z * length;
-    };
-    let mut open: Option<Interval> = None;
-    for &(line, left, right) in intervals.iter() {
-        open = match open {
-            Some((l, a, b)) if l == line && left <= b => Some((l, a, b.max(right))),
-            Some((l, a, b)) => {
-                add(l, a, b);
-                Some((line, left, right))
-            }
-            None => Some((line, left, right)),
-        };
-    }
-    if let Some((l, a, b)) = open {
-        add(l, a, b);
     }
     (area > 0.0).then(|| (moment_y / area, moment_z / area))
+}
+
+/// The length of the union of sorted intervals and its first moment ∫ y dy.
+fn union_along_line(sorted: &[Interval]) -> (f64, f64) {
+    let (mut length, mut moment) = (0.0, 0.0);
+    let mut add = |left: f64, right: f64| {
+        length += right - left;
+        moment += 0.5 * (right * right - left * left);
+    };
+    let mut open: Option<Interval> = None;
+    for &(left, right) in sorted {
+        open = match open {
+            Some((a, b)) if left <= b => Some((a, b.max(right))),
+            Some((a, b)) => {
+                add(a, b);
+                Some((left, right))
+            }
+            None => Some((left, right)),
+        };
+    }
+    if let Some((a, b)) = open {
+        add(a, b);
+    }
+    (length, moment)
 }
 
 #[cfg(test)]
