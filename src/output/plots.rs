@@ -1,5 +1,6 @@
 //! `plots/*.png`: the seed's figure panels, drawn with plotters on a bitmap.
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 use std::path::{Path, PathBuf};
@@ -19,6 +20,23 @@ pub enum PlotError {
         /// What the drawing backend or the file system said.
         source: Box<dyn std::error::Error + Send + Sync>,
     },
+}
+
+/// The chart's legend, top right on a half-white box: the same on every figure.
+pub fn draw_legend<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    path: &Path,
+) -> Result<(), PlotError>
+where
+    DB::ErrorType: 'static,
+{
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(draw_error(path))
 }
 
 /// Wraps a drawing or file-system error of the file (or folder) `path`.
@@ -156,13 +174,7 @@ pub fn draw_figure(
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(draw_error(path))?;
+        draw_legend(&mut chart, path)?;
     }
     root.present().map_err(draw_error(path))
 }

@@ -7,7 +7,7 @@
 use super::layout::{AxisLayout, StudyLayout};
 use super::results::CaseRecord;
 use super::spec::StudyKind;
-use crate::output::plots::{PlotError, draw_error, font_available};
+use crate::output::plots::{PlotError, draw_error, draw_legend, font_available};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -210,13 +210,7 @@ fn draw_lines(
             .map_err(draw_error(path))?;
     }
     if lines.len() > 1 || lines.iter().any(|l| !l.label.is_empty()) {
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(draw_error(path))?;
+        draw_legend(&mut chart, path)?;
     }
     root.present().map_err(draw_error(path))
 }
