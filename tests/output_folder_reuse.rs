@@ -6,6 +6,17 @@ mod common;
 
 use common::wingman_cli as wingman;
 
+/// `wingman run scenarios/seed_ch4_formation.toml --out OUT --quiet`.
+fn run_seed_ch4_into(out: &std::path::Path) -> (i32, String) {
+    wingman(&[
+        "run",
+        "scenarios/seed_ch4_formation.toml",
+        "--out",
+        out.to_str().expect("utf-8"),
+        "--quiet",
+    ])
+}
+
 #[test]
 fn a_second_run_clears_the_first_and_other_folders_are_refused() {
     let dir = tempfile::tempdir().expect("temp dir");
@@ -48,13 +59,7 @@ fn a_second_run_clears_the_first_and_other_folders_are_refused() {
     let other = dir.path().join("thesis");
     std::fs::create_dir_all(&other).expect("folder");
     std::fs::write(other.join("chapter1.tex"), "text").expect("file");
-    let (code, stderr) = wingman(&[
-        "run",
-        "scenarios/seed_ch4_formation.toml",
-        "--out",
-        other.to_str().expect("utf-8"),
-        "--quiet",
-    ]);
+    let (code, stderr) = run_seed_ch4_into(&other);
     assert_eq!(code, 2, "{stderr}");
     assert!(
         stderr.contains("thesis") && stderr.contains("not empty"),
@@ -64,13 +69,7 @@ fn a_second_run_clears_the_first_and_other_folders_are_refused() {
     assert_eq!(left.len(), 1, "the refused folder was written to");
 
     let file = other.join("chapter1.tex");
-    let (code, stderr) = wingman(&[
-        "run",
-        "scenarios/seed_ch4_formation.toml",
-        "--out",
-        file.to_str().expect("utf-8"),
-        "--quiet",
-    ]);
+    let (code, stderr) = run_seed_ch4_into(&file);
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("is a file, not a folder"), "{stderr}");
 }
