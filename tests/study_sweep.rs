@@ -266,13 +266,23 @@ fn a_bad_axis_value_is_a_bad_study_file() {
         "{stderr}"
     );
 
+    // A shard index out of range is refused on a valid study, before it runs.
+    let valid = write_study(
+        dir.path(),
+        "valid.toml",
+        "[[axis]]\nkey = \"guidance.k\"\nvalues = [2.0, 3.0]\n",
+    );
     let shard = wingman()
         .arg("sweep")
-        .arg(&study)
-        .args(["--shard", "3/3"])
+        .arg(&valid)
+        .args(["--shard", "3/3", "--out"])
+        .arg(&out)
         .output()
         .unwrap();
     assert_eq!(shard.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&shard.stderr);
+    assert!(stderr.contains("--shard 3/3"), "{stderr}");
+    assert!(!out.exists(), "nothing runs with a bad shard");
 }
 
 #[test]

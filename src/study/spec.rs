@@ -143,8 +143,12 @@ impl RangeSpec {
                 if step <= 0.0 {
                     return Err(format!("range.step = {step} must be > 0"));
                 }
-                let n = ((to - from) / step + 1e-9).floor() as usize + 1;
-                check_count(n)?;
+                // Counted in floating point first: a huge range must not wrap the cast.
+                let count = ((to - from) / step + 1e-9).floor() + 1.0;
+                if !(count <= MAX_AXIS_VALUES as f64) {
+                    return Err(format!("{count} values; at most {MAX_AXIS_VALUES}"));
+                }
+                let n = count as usize;
                 let integers = [&self.from, &self.to, step_value]
                     .iter()
                     .all(|v| v.is_integer());
@@ -228,6 +232,12 @@ mod tests {
         assert!(range("from = 0\nto = 1").unwrap_err().contains("either"));
         assert!(
             range("from = 0\nto = 1e9\nstep = 1")
+                .unwrap_err()
+                .contains("at most")
+        );
+        // A count beyond usize: refused, not wrapped by the cast.
+        assert!(
+            range("from = 0\nto = 1e30\nstep = 1")
                 .unwrap_err()
                 .contains("at most")
         );
