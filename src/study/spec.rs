@@ -145,7 +145,7 @@ impl RangeSpec {
                 }
                 // Counted in floating point first: a huge range must not wrap the cast.
                 let count = ((to - from) / step + 1e-9).floor() + 1.0;
-                if !(count <= MAX_AXIS_VALUES as f64) {
+                if count > MAX_AXIS_VALUES as f64 {
                     return Err(format!("{count} values; at most {MAX_AXIS_VALUES}"));
                 }
                 let n = count as usize;
