@@ -304,8 +304,8 @@ fn loss_rates(path: &Path, layout: &StudyLayout, records: &[CaseRecord]) -> Resu
         (!rows.is_empty())
             .then(|| rows.iter().filter(|r| test(r)).count() as f64 / rows.len() as f64)
     };
-    let lost = |r: &CaseRecord| r.number("lost_target") == Some(1.0);
-    let stopped = |r: &CaseRecord| !matches!(r.status.as_str(), "completed" | "intercepted");
+    let lost = |r: &CaseRecord| r.lost_target();
+    let stopped = |r: &CaseRecord| !r.ended_ok();
     let tests: [(&str, RowTest); 2] =
         [("lost the target", &lost), ("diverged or failed", &stopped)];
     for (k, axis) in layout.axes.iter().enumerate() {

@@ -29,7 +29,8 @@ pub struct CaseRecord {
     pub replicate: u32,
     /// Its settings as `results.csv` cells: key, value.
     pub settings: Vec<(String, String)>,
-    /// `completed`, `intercepted`, `diverged` or `failed`.
+    /// The run's status (`completed`, `intercepted`, `lost`, `diverged`, `interrupted`), or
+    /// `failed` for a case that could not start or write.
     pub status: String,
     /// Why it stopped early or failed.
     pub message: Option<String>,
@@ -38,6 +39,17 @@ pub struct CaseRecord {
 }
 
 impl CaseRecord {
+    /// Whether the run flew to its end (completed or intercepted); anything else counts as
+    /// stopped early or failed.
+    pub fn ended_ok(&self) -> bool {
+        matches!(self.status.as_str(), "completed" | "intercepted")
+    }
+
+    /// Whether the run's summary says the target was lost (`lost_target`).
+    pub fn lost_target(&self) -> bool {
+        self.number("lost_target") == Some(1.0)
+    }
+
     /// The value of column `name` as a number (true is 1, false 0), if it has one.
     pub fn number(&self, name: &str) -> Option<f64> {
         let value = self.columns.iter().find(|(n, _)| n == name)?;

@@ -113,16 +113,12 @@ pub fn run_sweep(plan: &Plan, options: &SweepOptions) -> Result<SweepReport, Stu
 }
 
 fn report(records: &[CaseRecord], skipped: usize, warnings: Vec<String>) -> SweepReport {
-    let ok = |r: &&CaseRecord| matches!(r.status.as_str(), "completed" | "intercepted");
     SweepReport {
         cases: records.len(),
         skipped,
-        completed: records.iter().filter(ok).count(),
-        failed: records.iter().filter(|r| !ok(r)).count(),
-        lost_target: records
-            .iter()
-            .filter(|r| r.number("lost_target") == Some(1.0))
-            .count(),
+        completed: records.iter().filter(|r| r.ended_ok()).count(),
+        failed: records.iter().filter(|r| !r.ended_ok()).count(),
+        lost_target: records.iter().filter(|r| r.lost_target()).count(),
         warnings,
     }
 }
@@ -235,10 +231,10 @@ impl Tracker {
 
     fn finished(&self, case: &Case, record: &CaseRecord) {
         let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
-        if !matches!(record.status.as_str(), "completed" | "intercepted") {
+        if !record.ended_ok() {
             self.failed.fetch_add(1, Ordering::Relaxed);
         }
-        if record.number("lost_target") == Some(1.0) {
+        if record.lost_target() {
             self.lost.fetch_add(1, Ordering::Relaxed);
         }
         let (failed, lost) = (
