@@ -17,6 +17,14 @@
 //!    top speed the seed's thrust model T ∝ V² lacks (its excess thrust at full throttle grows
 //!    with V², so an unbounded command, e.g. from a guidance law closing a gap, would
 //!    accelerate the aircraft without end).
+//!    Beyond the seed, each off by default: `climb_waits_for_speed` and
+//!    `descent_waits_for_speed` keep in the climb and descent limits the acceleration or
+//!    deceleration the airspeed law asks for (a slow follower gains speed before it climbs, a
+//!    fast one sheds it before it dives); `limited_descent_keeps_horizontal_speed` flies a
+//!    descent the limit holds short at the command's horizontal speed, V_c = ‖V_h‖ / cos γ_c,
+//!    not at its norm; `weave_period_s` turns a command slower than the aircraft can fly into
+//!    S-turns: χ_c ± acos(‖V_h‖ / (V_min cos γ_c)), the side alternating every half period,
+//!    which keeps the commanded speed along the course.
 //! 2. Raw attitude references (Remark 9): ψ_c = χ_c (unwrapped against the filter state, so
 //!    it never jumps by 2π); θ_c = γ_c + α_ref cos φ, α_ref from the nominal lift curve
 //!    ((7.8)-(7.9) with β = 0; the seed's θ_c = γ_c would leave the aircraft flying its trim α,
@@ -65,6 +73,9 @@ use crate::world::aircraft::actuators::ActuatorLimits;
 use crate::world::aircraft::{
     AirAngles, AirData, AircraftParams, CoefficientValues, ControlEffectiveness, Controls,
 };
+
+/// Largest course offset of an S-turn leg (60°: half the commanded speed along the course).
+const MAX_WEAVE_OFFSET_RAD: f64 = std::f64::consts::FRAC_PI_3;
 
 use super::prefilter::{
     FilteredCommand, IntegralPrefilter, SecondOrderFilter, SmoothIntegralPrefilter,
@@ -173,6 +184,19 @@ pub struct AutopilotInput {
     /// Actuator positions (the plant's actuator states): RBF inputs u of (7.18) and the
     /// elevator's lift in α_ref.
     pub actuators: Controls,
+    /// The side of an S-turn leg, +1 right or -1 left of the commanded course (see
+    /// `weave_period_s`; unused with it 0).
+    pub weave_side: f64,
+}
+
+/// The S-turn leg after `flown_s` of flight: +1 (right of the commanded course) for the first
+/// half of each `weave_period_s`, -1 (left) for the second; +1 without S-turns (period 0).
+pub fn weave_side(flown_s: f64, weave_period_s: f64) -> f64 {
+    if weave_period_s > 0.0 && (flown_s / weave_period_s).fract() >= 0.5 {
+        -1.0
+    } else {
+        1.0
+    }
 }
 
 /// Which actuator commands were clamped to their limits.
@@ -507,8 +531,32 @@ impl Autopilot {
         }
     }
 
+    /// The wind estimate's rate, and the command relative to the air: V_F - ŵ (V_F without
+    /// wind compensation), NED, ft/s.
+    fn air_velocity_cmd_ned_fps(
+        &self,
+        state: &AutopilotState,
+        input: &AutopilotInput,
+        rates: &mut AutopilotState,
+    ) -> Vec3 {
+        let g = &self.gains;
+        let air = &input.air_data;
+        let wind_measured = air.velocity_ned_fps - air_velocity_ned_fps(air);
+        let wind_estimate = state.wind_estimate_ned_fps;
+        if wind_measured.iter().all(|w| w.is_finite()) {
+            rates.wind_estimate_ned_fps =
+                (wind_measured - wind_estimate) / g.wind_filter_time_constant_s;
+        }
+        if g.wind_compensation {
+            input.velocity_cmd_ned_fps - wind_estimate
+        } else {
+            input.velocity_cmd_ned_fps
+        }
+    }
+
     /// Step 1: the wind estimate, then V_F → V_c, γ_c, χ_c (held at the filter states for a
-    /// non-finite command), the airspeed prefilter and the flight-path limits.
+    /// non-finite command), the airspeed prefilter, the flight-path limits and the S-turn's
+    /// course offset.
     fn velocity_references(
         &self,
         state: &AutopilotState,
@@ -518,42 +566,49 @@ impl Autopilot {
     ) -> VelocityReferences {
         let g = &self.gains;
         let air = &input.air_data;
-        let air_velocity_ned = air_velocity_ned_fps(air);
-        let wind_measured = air.velocity_ned_fps - air_velocity_ned;
-        let wind_estimate = state.wind_estimate_ned_fps;
-        if wind_measured.iter().all(|w| w.is_finite()) {
-            rates.wind_estimate_ned_fps =
-                (wind_measured - wind_estimate) / g.wind_filter_time_constant_s;
-        }
-        let air_velocity_cmd = if g.wind_compensation {
-            input.velocity_cmd_ned_fps - wind_estimate
-        } else {
-            input.velocity_cmd_ned_fps
-        };
+        let air_velocity_cmd = self.air_velocity_cmd_ned_fps(state, input, rates);
         let air_flight_path_rad = if air.airspeed_fps > 0.0 {
-            (-air_velocity_ned.z / air.airspeed_fps)
+            (-air_velocity_ned_fps(air).z / air.airspeed_fps)
                 .clamp(-1.0, 1.0)
                 .asin()
         } else {
             0.0
         };
         let reference = VelocityReference::from_velocity_ned(&air_velocity_cmd);
-        let airspeed_cmd_fps = reference
+        let norm_cmd_fps = reference
             .map_or(state.airspeed_filter[1], |r| r.airspeed_fps)
             .clamp(g.min_airspeed_cmd_fps, g.max_airspeed_cmd_fps);
-        let airspeed_ref = self.airspeed_filter.derivative(
+        let raw_flight_path_rad = reference.map_or(air_flight_path_rad, |r| r.flight_path_rad);
+        // What the airspeed law (7.20) asks of the thrust beyond holding the speed, for the
+        // norm of the command (the flight-path limits keep it).
+        let norm_ref = self.airspeed_filter.derivative(
             &state.airspeed_filter,
-            airspeed_cmd_fps,
+            norm_cmd_fps,
             &mut rates.airspeed_filter,
         );
-        let raw_flight_path_rad = reference.map_or(air_flight_path_rad, |r| r.flight_path_rad);
-        let airspeed_error_fps = air.airspeed_fps - airspeed_ref.value;
-        // What the airspeed law (7.20) asks of the thrust beyond holding the speed.
-        let speed_demand_fps2 = airspeed_ref.rate - g.airspeed_gain_per_s * airspeed_error_fps;
+        let airspeed_error_fps = air.airspeed_fps - norm_ref.value;
+        let speed_demand_fps2 = norm_ref.rate - g.airspeed_gain_per_s * airspeed_error_fps;
         let flight_path_cmd_rad =
             self.limited_flight_path(raw_flight_path_rad, air, model, speed_demand_fps2);
+        // A descent held short of the command (the descent limit raised it).
+        let descent_limited = reference.is_some() && flight_path_cmd_rad > raw_flight_path_rad;
+        let (airspeed_cmd_fps, airspeed_ref) =
+            if descent_limited && g.limited_descent_keeps_horizontal_speed {
+                let cmd = self.horizontal_airspeed_cmd_fps(&air_velocity_cmd, flight_path_cmd_rad);
+                let filtered = self.airspeed_filter.derivative(
+                    &state.airspeed_filter,
+                    cmd,
+                    &mut rates.airspeed_filter,
+                );
+                (cmd, filtered)
+            } else {
+                (norm_cmd_fps, norm_ref)
+            };
+        let weave_offset_rad = self.weave_offset_rad(&air_velocity_cmd, flight_path_cmd_rad);
         VelocityReferences {
-            course_rad: reference.and_then(|r| r.course_rad),
+            course_rad: reference
+                .and_then(|r| r.course_rad)
+                .map(|course| course + input.weave_side * weave_offset_rad),
             airspeed_cmd_fps,
             airspeed_ref,
             airspeed_error_fps,
@@ -766,11 +821,41 @@ impl Autopilot {
         } else {
             steady
         };
+        let descending = if g.descent_waits_for_speed {
+            steady + speed_demand_fps2.min(0.0)
+        } else {
+            steady
+        };
         limit_flight_path(
             raw_rad,
-            at_thrust(idle + margin, steady),
+            at_thrust(idle + margin, descending),
             at_thrust(full - margin, climbing),
         )
+    }
+
+    /// V_c = ‖V_h‖ / cos γ_c: the command's horizontal air speed on the limited path, within
+    /// [`min_airspeed_cmd_fps`, `max_airspeed_cmd_fps`], ft/s.
+    fn horizontal_airspeed_cmd_fps(&self, air_velocity_cmd: &Vec3, flight_path_rad: f64) -> f64 {
+        let g = &self.gains;
+        (air_velocity_cmd.x.hypot(air_velocity_cmd.y) / flight_path_rad.cos())
+            .clamp(g.min_airspeed_cmd_fps, g.max_airspeed_cmd_fps)
+    }
+
+    /// The course offset of an S-turn, rad: when the commanded horizontal air speed is below
+    /// the slowest the aircraft flies on the commanded path, V_min cos γ_c, the aircraft flies
+    /// V_min at acos(V_h,cmd / (V_min cos γ_c)) (at most [`MAX_WEAVE_OFFSET_RAD`]) off the
+    /// commanded course, which keeps the commanded speed along it. 0 with `weave_period_s` 0.
+    fn weave_offset_rad(&self, air_velocity_cmd: &Vec3, flight_path_cmd_rad: f64) -> f64 {
+        let g = &self.gains;
+        if g.weave_period_s <= 0.0 {
+            return 0.0;
+        }
+        let slowest_horizontal_fps = g.min_airspeed_cmd_fps * flight_path_cmd_rad.cos();
+        let horizontal_fps = air_velocity_cmd.x.hypot(air_velocity_cmd.y);
+        (horizontal_fps / slowest_horizontal_fps)
+            .min(1.0)
+            .acos()
+            .min(MAX_WEAVE_OFFSET_RAD)
     }
 
     /// The pitch offset α_ref cos φ added to γ_c in θ_c (0 with `alpha_feedforward` off).

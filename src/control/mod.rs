@@ -19,6 +19,7 @@ pub mod reference;
 
 pub use autopilot::{
     AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, AutopilotState, Saturation,
+    weave_side,
 };
 pub use prefilter::{
     FilteredCommand, IntegralPrefilter, SecondOrderFilter, SmoothIntegralPrefilter,

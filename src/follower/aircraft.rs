@@ -14,7 +14,7 @@
 //! act on the plant only.
 
 use super::FollowerConfig;
-use crate::control::{AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput};
+use crate::control::{AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, weave_side};
 use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::signals::{CommandKind, FollowerCommand, FollowerFeedback};
 use crate::scenario::check::InvalidValue;
@@ -83,6 +83,10 @@ pub struct AircraftFollower {
     air: AtmosphereSample,
     /// V_F is integrated from a_F (acceleration law).
     integrates_acceleration: bool,
+    /// Time flown, s (the S-turns' clock).
+    flown_s: f64,
+    /// S-turn period, s (0: none).
+    weave_period_s: f64,
 }
 
 impl AircraftFollower {
@@ -126,6 +130,8 @@ impl AircraftFollower {
                 atmosphere,
                 air: steady,
                 integrates_acceleration,
+                flown_s: 0.0,
+                weave_period_s: config.autopilot.weave_period_s,
             },
             x,
         ))
@@ -175,6 +181,7 @@ impl AircraftFollower {
             .air_data(x, &self.atmosphere.steady_sample(&position))
             .map_or(0.0, |d| d.airspeed_fps);
         self.air = self.atmosphere.sample(dt_s, &position, airspeed_fps);
+        self.flown_s += dt_s;
     }
 
     /// The flight controller at (x, command): writes the autopilot's (and the V_F
@@ -208,6 +215,7 @@ impl AircraftFollower {
             velocity_cmd_ned_fps,
             air_data,
             actuators: state.actuators,
+            weave_side: weave_side(self.flown_s, self.weave_period_s),
         };
         let autopilot = self.autopilot.derivative(
             &x[AUTOPILOT..VELOCITY_CMD],

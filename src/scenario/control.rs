@@ -81,6 +81,26 @@ pub struct AutopilotSection {
     /// may never gain the thrust to speed up (measured: held at 32-35 ft/s by a target
     /// climbing 6 ft/s while accelerating to 50 ft/s, it fell 190 ft behind).
     pub climb_waits_for_speed: bool,
+    /// When the descent limit holds γ_c above the command's, fly the command's horizontal
+    /// air speed, V_c = ‖V_h‖ / cos γ_c (true), instead of its norm ‖V_F‖ (7.1) (false, the
+    /// seed's). With the norm, a descent the airframe cannot fly (a sustained updraft holding
+    /// it high) turns the commanded vertical speed into horizontal speed: the follower flew
+    /// 62 ft/s over the ground behind a target at 59 ft/s, overtook it and lost it
+    /// (formation.toml, moderate turbulence, stream 2, measured). Climbs keep the norm: a
+    /// follower held low needs the speed (T ∝ V²), and with the horizontal speed two streams of
+    /// five fell 80 ft below a climbing target (measured).
+    pub limited_descent_keeps_horizontal_speed: bool,
+    /// The steepest descent keeps the deceleration the airspeed law asks for (true): above
+    /// the commanded speed at idle the descent waits until the speed is there. With false (the
+    /// limits of steady speed) a follower held high by an updraft and then let down dives at
+    /// the speed it has and overtakes the target (formation.toml, moderate turbulence,
+    /// measured).
+    pub descent_waits_for_speed: bool,
+    /// S-turns, s per pair of legs (0: none, the seed's). When the commanded horizontal air
+    /// speed is below the slowest the aircraft flies, it flies that speed off the commanded
+    /// course, to the right for half a period and to the left for the other half, so that it
+    /// keeps the commanded speed along the course instead of overtaking a slower target.
+    pub weave_period_s: f64,
     /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
     /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below
     /// the target profile's slowest 35.4 ft/s.
@@ -148,6 +168,9 @@ impl Default for AutopilotSection {
             flight_path_limits: true,
             thrust_margin_fraction: 0.05,
             climb_waits_for_speed: false,
+            limited_descent_keeps_horizontal_speed: false,
+            descent_waits_for_speed: false,
+            weave_period_s: 0.0,
             min_airspeed_cmd_fps: 35.0,
             max_airspeed_cmd_fps: 65.0,
             min_control_airspeed_fps: 15.0,
@@ -180,6 +203,7 @@ impl AutopilotSection {
             1e-3,
             1e3,
         )?;
+        check::in_closed("autopilot.weave_period_s", self.weave_period_s, 0.0, 1e3)?;
         self.validate_rbf()
     }
 
