@@ -18,7 +18,11 @@
 //! between two frames is measured in the same frame: the frame is drawn and measured again
 //! whole, its record is the whole pipeline's, and the next frames are windowed again; a
 //! sudden roll of the follower is no such jump, because the tracker carries the window with
-//! the camera's rotation.
+//! the camera's rotation. (4) With `camera.measure_max_length_px`, a frame whose target is
+//! longer than the limit is the measurement of the binned camera: at 1920x1080 a target
+//! 222 px long (limit 160) is measured as the 960x540 camera measures it, to the bit, in the
+//! image's coordinates (the binned window equals the binned whole image, as in (1), and the
+//! binning's scale by 2 is exact).
 
 mod common;
 mod render_support;
@@ -184,14 +188,17 @@ fn formation_flies_the_same_with_the_window_as_with_the_whole_image() {
 
 /// A camera on `formation.toml`'s settings with `pipeline`, latency `latency_frames`.
 fn camera(pipeline: &str, latency_frames: u32) -> CameraSensor {
-    let scenario = common::load(
-        "formation",
-        &[
-            &format!("camera.pipeline={pipeline}"),
-            &format!("camera.latency_frames={latency_frames}"),
-            "output.frames_every=0",
-        ],
-    );
+    camera_with(&[
+        &format!("camera.pipeline={pipeline}"),
+        &format!("camera.latency_frames={latency_frames}"),
+    ])
+}
+
+/// A camera on `formation.toml`'s settings with `overrides`, saving no frames.
+fn camera_with(overrides: &[&str]) -> CameraSensor {
+    let mut keys = overrides.to_vec();
+    keys.push("output.frames_every=0");
+    let scenario = common::load("formation", &keys);
     CameraSensor::new(&scenario).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -250,4 +257,51 @@ fn target_jumping_out_of_its_window_is_recovered_in_the_same_frame() {
         assert_eq!(counts.whole_untracked, untracked, "{counts:?}");
         assert_eq!(counts.windowed, 18 - untracked, "{counts:?}");
     }
+}
+
+#[test]
+fn binned_frames_are_measured_as_the_binned_camera_measures_them() {
+    let mut binned = camera_with(&[
+        "camera.width_px=1920",
+        "camera.height_px=1080",
+        "camera.measure_max_length_px=160",
+    ]);
+    let mut coarse = camera_with(&[
+        "camera.width_px=960",
+        "camera.height_px=540",
+        "camera.pipeline=whole",
+    ]);
+    let mut compared = 0;
+    for k in 0..12 {
+        let t_s = k as f64 / 30.0;
+        binned
+            .capture(t_s, &geometry(k))
+            .unwrap_or_else(|e| panic!("{e}"));
+        coarse
+            .capture(t_s, &geometry(k))
+            .unwrap_or_else(|e| panic!("{e}"));
+        // One frame of latency: frame k - 1 is the last measured.
+        let (Some(a), Some(b)) = (binned.last_record(), coarse.last_record()) else {
+            continue;
+        };
+        assert_eq!(a.status, BlobStatus::Ok, "frame {}", a.index);
+        let (a_m, b_m) = (a.measured.expect("measured"), b.measured.expect("measured"));
+        // The first two frames are drawn whole at full resolution (no track yet).
+        if a.index >= 2 {
+            assert!(a_m.b_i_px > 160.0, "frame {}: {} px", a.index, a_m.b_i_px);
+            assert_eq!(
+                [a_m.y_i_px, a_m.z_i_px, a_m.b_i_px],
+                [2.0 * b_m.y_i_px, 2.0 * b_m.z_i_px, 2.0 * b_m.b_i_px],
+                "frame {}",
+                a.index
+            );
+            assert_eq!(a.r_measured, b.r_measured, "frame {}", a.index);
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 9);
+    let counts = binned.window_counts();
+    eprintln!("{counts:?}");
+    assert_eq!(counts.binned, 10, "{counts:?}");
+    assert_eq!(counts.redrawn_whole, 0, "{counts:?}");
 }

@@ -3,6 +3,7 @@
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::GimbalSection;
 use crate::scenario::{EstimatorKind, GuidanceLawKind};
+use crate::sensing::camera::WindowCounts;
 use crate::sensing::losses::LossEpisode;
 use crate::sim::{GimbalReading, Simulation, Snapshot, StageTimes};
 use crate::vision::BlobStatus;
@@ -97,6 +98,10 @@ pub struct Summary {
     /// submission), readback (GPU wait and copy), vision, truth (ground truth and sensing),
     /// and, per frame period, guidance, flight control and plant.
     pub per_frame_ms: Option<PerFrameCost>,
+    /// How the camera's frames were drawn and measured (camera runs): in the tracking window
+    /// (`windowed`, of which `redrawn_whole` were drawn again whole and `binned` binned),
+    /// whole without a track (`whole_untracked`) or to be saved (`whole_saved`).
+    pub frame_regions: Option<WindowCounts>,
     /// Wall time of the continuous loop's stages over the whole run, s.
     pub stage_wall_s: StageWall,
     /// The 6-DOF follower's flight envelope (aircraft runs).
@@ -305,6 +310,7 @@ impl Summary {
             }),
             adapter: camera.map(|c| c.adapter().to_string()),
             per_frame_ms,
+            frame_regions: camera.map(|c| c.window_counts()),
             stage_wall_s: sim.stage_times().into(),
             aircraft,
             gimbal: GimbalSummary::of(logged, &sim.scenario().camera.gimbal),

@@ -66,8 +66,9 @@ pub fn runtime_dir_to_set() -> Option<std::path::PathBuf> {
     Some(dir)
 }
 
-/// A wgpu device and queue without a surface, with the adapter's description.
-#[derive(Debug)]
+/// A wgpu device and queue without a surface, with the adapter's description. A clone shares
+/// the device and queue.
+#[derive(Debug, Clone)]
 pub struct GpuContext {
     device: wgpu::Device,
     queue: wgpu::Queue,

@@ -121,6 +121,13 @@ pub struct CameraSection {
     /// Which pixels are drawn, read back and measured: `window` (default: the camera's cost
     /// follows the target, not the image) or `whole` (the reference it is compared with).
     pub pipeline: CameraPipeline,
+    /// Bin a frame whose target is predicted longer than this many pixels (0: never): it is
+    /// drawn and measured at the coarsest whole binning k (k x k pixels to one, k dividing the
+    /// image's width and height, at most 8) with k ≤ ⌈length / this⌉, and the measurement
+    /// carried back to the image's pixels (`sensing::binning`). The camera's cost then stops
+    /// growing with the target's size beyond this length, at the accuracy of a 1/k-resolution
+    /// camera for those frames; with `pipeline = "window"` only.
+    pub measure_max_length_px: f64,
     /// An occlusion: frames taken in [start, end) s show no target (as if a cloud or the
     /// follower's own airframe hid it), to force a loss; [0, 0] for none.
     pub occlusion_s: [f64; 2],
@@ -151,6 +158,7 @@ impl Default for CameraSection {
             bearing_point: BearingPoint::Centroid,
             link_radius_px: 2,
             pipeline: CameraPipeline::Window,
+            measure_max_length_px: 0.0,
             occlusion_s: [0.0, 0.0],
         }
     }
@@ -189,6 +197,12 @@ impl CameraSection {
             "1 or 4",
         )?;
         check::in_closed("camera.noise_std_grey", self.noise_std_grey, 0.0, 100.0)?;
+        check::require(
+            self.measure_max_length_px == 0.0 || (16.0..=1e5).contains(&self.measure_max_length_px),
+            "camera.measure_max_length_px",
+            self.measure_max_length_px,
+            "0 (never bin) or 16 to 100000 px",
+        )?;
         let [hide_s, show_s] = self.occlusion_s;
         check::require(
             hide_s.is_finite() && show_s.is_finite() && 0.0 <= hide_s && hide_s <= show_s,

@@ -12,6 +12,9 @@
 //! an edge of the window inside the image: that frame is then drawn and measured again whole,
 //! before its record is made, so the record is the whole image's.
 
+use super::binning::{
+    Binning, binned_intrinsics, binned_region, binned_selection, unbinned_measurement,
+};
 use super::transform::scaled_relative_position;
 use crate::frames::{EulerAngles, Mat3, Vec3};
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
@@ -54,6 +57,10 @@ pub enum SensorError {
     /// A read-back frame did not fit its stated size.
     #[error("camera: {0}")]
     Frame(#[from] ImageSizeError),
+    /// A binning factor that does not divide the image (cannot happen: `Binning` offers
+    /// only factors that do).
+    #[error("camera: binning by {0} does not divide the image")]
+    Binning(u32),
 }
 
 /// Where the follower and target are when a frame is taken.
@@ -160,7 +167,7 @@ impl CameraTimings {
 /// How the frames were drawn and measured (`camera.pipeline = "window"`), counted over the
 /// run; every frame is in exactly one of the first three. Frames are measured in their
 /// tracking window when there is one, those drawn whole to be saved included.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 pub struct WindowCounts {
     /// Drawn in the tracking window (measured there, or redrawn whole).
     pub windowed: u64,
@@ -171,6 +178,8 @@ pub struct WindowCounts {
     /// Of the `windowed`, drawn again whole: the window's measurement was not a clean `Ok`
     /// or reached its edge.
     pub redrawn_whole: u64,
+    /// Of the `windowed`, drawn and measured binned (`camera.measure_max_length_px`).
+    pub binned: u64,
 }
 
 /// A frame taken in a region: whether its measurement stands or the frame must be measured
@@ -217,15 +226,25 @@ impl MeasurementErrors {
     }
 }
 
+/// A camera of 1/k the resolution, and its renderer, for binned frames.
+struct BinnedCamera {
+    factor: u32,
+    intrinsics: CameraIntrinsics,
+    renderer: Renderer,
+}
+
 /// The camera in the loop.
 pub struct CameraSensor {
     intrinsics: CameraIntrinsics,
     renderer: Renderer,
+    /// The device, for the binned cameras' renderers (made when first needed).
+    gpu: GpuContext,
+    binning: Binning,
+    binned_cameras: Vec<BinnedCamera>,
     vision: VisionPipeline,
     truth: TruthProjector,
     silhouette: SilhouetteCentroid,
-    mesh_vertices_ft: Vec<Vec3>,
-    mesh_triangles: Vec<[u32; 3]>,
+    mesh: TargetMesh,
     selection: BlobChoice,
     bearing_point: BearingPoint,
     /// Frames taken in [start, end) s show no target (`camera.occlusion_s`).
@@ -244,6 +263,9 @@ pub struct CameraSensor {
     regions: [ImageRegion; 2],
     /// The tracking window each of `pixels` is measured in (None: the whole image).
     windows: [Option<ImageRegion>; 2],
+    /// The binning each of `pixels` was drawn at (1: none); `regions` and `windows` are in its
+    /// pixels.
+    factors: [u32; 2],
     /// A window's pixels cut from a whole frame (a frame drawn whole to be saved).
     window_pixels: Vec<u8>,
     pipeline: CameraPipeline,
@@ -335,6 +357,7 @@ impl CameraSensor {
         let adapter = gpu.description();
         let settings = render_settings(camera, scenario.run.seed);
         let renderer = Renderer::new(gpu, settings, &mesh)?;
+        let binning = Binning::new(&settings.intrinsics, camera.measure_max_length_px);
         let mut vision_config = VisionConfig {
             min_pixel_count: camera.min_pixel_count as usize,
             ..VisionConfig::default()
@@ -353,6 +376,10 @@ impl CameraSensor {
         Ok(Self {
             regions: [whole, whole],
             windows: [None, None],
+            factors: [1, 1],
+            gpu: gpu.clone(),
+            binning,
+            binned_cameras: Vec::new(),
             window_pixels: Vec::new(),
             pipeline: camera.pipeline,
             tracker,
@@ -363,8 +390,7 @@ impl CameraSensor {
             vision,
             truth: TruthProjector::new(),
             silhouette: SilhouetteCentroid::default(),
-            mesh_vertices_ft: mesh.vertices_ft.clone(),
-            mesh_triangles: mesh.triangles.clone(),
+            mesh,
             selection: camera.selection,
             bearing_point: camera.bearing_point,
             occlusion_s: camera.occlusion_s,
@@ -403,8 +429,8 @@ impl CameraSensor {
         t_s: f64,
         geometry: &CaptureGeometry,
     ) -> Result<Option<FrameRecord>, SensorError> {
-        let (region, window) = self.regions_of(self.frames, geometry);
-        let (exposure, pending) = self.expose(t_s, geometry, &region)?;
+        let (region, window, factor) = self.regions_of(self.frames, geometry);
+        let (exposure, pending) = self.expose(t_s, geometry, &region, factor)?;
         self.windows[buffer_of(exposure.index)] = window;
         let mut in_flight = Some((pending, exposure.index));
         if self.latency_frames == 0 {
@@ -435,21 +461,22 @@ impl CameraSensor {
         geometry: &CaptureGeometry,
     ) -> Result<FrameRecord, SensorError> {
         let whole = ImageRegion::whole(&self.intrinsics);
-        let (exposure, pending) = self.expose(t_s, geometry, &whole)?;
+        let (exposure, pending) = self.expose(t_s, geometry, &whole, 1)?;
         self.windows[buffer_of(exposure.index)] = None;
         let mut in_flight = Some((pending, exposure.index));
         self.finish_in_flight(&mut in_flight)?;
         self.measure(&exposure, &mut in_flight)
     }
 
-    /// The part of the image to draw for frame `index`, taken in `geometry`, and the tracking
-    /// window to measure it in (see the module documentation), counted in [`WindowCounts`].
-    /// A frame to be saved is drawn whole and measured in its window all the same.
+    /// The part of the image to draw for frame `index`, taken in `geometry`, the tracking
+    /// window to measure it in (see the module documentation), both in the pixels of the
+    /// binning factor returned with them (1: the image's), counted in [`WindowCounts`]. A
+    /// frame to be saved is drawn whole and measured in its window all the same.
     fn regions_of(
         &mut self,
         index: u64,
         geometry: &CaptureGeometry,
-    ) -> (ImageRegion, Option<ImageRegion>) {
+    ) -> (ImageRegion, Option<ImageRegion>, u32) {
         let whole = ImageRegion::whole(&self.intrinsics);
         let window = match self.pipeline {
             CameraPipeline::Window => self.tracker.predict(index, &geometry.camera_from_ned()),
@@ -457,26 +484,33 @@ impl CameraSensor {
         };
         if self.saved_every.is_some_and(|n| index.is_multiple_of(n)) {
             self.window_counts.whole_saved += 1;
-            return (whole, window);
+            return (whole, window, 1);
         }
-        match window {
-            Some(region) => {
-                self.window_counts.windowed += 1;
-                (region, window)
-            }
-            None => {
-                self.window_counts.whole_untracked += 1;
-                (whole, None)
-            }
+        let Some(region) = window else {
+            self.window_counts.whole_untracked += 1;
+            return (whole, None, 1);
+        };
+        self.window_counts.windowed += 1;
+        let factor = self
+            .tracker
+            .predicted_length_px()
+            .map_or(1, |length| self.binning.factor_for(length));
+        if factor == 1 {
+            return (region, window, 1);
         }
+        self.window_counts.binned += 1;
+        let binned = binned_region(&region, factor);
+        (binned, Some(binned), factor)
     }
 
-    /// Numbers the next frame and starts drawing `region` of it.
+    /// Numbers the next frame and starts drawing `region` of it (in the pixels of binning
+    /// `factor`).
     fn expose(
         &mut self,
         t_s: f64,
         geometry: &CaptureGeometry,
         region: &ImageRegion,
+        factor: u32,
     ) -> Result<(Exposure, PendingFrame), SensorError> {
         let exposure = Exposure {
             index: self.frames,
@@ -484,10 +518,53 @@ impl CameraSensor {
             geometry: *geometry,
         };
         self.frames += 1;
-        let pending = self
-            .renderer
-            .begin_frame_in(&self.drawn_pose(&exposure), region)?;
+        self.factors[buffer_of(exposure.index)] = factor;
+        let pose = self.drawn_pose(&exposure);
+        let pending = self.renderer_for(factor)?.begin_frame_in(&pose, region)?;
         Ok((exposure, pending))
+    }
+
+    /// The renderer of binning `factor` (the image's for 1), made when first asked for.
+    fn renderer_for(&mut self, factor: u32) -> Result<&mut Renderer, SensorError> {
+        if factor == 1 {
+            return Ok(&mut self.renderer);
+        }
+        let found = self.binned_cameras.iter().position(|c| c.factor == factor);
+        let slot = match found {
+            Some(slot) => slot,
+            None => {
+                let camera = self.binned_camera(factor)?;
+                self.binned_cameras.push(camera);
+                self.binned_cameras.len() - 1
+            }
+        };
+        Ok(&mut self.binned_cameras[slot].renderer)
+    }
+
+    /// The camera of 1/`factor` the resolution on the same optics, and its renderer: pixel
+    /// noise σ/k, the mean of k² independent draws (`sensing::binning`).
+    fn binned_camera(&self, factor: u32) -> Result<BinnedCamera, SensorError> {
+        let full = self.renderer.settings();
+        let intrinsics =
+            binned_intrinsics(&full.intrinsics, factor).ok_or(SensorError::Binning(factor))?;
+        let mut settings = *full;
+        settings.intrinsics = intrinsics;
+        if let Some(noise) = settings.background.noise.as_mut() {
+            noise.std_grey_levels /= f64::from(factor);
+        }
+        Ok(BinnedCamera {
+            factor,
+            intrinsics,
+            renderer: Renderer::new(&self.gpu, settings, &self.mesh)?,
+        })
+    }
+
+    /// The intrinsics of binning `factor` (the image's for 1, or before its camera exists).
+    fn intrinsics_of(&self, factor: u32) -> CameraIntrinsics {
+        self.binned_cameras
+            .iter()
+            .find(|c| c.factor == factor)
+            .map_or(self.intrinsics, |c| c.intrinsics)
     }
 
     /// The target's pose as a frame draws it: where it is, or nowhere while the occlusion
@@ -511,9 +588,13 @@ impl CameraSensor {
         };
         let buffer = buffer_of(index);
         self.regions[buffer] = pending.region();
-        self.renderer
-            .finish_frame(pending, index, &mut self.pixels[buffer])?;
-        self.timings.add_render(self.renderer.last_timings());
+        let mut pixels = std::mem::take(&mut self.pixels[buffer]);
+        let renderer = self.renderer_for(self.factors[buffer])?;
+        let finished = renderer.finish_frame(pending, index, &mut pixels);
+        let timings = renderer.last_timings();
+        self.pixels[buffer] = pixels;
+        finished?;
+        self.timings.add_render(timings);
         Ok(())
     }
 
@@ -536,9 +617,11 @@ impl CameraSensor {
                 self.window_counts.redrawn_whole += 1;
                 let whole = ImageRegion::whole(&self.intrinsics);
                 let pose = self.drawn_pose(exposure);
+                let buffer = buffer_of(exposure.index);
+                self.factors[buffer] = 1;
                 let redrawn = self.renderer.begin_frame_in(&pose, &whole)?;
                 self.finish_in_flight(&mut Some((redrawn, exposure.index)))?;
-                self.windows[buffer_of(exposure.index)] = None;
+                self.windows[buffer] = None;
                 self.measure_whole(exposure.index, selection)?
             }
         };
@@ -548,15 +631,18 @@ impl CameraSensor {
         Ok(self.record(exposure, blob))
     }
 
-    /// Measures the pixels of frame `index` as read back: in its tracking window, or the
-    /// whole image. A window's measurement that cannot stand is replaced by the whole image's
-    /// when the frame was drawn whole, and asks for the frame to be drawn whole otherwise.
+    /// Measures the pixels of frame `index` as read back: in its tracking window (binned or
+    /// not), or the whole image; the measurement is in the image's pixels. A window's
+    /// measurement that cannot stand is replaced by the whole image's when the frame was drawn
+    /// whole, and asks for the frame to be drawn whole otherwise.
     fn measure_pixels(
         &mut self,
         index: u64,
         selection: BlobSelection,
     ) -> Result<RegionOutcome, SensorError> {
         let buffer = buffer_of(index);
+        let factor = self.factors[buffer];
+        let intrinsics = self.intrinsics_of(factor);
         let (drawn, frame) = (self.regions[buffer], &self.pixels[buffer]);
         let Some(window) = self.windows[buffer] else {
             return Ok(RegionOutcome::Measured(
@@ -570,13 +656,19 @@ impl CameraSensor {
             cut_window(&frame.rgba, &drawn, &window, &mut self.window_pixels);
             &self.window_pixels
         };
-        let measured = self
-            .vision
-            .measure_region(pixels, &window, &self.intrinsics, selection)?;
+        let measured = self.vision.measure_region(
+            pixels,
+            &window,
+            &intrinsics,
+            binned_selection(selection, factor),
+        )?;
         self.timings.vision += vision_started.elapsed();
         if !measured.reaches_inner_edge && measured.blob.status == BlobStatus::Ok {
-            Ok(RegionOutcome::Measured(measured.blob))
-        } else if drawn.is_whole(&self.intrinsics) {
+            Ok(RegionOutcome::Measured(unbinned_measurement(
+                &measured.blob,
+                factor,
+            )))
+        } else if factor == 1 && drawn.is_whole(&self.intrinsics) {
             Ok(RegionOutcome::Measured(
                 self.measure_whole(index, selection)?,
             ))
@@ -607,7 +699,7 @@ impl CameraSensor {
         let pose = geometry.pose();
         self.last_truth = self
             .truth
-            .image_truth(&self.mesh_vertices_ft, &pose, &self.intrinsics);
+            .image_truth(&self.mesh.vertices_ft, &pose, &self.intrinsics);
         let truth = self.last_truth.map(|t: ImageTruth| t.image_measurement());
         let measured = blob.image_measurement_at(&self.intrinsics, self.bearing_point);
         let ok = blob.status == BlobStatus::Ok;
@@ -657,7 +749,8 @@ impl CameraSensor {
     pub fn last_frame(&self) -> Option<(&CameraImage, &FrameRecord, &BlobMeasurement)> {
         match (&self.last_frame, &self.last_measurement) {
             (Some(record), Some(blob))
-                if self.regions[buffer_of(record.index)].is_whole(&self.intrinsics) =>
+                if self.factors[buffer_of(record.index)] == 1
+                    && self.regions[buffer_of(record.index)].is_whole(&self.intrinsics) =>
             {
                 Some((&self.pixels[buffer_of(record.index)], record, blob))
             }
@@ -668,8 +761,8 @@ impl CameraSensor {
     /// Adds a measured frame's distance from the silhouette's true centroid to the errors.
     fn record_silhouette_error(&mut self, blob: &BlobMeasurement, pose: &TargetPoseInCamera) {
         let truth = self.silhouette.centroid(
-            &self.mesh_vertices_ft,
-            &self.mesh_triangles,
+            &self.mesh.vertices_ft,
+            &self.mesh.triangles,
             pose,
             &self.intrinsics,
         );

@@ -10,6 +10,7 @@
 //! noisy sensors in its exact form). The perfect and noisy sensors are continuous: the
 //! simulation evaluates them at every integration stage. The camera delivers frames.
 
+pub mod binning;
 pub mod camera;
 pub mod gimbal;
 pub mod losses;

@@ -129,6 +129,12 @@ impl TrackingWindow {
         (region.pixel_count() as f64 <= MAX_IMAGE_FRACTION * image_pixels).then_some(region)
     }
 
+    /// The maximal length the track predicts, px: the last measured one (None without a
+    /// track).
+    pub fn predicted_length_px(&self) -> Option<f64> {
+        self.track.as_ref().map(|t| t.length_px)
+    }
+
     /// Where the point seen at pixel (u, v) is seen after the camera turned by
     /// `now_from_then`; `None` when it is not well in front of the camera.
     fn carried(&self, now_from_then: &Mat3, u_px: f64, v_px: f64) -> Option<(f64, f64)> {
