@@ -9,18 +9,19 @@
 //! along the line. Lines are spaced [`LINES_PER_PX`] to a pixel, at most [`MAX_LINES`] over
 //! the silhouette's height, so the centroid is exact along the lines and the midpoint rule's
 //! across them: between lines the union's width is linear but at corners, and a silhouette
-//! H px tall with n lines errs by about H / (6 n²) px (a triangle's exact bound), 0.0007 px
-//! for the height of a 1080-line image. The cap keeps the cost the same at any resolution
-//! once the silhouette is 32 px tall (issue 13: it cost 0.25 ms a frame at 1920x1080 with
-//! 4096 lines, more than the image pipeline's segmentation).
+//! H px tall with n lines errs by about H / (6 n²) px (a triangle's exact bound): 0.003 px
+//! for the height of a 1080-line image, 1/(384 H) px below the cap. The cap keeps the cost
+//! the same at any resolution once the silhouette is 32 px tall (issue 13: with 16 lines a
+//! pixel and up to 4096 lines it cost 0.43 ms a frame at 1920x1080, more than the image
+//! pipeline's segmentation, and 0.16 ms at 640x480).
 
 use crate::frames::Vec3;
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 
 /// Scan lines per pixel of the silhouette's height.
-const LINES_PER_PX: f64 = 16.0;
+const LINES_PER_PX: f64 = 8.0;
 /// Most scan lines over the silhouette's height.
-const MAX_LINES: f64 = 512.0;
+const MAX_LINES: f64 = 256.0;
 
 /// One line's stretch of one triangle: left and right end (yI, px).
 type Interval = (f64, f64);
@@ -207,13 +208,13 @@ mod tests {
                 &CAMERA_1_PX_PER_FT,
             )
             .expect("in front");
-        // Exact along lines, midpoint rule across 16 lines per px: within 1e-3 px.
+        // Exact along lines, midpoint rule across 8 lines per px: within 1e-3 px.
         assert!((y - 10.0).abs() < 1e-3, "y {y}");
         assert!((z - 4.0).abs() < 1e-3, "z {z}");
     }
 
-    /// A triangle 1200 px tall gets the capped 512 lines (2.3 px apart): its centroid errs by
-    /// H / (6 n²) = 0.0008 px in z (the midpoint rule on the linear width); y is exact along
+    /// A triangle 1200 px tall gets the capped 256 lines (4.7 px apart): its centroid errs by
+    /// H / (6 n²) = 0.003 px in z (the midpoint rule on the linear width); y is exact along
     /// the lines (measured 1e-4 px off 100: the projection's rounding at this size).
     #[test]
     fn a_tall_silhouette_is_integrated_on_capped_lines() {
