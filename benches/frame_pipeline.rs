@@ -4,6 +4,12 @@
 //! window (`..._msaaN_window`: drawn, read back and measured in the window the tracker
 //! predicts from the previous frame's measurement, as `camera.pipeline = "window"` does).
 //! Run with `cargo bench --bench frame_pipeline`; frames/s = 1 / time per iteration.
+//!
+//! `camera_capture/...` times one frame of the camera stage as `formation.toml` runs it
+//! (`CameraSensor::capture`: drawing, readback, image pipeline, truth, one frame of latency),
+//! the target at the slot, at 640x480 and 1920x1080, measuring every pixel
+//! (`..._full`, `camera.measure_max_length_px = 0`) or binning targets over 160 px
+//! (`..._binned160`, the scenario's setting).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
@@ -11,6 +17,8 @@ use wingman::frames::Mat3;
 use wingman::frames::{EulerAngles, Vec3};
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{GpuContext, ImageRegion, RenderSettings, Renderer, TargetMesh};
+use wingman::scenario::Scenario;
+use wingman::sensing::{CameraSensor, CaptureGeometry};
 use wingman::vision::{BlobSelection, TrackingWindow, VisionConfig, VisionPipeline};
 
 fn frame_pipeline(c: &mut Criterion) {
@@ -90,10 +98,62 @@ fn frame_pipeline(c: &mut Criterion) {
     group.finish();
 }
 
+/// Frame `index` at the slot: the target 32 ft ahead and 8 ft right, level, the follower
+/// swaying by a degree so that the tracker's window moves.
+fn slot_geometry(index: u64) -> CaptureGeometry {
+    let sway = 0.017 * (0.2 * index as f64).sin();
+    CaptureGeometry {
+        relative_ned_ft: Vec3::new(32.0, 8.0, 0.0),
+        follower_position_ned_ft: Vec3::zeros(),
+        follower_attitude: EulerAngles::new(sway, 0.02, sway),
+        target_attitude: EulerAngles::new(0.1, 0.02, 0.0),
+        camera_from_body: Mat3::identity(),
+    }
+}
+
+fn camera_capture(c: &mut Criterion) {
+    let mut group = c.benchmark_group("camera_capture");
+    group.sample_size(20);
+    for (width_px, height_px) in [(640, 480), (1920, 1080)] {
+        for (label, max_length_px) in [("full", 0), ("binned160", 160)] {
+            let overrides = [
+                format!("camera.width_px={width_px}"),
+                format!("camera.height_px={height_px}"),
+                format!("camera.measure_max_length_px={max_length_px}"),
+                "output.frames_every=0".to_string(),
+            ];
+            let path = std::path::Path::new("scenarios/formation.toml");
+            let camera = Scenario::load(path, &overrides)
+                .map_err(|e| e.to_string())
+                .and_then(|s| CameraSensor::new(&s).map_err(|e| e.to_string()));
+            let mut camera = match camera {
+                Ok(camera) => camera,
+                Err(e) => {
+                    eprintln!("frame_pipeline: {e}");
+                    return;
+                }
+            };
+            let mut index = 0u64;
+            group.bench_function(format!("{width_px}x{height_px}_{label}"), |b| {
+                b.iter(|| {
+                    index += 1;
+                    let t_s = index as f64 / 30.0;
+                    black_box(camera.capture(t_s, &slot_geometry(index)).ok());
+                });
+            });
+            eprintln!(
+                "{width_px}x{height_px}_{label}: {:?}",
+                camera.window_counts()
+            );
+        }
+    }
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     // No HTML plots: their renderer needs a font the bench machine may not have.
     config = Criterion::default().without_plots();
-    targets = frame_pipeline
+    targets = frame_pipeline, camera_capture
 }
 criterion_main!(benches);

@@ -5,7 +5,9 @@
 //! Shown, on three turbulence streams and three other camera settings: no frame is lost; b̂
 //! ends within 5% of the true 8 ft span with the truth inside b̂ ± 3σ_b; the position is
 //! within 3 ft RMS of the slot per axis over the last 20 s; the gimbal never reaches a limit.
-//! And a 2 s occlusion in the middle of the run: the target is found again within 1 s of its
+//! In moderate turbulence, the streams 1 to 5 lose no frame and stay within 5 ft RMS;
+//! at 1920x1080 the target, binned beyond 160 px, is identified and the slot held as at
+//! 640x480. And a 2 s occlusion in the middle of the run: the target is found again within 1 s of its
 //! end, and the follower is back within 3 ft of the slot within 15 s.
 
 mod common;
@@ -102,6 +104,56 @@ fn other_camera_settings_identify_the_target_and_hold_the_slot() {
         println!("{overrides:?}: {}", report.summary.to_json());
         assert_identified_and_on_the_slot(&report.summary);
     }
+}
+
+/// The moderate-turbulence streams 1 to 5: no frame lost, RMS of R - R_c below 5 ft
+/// per axis over the last 20 s (measured: at most 2.9 ft). Over streams 1-30 six of thirty
+/// lose frames (docs/formation.md): these five are the issue's, not chosen for passing.
+#[test]
+fn moderate_turbulence_streams_1_to_5_keep_the_target_and_the_slot() {
+    for seed in 1..=5 {
+        let seed_key = format!("run.seed={seed}");
+        let report = common::run(
+            "formation",
+            &[
+                &seed_key,
+                "atmosphere.turbulence=moderate",
+                "output.frames_every=0",
+            ],
+        );
+        let s = &report.summary;
+        println!(
+            "moderate, stream {seed}: lost {}, RMS {:.2?} ft",
+            s.lost_frames, s.rms_error_last20s_ft
+        );
+        assert_eq!(s.status, RunStatus::Completed, "{:?}", s.message);
+        assert_eq!(s.lost_frames, 0, "stream {seed}: {:?}", s.loss_episodes);
+        for (axis, rms) in s.rms_error_last20s_ft.iter().enumerate() {
+            assert!(*rms < 5.0, "stream {seed}, axis {axis}: RMS {rms} ft");
+        }
+    }
+}
+
+/// The main scenario at 1920x1080 bins its target beyond 160 px (`camera.measure_max_length_px`):
+/// most frames are binned, and the run keeps the target and the slot as at 640x480.
+#[test]
+fn full_hd_camera_bins_the_target_and_holds_the_slot() {
+    let report = common::run(
+        "formation",
+        &[
+            "camera.width_px=1920",
+            "camera.height_px=1080",
+            "output.frames_every=0",
+        ],
+    );
+    let s = &report.summary;
+    let regions = s.frame_regions.expect("camera run");
+    println!(
+        "1920x1080: {regions:?}, {:.1}x real time",
+        s.realtime_factor
+    );
+    assert!(regions.binned > 3500, "{regions:?}");
+    assert_identified_and_on_the_slot(s);
 }
 
 /// ‖R - R_c‖ at each logged row, ft.
