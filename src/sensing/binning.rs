@@ -66,13 +66,12 @@ impl Binning {
 /// The camera of 1/k the resolution on the same optics: width / k, height / k, focal
 /// length / k; `None` unless k ≥ 1 divides both sides.
 pub fn binned_intrinsics(intrinsics: &CameraIntrinsics, k: u32) -> Option<CameraIntrinsics> {
-    (k >= 1 && intrinsics.width_px % k == 0 && intrinsics.height_px % k == 0).then(|| {
-        CameraIntrinsics {
+    (k >= 1 && intrinsics.width_px.is_multiple_of(k) && intrinsics.height_px.is_multiple_of(k))
+        .then(|| CameraIntrinsics {
             width_px: intrinsics.width_px / k,
             height_px: intrinsics.height_px / k,
             focal_px: intrinsics.focal_px / f64::from(k),
-        }
-    })
+        })
 }
 
 /// The binned pixels that cover `region` (image pixels) at factor k.

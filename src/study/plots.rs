@@ -141,8 +141,20 @@ impl XAxis {
                 names.get(x.round() as usize).cloned().unwrap_or_default()
             }
             Some(_) => String::new(),
-            None => format!("{x}"),
+            None => tick_label(x),
         }
+    }
+}
+
+/// A tick's number with at most six decimals and no trailing zeros: plotters' ticks are
+/// round numbers stepped in floating point (1.2000000000000002 is 1.2).
+fn tick_label(x: f64) -> String {
+    let fixed = format!("{x:.6}");
+    let trimmed = fixed.trim_end_matches('0').trim_end_matches('.');
+    if trimmed == "-0" {
+        "0".to_string()
+    } else {
+        trimmed.to_string()
     }
 }
 
@@ -462,4 +474,19 @@ fn apparent_size_maps(
             heatmap(&path, &title, (yaw, pitch), rows, "size_measured_ft")
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tick_label;
+
+    /// Ticks stepped in floating point print as the round numbers they are.
+    #[test]
+    fn tick_labels_are_short() {
+        assert_eq!(tick_label(1.2000000000000002), "1.2");
+        assert_eq!(tick_label(1.4000000000000001), "1.4");
+        assert_eq!(tick_label(1920.0), "1920");
+        assert_eq!(tick_label(-0.0000001), "0");
+        assert_eq!(tick_label(0.25), "0.25");
+    }
 }
