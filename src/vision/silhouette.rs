@@ -192,22 +192,28 @@ mod tests {
         assert!((z - 1.0).abs() < 1e-9, "z {z}");
     }
 
-    /// A triangle: its centroid is the mean of its corners.
-    #[test]
-    fn triangle_centroid_is_the_mean_of_its_corners() {
+    /// The silhouette centroid of one triangle facing the camera at 100 ft: a right triangle
+    /// with legs `width_ft` along y and `height_ft` up (1 px per ft).
+    fn right_triangle_centroid(width_ft: f64, height_ft: f64) -> (f64, f64) {
         let vertices = [
             Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(0.0, 30.0, 0.0),
-            Vec3::new(0.0, 0.0, -12.0),
+            Vec3::new(0.0, width_ft, 0.0),
+            Vec3::new(0.0, 0.0, -height_ft),
         ];
-        let (y, z) = SilhouetteCentroid::default()
+        SilhouetteCentroid::default()
             .centroid(
                 &vertices,
                 &[[0, 1, 2]],
                 &ahead_100_ft(),
                 &CAMERA_1_PX_PER_FT,
             )
-            .expect("in front");
+            .expect("in front")
+    }
+
+    /// A triangle: its centroid is the mean of its corners.
+    #[test]
+    fn triangle_centroid_is_the_mean_of_its_corners() {
+        let (y, z) = right_triangle_centroid(30.0, 12.0);
         // Exact along lines, midpoint rule across 8 lines per px: within 1e-3 px.
         assert!((y - 10.0).abs() < 1e-3, "y {y}");
         assert!((z - 4.0).abs() < 1e-3, "z {z}");
@@ -218,19 +224,7 @@ mod tests {
     /// the lines (measured 1e-4 px off 100: the projection's rounding at this size).
     #[test]
     fn a_tall_silhouette_is_integrated_on_capped_lines() {
-        let vertices = [
-            Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(0.0, 300.0, 0.0),
-            Vec3::new(0.0, 0.0, -1200.0),
-        ];
-        let (y, z) = SilhouetteCentroid::default()
-            .centroid(
-                &vertices,
-                &[[0, 1, 2]],
-                &ahead_100_ft(),
-                &CAMERA_1_PX_PER_FT,
-            )
-            .expect("in front");
+        let (y, z) = right_triangle_centroid(300.0, 1200.0);
         let bound = 1200.0 / (6.0 * MAX_LINES * MAX_LINES);
         assert!((y - 100.0).abs() < 1e-3, "y {y}");
         assert!((z - 400.0).abs() < 1.5 * bound, "z {z}, bound {bound}");
