@@ -10,7 +10,11 @@
 //! track), for a frame that will be saved (`output.frames_every`: saved frames are whole
 //! images), and when the window's measurement is not a clean `Ok` or its target pixels reach
 //! an edge of the window inside the image: that frame is then drawn and measured again whole,
-//! before its record is made, so the record is the whole image's.
+//! before its record is made, so the record is the whole image's. A windowed frame whose
+//! target is predicted longer than `camera.measure_max_length_px` is drawn and measured binned
+//! (`super::binning`: the camera of 1/k the resolution, its renderer made when first needed),
+//! and its measurement carried back to the image's pixels; a binned frame that cannot stand is
+//! redrawn whole at full resolution, like a windowed one.
 
 use super::binning::{
     Binning, binned_intrinsics, binned_region, binned_selection, unbinned_measurement,
