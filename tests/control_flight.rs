@@ -609,9 +609,9 @@ fn mean_over(flight: &Flight, from_s: f64, to_s: f64, f: impl Fn(&Sample) -> f64
 
 /// A descent steeper than the idle glide (40 ft/s north while sinking 25 ft/s): the descent
 /// limit holds γ_c near -9°. With the seed's V_c = ‖V_F‖ (47 ft/s) the aircraft turns the
-/// vertical speed it cannot fly into horizontal speed (measured 46 ft/s north); with
+/// vertical speed it cannot fly into horizontal speed (measured 47.05 ft/s north); with
 /// `limited_descent_keeps_horizontal_speed` it flies the commanded 40 ft/s over the ground
-/// (measured 40.3), so a follower held high does not overtake its target. Means over 10-30 s;
+/// (measured 40.15), so a follower held high does not overtake its target. Means over 10-30 s;
 /// bands of 1.5 ft/s lie between the two by far.
 #[test]
 fn a_limited_descent_keeps_the_horizontal_speed() {
