@@ -74,9 +74,6 @@ use crate::world::aircraft::{
     AirAngles, AirData, AircraftParams, CoefficientValues, ControlEffectiveness, Controls,
 };
 
-/// Largest course offset of an S-turn leg (60°: half the commanded speed along the course).
-const MAX_WEAVE_OFFSET_RAD: f64 = std::f64::consts::FRAC_PI_3;
-
 use super::prefilter::{
     FilteredCommand, IntegralPrefilter, SecondOrderFilter, SmoothIntegralPrefilter,
 };
@@ -85,6 +82,9 @@ use super::reference::{
     AlphaReferenceInput, VelocityReference, alpha_reference_rad, coordinated_turn_bank_rad,
     flight_path_for_thrust_rad, limit_flight_path, unwrap_near_rad,
 };
+
+/// Largest course offset of an S-turn leg (60°: half the commanded speed along the course).
+const MAX_WEAVE_OFFSET_RAD: f64 = std::f64::consts::FRAC_PI_3;
 
 /// Length of the controller's state.
 pub const AUTOPILOT_STATE_LEN: usize = 20 + 4 * RBF_CENTRES;

@@ -230,13 +230,6 @@ impl MeasurementErrors {
     }
 }
 
-/// A camera of 1/k the resolution, and its renderer, for binned frames.
-struct BinnedCamera {
-    factor: u32,
-    intrinsics: CameraIntrinsics,
-    renderer: Renderer,
-}
-
 /// The camera in the loop.
 pub struct CameraSensor {
     intrinsics: CameraIntrinsics,
@@ -244,7 +237,8 @@ pub struct CameraSensor {
     /// The device, for the binned cameras' renderers (made when first needed).
     gpu: GpuContext,
     binning: Binning,
-    binned_cameras: Vec<BinnedCamera>,
+    /// The renderers of the binned cameras, by binning factor.
+    binned_renderers: Vec<(u32, Renderer)>,
     vision: VisionPipeline,
     truth: TruthProjector,
     silhouette: SilhouetteCentroid,
@@ -383,7 +377,7 @@ impl CameraSensor {
             factors: [1, 1],
             gpu: gpu.clone(),
             binning,
-            binned_cameras: Vec::new(),
+            binned_renderers: Vec::new(),
             window_pixels: Vec::new(),
             pipeline: camera.pipeline,
             tracker,
@@ -533,42 +527,32 @@ impl CameraSensor {
         if factor == 1 {
             return Ok(&mut self.renderer);
         }
-        let found = self.binned_cameras.iter().position(|c| c.factor == factor);
+        let found = self.binned_renderers.iter().position(|(k, _)| *k == factor);
         let slot = match found {
             Some(slot) => slot,
             None => {
-                let camera = self.binned_camera(factor)?;
-                self.binned_cameras.push(camera);
-                self.binned_cameras.len() - 1
+                let renderer = self.binned_renderer(factor)?;
+                self.binned_renderers.push((factor, renderer));
+                self.binned_renderers.len() - 1
             }
         };
-        Ok(&mut self.binned_cameras[slot].renderer)
+        Ok(&mut self.binned_renderers[slot].1)
     }
 
-    /// The camera of 1/`factor` the resolution on the same optics, and its renderer: pixel
+    /// The renderer of the camera of 1/`factor` the resolution on the same optics: pixel
     /// noise σ/k, the mean of k² independent draws (`sensing::binning`).
-    fn binned_camera(&self, factor: u32) -> Result<BinnedCamera, SensorError> {
-        let full = self.renderer.settings();
-        let intrinsics =
-            binned_intrinsics(&full.intrinsics, factor).ok_or(SensorError::Binning(factor))?;
-        let mut settings = *full;
-        settings.intrinsics = intrinsics;
+    fn binned_renderer(&self, factor: u32) -> Result<Renderer, SensorError> {
+        let mut settings = *self.renderer.settings();
+        settings.intrinsics = self.intrinsics_of(factor)?;
         if let Some(noise) = settings.background.noise.as_mut() {
             noise.std_grey_levels /= f64::from(factor);
         }
-        Ok(BinnedCamera {
-            factor,
-            intrinsics,
-            renderer: Renderer::new(&self.gpu, settings, &self.mesh)?,
-        })
+        Ok(Renderer::new(&self.gpu, settings, &self.mesh)?)
     }
 
-    /// The intrinsics of binning `factor` (the image's for 1, or before its camera exists).
-    fn intrinsics_of(&self, factor: u32) -> CameraIntrinsics {
-        self.binned_cameras
-            .iter()
-            .find(|c| c.factor == factor)
-            .map_or(self.intrinsics, |c| c.intrinsics)
+    /// The intrinsics of the camera binned by `factor` (the image's for 1).
+    fn intrinsics_of(&self, factor: u32) -> Result<CameraIntrinsics, SensorError> {
+        binned_intrinsics(&self.intrinsics, factor).ok_or(SensorError::Binning(factor))
     }
 
     /// The target's pose as a frame draws it: where it is, or nowhere while the occlusion
@@ -646,7 +630,7 @@ impl CameraSensor {
     ) -> Result<RegionOutcome, SensorError> {
         let buffer = buffer_of(index);
         let factor = self.factors[buffer];
-        let intrinsics = self.intrinsics_of(factor);
+        let intrinsics = self.intrinsics_of(factor)?;
         let (drawn, frame) = (self.regions[buffer], &self.pixels[buffer]);
         let Some(window) = self.windows[buffer] else {
             return Ok(RegionOutcome::Measured(
