@@ -94,7 +94,9 @@ pub struct AutopilotSection {
     /// the commanded speed at idle the descent waits until the speed is there. With false (the
     /// limits of steady speed) a follower held high by an updraft and then let down dives at
     /// the speed it has and overtakes the target (formation.toml, moderate turbulence,
-    /// measured).
+    /// measured). The deceleration is the one the airspeed law asks for toward the command's
+    /// norm, also when `limited_descent_keeps_horizontal_speed` flies less, so with both the
+    /// excess speed goes only a little sooner (tests/control_flight.rs).
     pub descent_waits_for_speed: bool,
     /// S-turns, s per pair of legs (0: none, the seed's). When the commanded horizontal air
     /// speed is below the slowest the aircraft flies, it flies that speed off the commanded

@@ -227,6 +227,7 @@ mod tests {
         let (y, z) = right_triangle_centroid(300.0, 1200.0);
         let bound = 1200.0 / (6.0 * MAX_LINES * MAX_LINES);
         assert!((y - 100.0).abs() < 1e-3, "y {y}");
-        assert!((z - 400.0).abs() < 1.5 * bound, "z {z}, bound {bound}");
+        // Measured: the error is the bound itself (0.0030518 px), to the last digit.
+        assert!((z - 400.0).abs() <= 1.001 * bound, "z {z}, bound {bound}");
     }
 }
