@@ -83,3 +83,66 @@ fn unreadable_file_is_named() {
         other => panic!("expected Unreadable, got {other:?}"),
     }
 }
+
+/// `follower.aircraft` selects the 6-DOF follower's data file: a copy of the shipped file
+/// beside the scenario flies exactly as the default; a heavier copy flies differently; a file
+/// that is not there is refused with exit code 2, naming the file.
+mod selected_from_the_scenario {
+    use std::path::Path;
+    use wingman::scenario::Scenario;
+    use wingman::sim::Simulation;
+
+    const SCENARIO: &str = "[follower]\nmodel = \"aircraft\"\naircraft = \"plane.toml\"\n\
+                            [run]\nduration_s = 2.0\n";
+
+    /// The follower's position after 2 s, flying the scenario `text` from `dir`.
+    fn position_after_run(dir: &Path, text: &str) -> [f64; 3] {
+        let path = dir.join("s.toml");
+        std::fs::write(&path, text).expect("write scenario");
+        let scenario = Scenario::load(&path, &[]).expect("valid scenario");
+        let mut sim = Simulation::new(&scenario).expect("set-up");
+        while sim.step().expect("runs") == wingman::sim::StepOutcome::Running {}
+        sim.snapshot().follower_position_ned_ft.into()
+    }
+
+    #[test]
+    fn a_data_file_beside_the_scenario_is_flown() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let shipped = super::shipped_text();
+        std::fs::write(dir.path().join("plane.toml"), &shipped).expect("write aircraft");
+        let with_copy = position_after_run(dir.path(), SCENARIO);
+        let default = position_after_run(
+            dir.path(),
+            &SCENARIO.replace("plane.toml", "assets/aircraft/follower.toml"),
+        );
+        assert_eq!(
+            with_copy, default,
+            "the shipped file's copy flies as the default"
+        );
+        let heavier = shipped.replace("mass_slug = 0.6293", "mass_slug = 0.7");
+        assert_ne!(heavier, shipped, "the mass line is in the shipped file");
+        std::fs::write(dir.path().join("plane.toml"), heavier).expect("write aircraft");
+        let with_heavier = position_after_run(dir.path(), SCENARIO);
+        assert_ne!(
+            with_heavier, default,
+            "a heavier aircraft flies differently"
+        );
+    }
+
+    #[test]
+    fn a_missing_data_file_is_refused_with_its_name() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("s.toml");
+        std::fs::write(&path, SCENARIO).expect("write scenario");
+        let out = dir.path().join("out");
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_wingman"))
+            .args(["run", path.to_str().expect("utf-8"), "--quiet", "--out"])
+            .arg(&out)
+            .env("NODEVICE_SELECT", "1")
+            .output()
+            .expect("binary runs");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains("plane.toml"), "{stderr}");
+    }
+}

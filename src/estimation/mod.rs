@@ -16,7 +16,6 @@ pub use hold::{HeldFrame, MeasurementHold, MeasurementSource};
 pub use tracker::KalmanTracker;
 
 use crate::frames::Vec3;
-use crate::scenario::{EstimatorKind, Scenario};
 use crate::sensing::FrameRecord;
 
 /// An estimate of how the target moves, in the estimating law's own terms.
@@ -77,59 +76,105 @@ pub struct TargetEstimate {
     pub b_sigma_ft: f64,
 }
 
+/// A filter that infers the target's relative position, motion and size from the
+/// measurements and the follower's own motion. The guidance, the gimbal, the excitation and the
+/// outputs use it through this interface only, so a new filter is one module implementing it
+/// plus its arm in `Simulation::new`'s match on `estimator.kind`.
+pub trait TargetTracker: std::fmt::Debug + Send {
+    /// Fuses a camera frame (nothing when it measured nothing), the follower flying at
+    /// `follower_velocity_ned_fps`.
+    fn fuse_frame(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3);
+
+    /// Fuses a continuous sensor's measurement r* taken at `t_s`, of per-axis variance
+    /// `variance` (scaled units²).
+    fn fuse_sample(
+        &mut self,
+        t_s: f64,
+        r_star: &Vec3,
+        variance: f64,
+        follower_position_ned_ft: &Vec3,
+        follower_velocity_ned_fps: &Vec3,
+    );
+
+    /// The estimate at `t_s` with the follower at `follower_position_ned_ft`, b̂ within the
+    /// guidance's bounds; `None` before the first measurement.
+    fn estimate_at(&self, t_s: f64, follower_position_ned_ft: &Vec3) -> Option<TargetEstimate>;
+
+    /// The estimate at the last fused measurement (its b̂ and σ_b are the posterior's).
+    fn posterior(&self) -> Option<TargetEstimate>;
+
+    /// σ of the heading of the estimated target velocity, rad (infinite before the first
+    /// measurement).
+    fn heading_sigma_rad(&self) -> f64;
+
+    /// When σ_b / b̂ first fell below the scenario's threshold, s.
+    fn known_since_s(&self) -> Option<f64>;
+
+    /// The capture time of the latest fused measurement, s.
+    fn last_fused_s(&self) -> Option<f64>;
+
+    /// Measurements fused so far.
+    fn fused(&self) -> u64;
+}
+
+/// What a run's filter says at one instant, for the outputs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FilterReading {
+    /// The run has no filter (the adaptive law without `estimator.log_kalman`).
+    NoFilter,
+    /// The filter waits for its first measurement.
+    Starting,
+    /// The filter's estimate.
+    Estimate(TargetEstimate),
+}
+
+impl FilterReading {
+    /// Whether the run has a filter.
+    pub fn is_present(&self) -> bool {
+        !matches!(self, Self::NoFilter)
+    }
+
+    /// The estimate, once there is one.
+    pub fn estimate(&self) -> Option<TargetEstimate> {
+        match self {
+            Self::Estimate(e) => Some(*e),
+            Self::NoFilter | Self::Starting => None,
+        }
+    }
+}
+
 /// The estimator of a run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug)]
 pub enum Estimator {
-    /// The seed's adaptive laws, fed by the measurement hold; the Kalman filter beside them
-    /// when it is logged.
+    /// The seed's adaptive laws, fed by the measurement hold; a filter beside them when it is
+    /// logged.
     Adaptive {
         /// The measurement hold.
         hold: MeasurementHold,
-        /// The Kalman filter run for comparison.
-        beside: Option<KalmanTracker>,
+        /// The filter run for comparison.
+        beside: Option<Box<dyn TargetTracker>>,
     },
-    /// The Kalman filter; the law flies on its estimate.
-    Kalman(KalmanTracker),
+    /// A filter; the law flies on its estimate.
+    OnFilter(Box<dyn TargetTracker>),
 }
 
 impl Estimator {
-    /// The estimator a scenario asks for, fed by a continuous sensor or a camera.
-    pub fn new(scenario: &Scenario, continuous_sensor: bool) -> Self {
-        let e = &scenario.estimator;
-        let g = &scenario.guidance;
-        let tracker = || {
-            KalmanTracker::new(
-                e,
-                scenario.camera.focal_length_px(),
-                g.b0_ft,
-                (g.b_min_ft, g.b_max_ft),
-            )
-        };
-        match e.kind {
-            EstimatorKind::Adaptive => Self::Adaptive {
-                hold: MeasurementHold::new(continuous_sensor, scenario.camera.compensate_delay),
-                beside: e.log_kalman.then(tracker),
-            },
-            EstimatorKind::Kalman => Self::Kalman(tracker()),
-        }
-    }
-
     /// A camera frame reached the guidance, the follower flying at `follower_velocity_ned_fps`.
     /// Returns true when it is the guidance's first measurement, for the law's filters to
     /// start on.
     pub fn deliver(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) -> bool {
-        let started = self.tracker().is_some_and(|t| t.fused() > 0);
-        if let Some(tracker) = self.tracker_mut() {
+        let started = self.filter().is_some_and(|t| t.fused() > 0);
+        if let Some(tracker) = self.filter_mut() {
             tracker.fuse_frame(record, follower_velocity_ned_fps);
         }
         match self {
             Self::Adaptive { hold, .. } => hold.deliver(record).is_some(),
-            Self::Kalman(tracker) => !started && tracker.fused() > 0,
+            Self::OnFilter(tracker) => !started && tracker.fused() > 0,
         }
     }
 
     /// A continuous sensor's measurement r* of per-axis variance `variance` was taken now:
-    /// the Kalman filter fuses it (the adaptive law reads the sensor itself).
+    /// the filter fuses it (the adaptive law reads the sensor itself).
     pub fn sample(
         &mut self,
         t_s: f64,
@@ -138,7 +183,7 @@ impl Estimator {
         follower_position_ned_ft: &Vec3,
         follower_velocity_ned_fps: &Vec3,
     ) {
-        if let Some(tracker) = self.tracker_mut() {
+        if let Some(tracker) = self.filter_mut() {
             tracker.fuse_sample(
                 t_s,
                 r_star,
@@ -151,7 +196,7 @@ impl Estimator {
 
     /// What the guidance is given at `t_s` with the follower at `follower_position_ned_ft`:
     /// the adaptive law's measurement (`continuous` evaluates a continuous sensor; a held
-    /// frame is brought forward with the law's own estimates `law`), or the Kalman estimate.
+    /// frame is brought forward with the law's own estimates `law`), or the filter's estimate.
     pub fn guidance_measurement(
         &self,
         t_s: f64,
@@ -176,7 +221,7 @@ impl Estimator {
                     estimate: None,
                 },
             },
-            Self::Kalman(tracker) => match tracker.estimate_at(t_s, follower_position_ned_ft) {
+            Self::OnFilter(tracker) => match tracker.estimate_at(t_s, follower_position_ned_ft) {
                 None => GuidanceMeasurement::NotYet,
                 Some(estimate) => GuidanceMeasurement::Now {
                     r: Some(estimate.r),
@@ -187,9 +232,9 @@ impl Estimator {
     }
 
     /// Where the estimator predicts the target is at `t_s`, r (scaled units, NED), with the
-    /// follower at `follower_position_ned_ft`: the Kalman filter's r̂, or the latest frame
-    /// that measured the target brought forward with the law's estimates `law` (the
-    /// direction a gimbal points at); `None` before any measurement.
+    /// follower at `follower_position_ned_ft`: the filter's r̂, or the latest frame that
+    /// measured the target brought forward with the law's estimates `law` (the direction a
+    /// gimbal points at); `None` before any measurement.
     pub fn predicted_r(
         &self,
         t_s: f64,
@@ -204,7 +249,7 @@ impl Estimator {
                     None => frame.r,
                 })
             }
-            Self::Kalman(tracker) => tracker
+            Self::OnFilter(tracker) => tracker
                 .estimate_at(t_s, follower_position_ned_ft)
                 .map(|e| e.r),
         }
@@ -214,23 +259,32 @@ impl Estimator {
     pub fn last_measured_s(&self) -> Option<f64> {
         match self {
             Self::Adaptive { hold, .. } => hold.last_measured().map(|f| f.t_s),
-            Self::Kalman(tracker) => tracker.last_fused_s(),
+            Self::OnFilter(tracker) => tracker.last_fused_s(),
         }
     }
 
-    /// The Kalman filter, when the run has one (flying on it, or beside the adaptive law).
-    pub fn tracker(&self) -> Option<&KalmanTracker> {
+    /// The filter, when the run has one (flying on it, or beside the adaptive law).
+    pub fn filter(&self) -> Option<&dyn TargetTracker> {
         match self {
-            Self::Adaptive { beside, .. } => beside.as_ref(),
-            Self::Kalman(tracker) => Some(tracker),
+            Self::Adaptive { beside, .. } => beside.as_deref(),
+            Self::OnFilter(tracker) => Some(tracker.as_ref()),
         }
     }
 
-    /// The Kalman filter, mutable.
-    pub fn tracker_mut(&mut self) -> Option<&mut KalmanTracker> {
+    fn filter_mut(&mut self) -> Option<&mut (dyn TargetTracker + 'static)> {
         match self {
-            Self::Adaptive { beside, .. } => beside.as_mut(),
-            Self::Kalman(tracker) => Some(tracker),
+            Self::Adaptive { beside, .. } => beside.as_deref_mut(),
+            Self::OnFilter(tracker) => Some(tracker.as_mut()),
+        }
+    }
+
+    /// What the filter says at `t_s` with the follower at `follower_position_ned_ft`.
+    pub fn filter_reading(&self, t_s: f64, follower_position_ned_ft: &Vec3) -> FilterReading {
+        match self.filter() {
+            None => FilterReading::NoFilter,
+            Some(f) => f
+                .estimate_at(t_s, follower_position_ned_ft)
+                .map_or(FilterReading::Starting, FilterReading::Estimate),
         }
     }
 }

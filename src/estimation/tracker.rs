@@ -5,9 +5,9 @@
 //! sensor, and answers, for any instant and follower position, the estimate the guidance flies
 //! on. It also records when b became known (σ_b / b̂ below a threshold).
 
-use super::TargetEstimate;
 use super::aspect::target_span_aspect;
 use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, TargetFilter};
+use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{EstimatorSection, SizeModel};
 use crate::sensing::{FrameRecord, scaled_position_jacobian};
@@ -73,37 +73,6 @@ impl KalmanTracker {
         }
     }
 
-    /// Fuses a camera frame (nothing when it measured nothing), the follower flying at
-    /// `follower_velocity_ned_fps` (used only to start the filter). With the span model the
-    /// frame's r* is corrected for the target's aspect predicted at its capture
-    /// ([`super::aspect`]), or counts for its bearing only where the span is foreshortened
-    /// below `estimator.span_aspect_min`.
-    pub fn fuse_frame(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) {
-        let (Some(r_star), Some(pixels)) = (record.r_measured, record.measured) else {
-            return;
-        };
-        let jacobian = scaled_position_jacobian(&pixels, self.focal_px, &record.ned_from_camera);
-        let mut r = r_star;
-        let mut covariance = jacobian * self.pixel_covariance_px2 * jacobian.transpose();
-        if let Some(aspect) = self.predicted_aspect(record, &pixels) {
-            if aspect >= self.span_aspect_min {
-                r *= aspect;
-                covariance *= aspect * aspect;
-            } else {
-                let mut bearing_only = self.pixel_covariance_px2;
-                bearing_only[(2, 2)] = (BEARING_ONLY_LENGTH_SIGMAS * pixels.b_i_px).powi(2);
-                covariance = jacobian * bearing_only * jacobian.transpose();
-            }
-        }
-        self.fuse(
-            record.t_s,
-            &r,
-            &covariance,
-            &record.follower_position_ned_ft,
-            follower_velocity_ned_fps,
-        );
-    }
-
     /// The span's aspect factor in a frame, from the filter predicted to its capture (the
     /// span model once the filter runs; `None` otherwise).
     fn predicted_aspect(&mut self, record: &FrameRecord, pixels: &ImageMeasurement) -> Option<f64> {
@@ -123,26 +92,6 @@ impl KalmanTracker {
             (pixels.y_i_px, pixels.z_i_px),
             self.focal_px,
         )
-    }
-
-    /// Fuses a continuous sensor's measurement r* taken now, with its own per-axis variance
-    /// (the floor when smaller).
-    pub fn fuse_sample(
-        &mut self,
-        t_s: f64,
-        r_star: &Vec3,
-        variance: f64,
-        follower_position_ned_ft: &Vec3,
-        follower_velocity_ned_fps: &Vec3,
-    ) {
-        let covariance = Mat3::identity() * variance.max(self.scaled_variance_floor);
-        self.fuse(
-            t_s,
-            r_star,
-            &covariance,
-            follower_position_ned_ft,
-            follower_velocity_ned_fps,
-        );
     }
 
     /// Predicts to the measurement's time and fuses it (or starts the filter on it).
@@ -177,18 +126,6 @@ impl KalmanTracker {
         }
     }
 
-    /// The estimate the guidance flies on at `t_s` with the follower at
-    /// `follower_position_ned_ft`; `None` before the first measurement.
-    pub fn estimate_at(&self, t_s: f64, follower_position_ned_ft: &Vec3) -> Option<TargetEstimate> {
-        let filter = self.filter.as_ref()?;
-        Some(self.bounded(&filter.estimate_at(t_s, follower_position_ned_ft)))
-    }
-
-    /// The estimate at the last fused measurement.
-    pub fn posterior(&self) -> Option<TargetEstimate> {
-        Some(self.bounded(&self.filter.as_ref()?.posterior()))
-    }
-
     /// b̂ = 1/β̂ within the bounds, and σ_b.
     fn bounded(&self, est: &FilterEstimate) -> TargetEstimate {
         let (min, max) = self.size_bounds_ft;
@@ -211,27 +148,92 @@ impl KalmanTracker {
         self.posterior()
             .is_some_and(|e| e.b_sigma_ft < self.known_sigma_fraction * e.b_hat_ft)
     }
+}
+
+impl TargetTracker for KalmanTracker {
+    /// Fuses a camera frame (nothing when it measured nothing), the follower flying at
+    /// `follower_velocity_ned_fps` (used only to start the filter). With the span model the
+    /// frame's r* is corrected for the target's aspect predicted at its capture
+    /// ([`super::aspect`]), or counts for its bearing only where the span is foreshortened
+    /// below `estimator.span_aspect_min`.
+    fn fuse_frame(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) {
+        let (Some(r_star), Some(pixels)) = (record.r_measured, record.measured) else {
+            return;
+        };
+        let jacobian = scaled_position_jacobian(&pixels, self.focal_px, &record.ned_from_camera);
+        let mut r = r_star;
+        let mut covariance = jacobian * self.pixel_covariance_px2 * jacobian.transpose();
+        if let Some(aspect) = self.predicted_aspect(record, &pixels) {
+            if aspect >= self.span_aspect_min {
+                r *= aspect;
+                covariance *= aspect * aspect;
+            } else {
+                let mut bearing_only = self.pixel_covariance_px2;
+                bearing_only[(2, 2)] = (BEARING_ONLY_LENGTH_SIGMAS * pixels.b_i_px).powi(2);
+                covariance = jacobian * bearing_only * jacobian.transpose();
+            }
+        }
+        self.fuse(
+            record.t_s,
+            &r,
+            &covariance,
+            &record.follower_position_ned_ft,
+            follower_velocity_ned_fps,
+        );
+    }
+
+    /// Fuses a continuous sensor's measurement r* taken now, with its own per-axis variance
+    /// (the floor when smaller).
+    fn fuse_sample(
+        &mut self,
+        t_s: f64,
+        r_star: &Vec3,
+        variance: f64,
+        follower_position_ned_ft: &Vec3,
+        follower_velocity_ned_fps: &Vec3,
+    ) {
+        let covariance = Mat3::identity() * variance.max(self.scaled_variance_floor);
+        self.fuse(
+            t_s,
+            r_star,
+            &covariance,
+            follower_position_ned_ft,
+            follower_velocity_ned_fps,
+        );
+    }
+
+    /// The estimate the guidance flies on at `t_s` with the follower at
+    /// `follower_position_ned_ft`; `None` before the first measurement.
+    fn estimate_at(&self, t_s: f64, follower_position_ned_ft: &Vec3) -> Option<TargetEstimate> {
+        let filter = self.filter.as_ref()?;
+        Some(self.bounded(&filter.estimate_at(t_s, follower_position_ned_ft)))
+    }
+
+    /// The estimate at the last fused measurement.
+    fn posterior(&self) -> Option<TargetEstimate> {
+        Some(self.bounded(&self.filter.as_ref()?.posterior()))
+    }
 
     /// σ of the heading of the estimated target velocity, rad (infinite before the filter
     /// starts).
-    pub fn heading_sigma_rad(&self) -> f64 {
+    fn heading_sigma_rad(&self) -> f64 {
         self.filter
             .as_ref()
             .map_or(f64::INFINITY, TargetFilter::heading_sigma_rad)
     }
 
     /// When σ_b / b̂ first fell below the threshold, s.
-    pub fn known_since_s(&self) -> Option<f64> {
+    fn known_since_s(&self) -> Option<f64> {
         self.known_since_s
     }
 
     /// The capture time of the latest fused measurement, s.
-    pub fn last_fused_s(&self) -> Option<f64> {
+    fn last_fused_s(&self) -> Option<f64> {
         self.filter.as_ref().map(TargetFilter::time_s)
     }
 
     /// Measurements fused so far.
-    pub fn fused(&self) -> u64 {
+    fn fused(&self) -> u64 {
         self.fused
     }
 }

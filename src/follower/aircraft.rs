@@ -38,7 +38,7 @@ pub const DRYDEN_SEED_SALT: u64 = 0x0000_6472_7964_656e;
 /// Why the 6-DOF follower could not be set up.
 #[derive(Debug, thiserror::Error)]
 pub enum AircraftSetupError {
-    /// The built-in aircraft data file is invalid.
+    /// The aircraft data file is unreadable or invalid.
     #[error("{0}")]
     AircraftData(#[from] AircraftFileError),
     /// A value the plant, the controller or the atmosphere rejected.
@@ -92,8 +92,8 @@ pub struct AircraftFollower {
 impl AircraftFollower {
     /// The follower of a configuration and its initial state (trimmed, controller at rest).
     pub fn new(config: &FollowerConfig) -> Result<(Self, Vec<f64>), AircraftSetupError> {
-        let params =
-            AircraftParams::seed_follower()?.with_speed_brake(config.follower.speed_brake_c_drag);
+        let params = AircraftParams::from_scenario_path(&config.follower.aircraft)?
+            .with_speed_brake(config.follower.speed_brake_c_drag);
         let aircraft = Aircraft::new(params.clone())?;
         let autopilot = Autopilot::new(&params, config.autopilot)?;
         let atmosphere = Atmosphere::new(config.atmosphere, config.turbulence_seed)?;

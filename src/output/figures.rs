@@ -131,7 +131,7 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
     if scenario.sensor.mode == SensorMode::Noisy {
         draw_measurement_figure(dir, scenario, &t, logged)?;
     }
-    if logged.iter().any(|s| s.filter.is_some()) {
+    if logged.iter().any(|s| s.filter.is_present()) {
         draw_size_figure(dir, scenario, &t, logged)?;
     }
     super::aircraft_figures::draw_aircraft_figures(dir, &t, logged)
@@ -352,7 +352,7 @@ fn draw_size_figure(
             .iter()
             .map(|s| {
                 s.filter
-                    .flatten()
+                    .estimate()
                     .map_or(f64::NAN, |e| f(e.b_hat_ft, e.b_sigma_ft))
             })
             .collect()

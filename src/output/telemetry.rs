@@ -32,8 +32,8 @@ pub fn row_of(s: &Snapshot) -> Row {
     if let Some(aircraft) = &s.aircraft {
         row.extend(aircraft_columns(aircraft));
     }
-    if let Some(filter) = &s.filter {
-        filter_columns(filter, &mut row);
+    if s.filter.is_present() {
+        filter_columns(&s.filter.estimate(), &mut row);
     }
     if let Some(g) = &s.gimbal {
         row.push(("gimbal_pan_rad", g.angles.pan_rad));

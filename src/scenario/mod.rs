@@ -125,29 +125,11 @@ impl Scenario {
             overrides: overrides.to_vec(),
         };
         let mut scenario = Self::from_source(&source)?;
-        scenario.resolve_mesh_path(path);
+        let dir = path.parent().unwrap_or(Path::new("."));
+        scenario.camera.mesh = resolve_asset_path(&scenario.camera.mesh, DEFAULT_MESH, dir);
+        scenario.follower.aircraft =
+            resolve_asset_path(&scenario.follower.aircraft, DEFAULT_AIRCRAFT, dir);
         Ok((scenario, source))
-    }
-
-    /// A relative mesh path is looked up from the scenario file's folder; the default mesh,
-    /// when that folder has none, is the shipped one (`assets/` of this program's source,
-    /// else the copy built into the program). The path found is written back so that the
-    /// resolved scenario runs from anywhere.
-    fn resolve_mesh_path(&mut self, scenario_path: &Path) {
-        let mesh = PathBuf::from(&self.camera.mesh);
-        if mesh.is_absolute() {
-            return;
-        }
-        let dir = scenario_path.parent().unwrap_or(Path::new("."));
-        let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join(&mesh);
-        let mut candidates = vec![dir.join(&mesh)];
-        if self.camera.mesh == DEFAULT_MESH {
-            candidates.push(shipped);
-        }
-        if let Some(found) = candidates.iter().find(|p| p.exists()) {
-            let found = found.canonicalize().unwrap_or_else(|_| found.clone());
-            self.camera.mesh = found.to_string_lossy().into_owned();
-        }
     }
 
     /// Parses scenario text as if read from `path` (used in messages only).
@@ -226,6 +208,29 @@ fn apply_override(table: &mut toml::Table, text: &str) -> Result<(), OverrideErr
     }
     current.insert(field.to_string(), value);
     Ok(())
+}
+
+/// Where a scenario's asset path points: a relative path is looked up from the scenario
+/// file's folder `dir`; the shipped default `default`, when that folder has none, is this
+/// program's own (`assets/` of its source; failing that, the caller uses the copy built into
+/// the program). The path found is returned absolute, so that the resolved scenario runs from
+/// anywhere; a path found nowhere is returned as it is, for the loader to report.
+fn resolve_asset_path(path: &str, default: &str, dir: &Path) -> String {
+    let asset = PathBuf::from(path);
+    if asset.is_absolute() {
+        return path.to_string();
+    }
+    let mut candidates = vec![dir.join(&asset)];
+    if path == default {
+        candidates.push(Path::new(env!("CARGO_MANIFEST_DIR")).join(&asset));
+    }
+    match candidates.iter().find(|p| p.exists()) {
+        Some(found) => {
+            let found = found.canonicalize().unwrap_or_else(|_| found.clone());
+            found.to_string_lossy().into_owned()
+        }
+        None => path.to_string(),
+    }
 }
 
 #[cfg(test)]

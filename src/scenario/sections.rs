@@ -148,7 +148,16 @@ pub struct FollowerSection {
     /// idle glide, about 7° (L/D ≈ 8) at 60 ft/s, and an updraft it cannot glide through
     /// leaves it above a descending target.
     pub speed_brake_c_drag: f64,
+    /// The 6-DOF follower's aircraft data file (`follower.model = "aircraft"`): mass,
+    /// geometry, aerodynamic and propulsion data in the schema of the shipped
+    /// `assets/aircraft/follower.toml` (the seed's aircraft, the default). A relative path is
+    /// looked up from the scenario file's folder.
+    pub aircraft: String,
 }
+
+/// The default `follower.aircraft`: the seed's aircraft, shipped in `assets/` and built into
+/// the program.
+pub const DEFAULT_AIRCRAFT: &str = "assets/aircraft/follower.toml";
 
 impl Default for FollowerSection {
     fn default() -> Self {
@@ -159,6 +168,7 @@ impl Default for FollowerSection {
             attitude_lag_s: 0.2,
             initial_velocity_fps: [50.0, 0.0, 0.0],
             speed_brake_c_drag: 0.0,
+            aircraft: DEFAULT_AIRCRAFT.to_string(),
         }
     }
 }
@@ -180,6 +190,12 @@ impl FollowerSection {
             self.speed_brake_c_drag,
             0.0,
             1.0,
+        )?;
+        check::require(
+            !self.aircraft.is_empty(),
+            "follower.aircraft",
+            "\"\"".to_string(),
+            "the path of an aircraft data file".to_string(),
         )?;
         if self.model == FollowerModel::Aircraft {
             let [n, e, d] = self.initial_velocity_fps;

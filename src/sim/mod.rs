@@ -18,7 +18,8 @@
 mod layout;
 
 use crate::estimation::{
-    Estimator, GuidanceMeasurement, LawEstimates, TargetEstimate, TargetMotionEstimate,
+    Estimator, FilterReading, GuidanceMeasurement, KalmanTracker, LawEstimates, MeasurementHold,
+    TargetEstimate, TargetMotionEstimate, TargetTracker,
 };
 use crate::follower::AircraftSetupError;
 use crate::follower::aircraft::DRYDEN_SEED_SALT;
@@ -31,14 +32,15 @@ use crate::guidance::signals::{CommandKind, FollowerCommand, GuidanceInput, Guid
 use crate::integrate::Rk4;
 use crate::render::GpuContext;
 use crate::scenario::{
-    ExcitationUnits, FollowerModel, GimbalKind, GuidanceLawKind, Mission, Scenario, SensorMode,
+    EstimatorKind, ExcitationUnits, FollowerModel, GimbalKind, GuidanceLawKind, Mission, Scenario,
+    SensorMode, TargetMotion,
 };
 use crate::sensing::gimbal::{GIMBAL_STATE_NAMES, Gimbal, GimbalAngles};
 use crate::sensing::losses::{LossEpisode, LossLog};
 use crate::sensing::{
     CameraSensor, CaptureGeometry, FrameRecord, NoisySensor, Sensor, SensorError,
 };
-use crate::world::target::{TargetMotionModel, TargetState};
+use crate::world::target::{TargetModel, TargetMotionModel, TargetState};
 use layout::StateLayout;
 use std::cell::Cell;
 use std::time::{Duration, Instant};
@@ -123,9 +125,9 @@ pub struct Snapshot {
     pub b_hat_ft: f64,
     /// d̂, in the law's own terms.
     pub target_motion: TargetMotionEstimate,
-    /// The Kalman filter's estimate now, when the run has a filter (flying on it or beside the
-    /// adaptive law): `Some(None)` before its first measurement.
-    pub filter: Option<Option<TargetEstimate>>,
+    /// The filter's estimate now, when the run has a filter (flying on it or beside the
+    /// adaptive law).
+    pub filter: FilterReading,
     /// Guidance output.
     pub guidance: GuidanceOutput,
     /// The last camera frame's measurement and truth (camera runs).
@@ -184,7 +186,7 @@ struct Evaluation {
 #[derive(Debug)]
 pub struct Simulation {
     scenario: Scenario,
-    target: TargetMotionModel,
+    target: Box<dyn TargetModel>,
     follower: Follower,
     /// The 6-DOF follower's extremes and limit hits (aircraft runs).
     envelope: Option<FlightEnvelope>,
@@ -244,8 +246,8 @@ impl Simulation {
         let (guidance, notes) = GuidanceLaw::new(g, &scenario.acceleration, kind, compensate)?;
         let mut sensor = Sensor::new(scenario, g.command_length_ft(), gpu)
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
-        let estimator = Estimator::new(scenario, sensor.is_continuous());
-        let target = TargetMotionModel::from_section(&scenario.target);
+        let estimator = estimator_of(scenario, sensor.is_continuous());
+        let target = target_of(scenario);
         let gimbal = (scenario.sensor.mode == SensorMode::Camera
             && scenario.camera.gimbal.kind == GimbalKind::PanTilt)
             .then(|| Gimbal::new(&scenario.camera.gimbal));
@@ -254,7 +256,13 @@ impl Simulation {
             .map_or(vec![], |g| g.initial_state().to_vec());
         let camera_mount = scenario.camera.camera_from_body();
         let camera_from_body = mounted_camera(&camera_mount, gimbal.as_ref(), &gimbal_x);
-        let geometry = capture_geometry(&target, &follower, &follower_x, 0.0, &camera_from_body);
+        let geometry = capture_geometry(
+            target.as_ref(),
+            &follower,
+            &follower_x,
+            0.0,
+            &camera_from_body,
+        );
         // The filters start at the first measurement: r*(0) with a noisy sensor, the true
         // r(0) otherwise (a camera restarts them at its first frame).
         sensor.draw_initial_noise(&geometry);
@@ -388,7 +396,7 @@ impl Simulation {
     pub fn capture_geometry(&self) -> CaptureGeometry {
         let slices = self.layout.split(&self.state);
         capture_geometry(
-            &self.target,
+            self.target.as_ref(),
             &self.follower,
             slices.follower,
             self.time_s(),
@@ -464,7 +472,7 @@ impl Simulation {
 
     /// A continuous sensor's sample for the Kalman filter, when this tick draws one.
     fn sample_continuous(&mut self, geometry: &CaptureGeometry, follower_velocity_ned_fps: &Vec3) {
-        if self.estimator.tracker().is_none() || !self.sensor.is_sample_tick(self.tick) {
+        if self.estimator.filter().is_none() || !self.sensor.is_sample_tick(self.tick) {
             return;
         }
         let body_from_ned = geometry.camera_from_ned();
@@ -523,7 +531,7 @@ impl Simulation {
         let follower_x = self.layout.split(x).follower;
         let g = &self.scenario.guidance;
         let heading_gate_rad = g.command_target_heading_sigma_deg.to_radians();
-        let track_ned = match (measurement, self.estimator.tracker()) {
+        let track_ned = match (measurement, self.estimator.filter()) {
             (
                 GuidanceMeasurement::Now {
                     estimate: Some(e), ..
@@ -660,10 +668,7 @@ impl Simulation {
             },
             b_hat_ft: estimates.b_hat_ft,
             target_motion: estimates.target_motion,
-            filter: self
-                .estimator
-                .tracker()
-                .map(|t| t.estimate_at(t_s, &follower)),
+            filter: self.estimator.filter_reading(t_s, &follower),
             guidance: out,
             frame: self.camera().and_then(CameraSensor::last_record),
             gimbal: self.gimbal_reading(),
@@ -681,6 +686,7 @@ impl Simulation {
         let dt_s = self.scenario.run.dt_s;
         let follower_x = self.layout.split(&self.state).follower;
         self.follower.begin_step(follower_x, dt_s);
+        self.target.advance(t_s, dt_s);
         let mut state = std::mem::take(&mut self.state);
         let mut rk4 = std::mem::replace(&mut self.rk4, Rk4::new(0));
         rk4.step(t_s, dt_s, &mut state, |t, x, dx| {
@@ -736,7 +742,7 @@ impl Simulation {
         }
         let size_sigma_ft = self
             .estimator
-            .tracker()
+            .filter()
             .and_then(|t| t.posterior())
             .map(|e| e.b_sigma_ft);
         self.excitation
@@ -800,6 +806,37 @@ fn excitation_cap(scenario: &Scenario) -> Option<f64> {
     })
 }
 
+/// The estimator `[estimator] kind` asks for, fed by a continuous sensor or a camera; the
+/// guidance law it pairs with is chosen beside it in [`Simulation::on_gpu`].
+fn estimator_of(scenario: &Scenario, continuous_sensor: bool) -> Estimator {
+    let e = &scenario.estimator;
+    let g = &scenario.guidance;
+    let filter = || -> Box<dyn TargetTracker> {
+        Box::new(KalmanTracker::new(
+            e,
+            scenario.camera.focal_length_px(),
+            g.b0_ft,
+            (g.b_min_ft, g.b_max_ft),
+        ))
+    };
+    match e.kind {
+        EstimatorKind::Adaptive => Estimator::Adaptive {
+            hold: MeasurementHold::new(continuous_sensor, scenario.camera.compensate_delay),
+            beside: e.log_kalman.then(filter),
+        },
+        EstimatorKind::Kalman => Estimator::OnFilter(filter()),
+    }
+}
+
+/// The target `[target]` describes.
+fn target_of(scenario: &Scenario) -> Box<dyn TargetModel> {
+    match scenario.target.motion {
+        TargetMotion::SeedProfile | TargetMotion::Straight => {
+            Box::new(TargetMotionModel::from_section(&scenario.target))
+        }
+    }
+}
+
 /// L_CB of a camera on its fixed mount, or on a gimbal (its angles in `gimbal_x`) over it.
 fn mounted_camera(mount: &Mat3, gimbal: Option<&Gimbal>, gimbal_x: &[f64]) -> Mat3 {
     match gimbal {
@@ -810,7 +847,7 @@ fn mounted_camera(mount: &Mat3, gimbal: Option<&Gimbal>, gimbal_x: &[f64]) -> Ma
 
 /// Where follower and target are at `t_s` for a follower slice.
 fn capture_geometry(
-    target: &TargetMotionModel,
+    target: &dyn TargetModel,
     follower: &Follower,
     follower_x: &[f64],
     t_s: f64,

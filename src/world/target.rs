@@ -163,6 +163,24 @@ pub struct TargetState {
     pub attitude: EulerAngles,
 }
 
+/// The target as the simulation sees it: where it is and how it is oriented at any instant
+/// of the step being integrated. A kinematic profile ([`TargetMotionModel`]) and a target with
+/// dynamics of its own both implement it; a new one is one module implementing it plus its
+/// arm in `Simulation::new`'s match on the `[target]` section.
+pub trait TargetModel: std::fmt::Debug + Send {
+    /// Advances the target's own dynamics over [t_s, t_s + dt_s], before the follower's step
+    /// (a closed-form motion has nothing to do).
+    fn advance(&mut self, t_s: f64, dt_s: f64);
+
+    /// The state at `t_s`, anywhere up to the end of the last step advanced.
+    fn state(&self, t_s: f64) -> TargetState;
+
+    /// R_T(t), NED, ft.
+    fn position_ned_ft(&self, t_s: f64) -> Vec3 {
+        self.state(t_s).position_ned_ft
+    }
+}
+
 /// The target's motion: position, velocity and acceleration as closed-form functions of time.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TargetMotionModel {
@@ -233,6 +251,18 @@ impl TargetMotionModel {
             accel_ned_fps2,
             attitude: attitude_along_velocity(&velocity_ned_fps, bank_rad).unwrap_or_default(),
         }
+    }
+}
+
+impl TargetModel for TargetMotionModel {
+    fn advance(&mut self, _t_s: f64, _dt_s: f64) {}
+
+    fn state(&self, t_s: f64) -> TargetState {
+        TargetMotionModel::state(self, t_s)
+    }
+
+    fn position_ned_ft(&self, t_s: f64) -> Vec3 {
+        TargetMotionModel::position_ned_ft(self, t_s)
     }
 }
 

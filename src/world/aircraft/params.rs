@@ -8,14 +8,14 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::frames::Mat3;
+use crate::scenario::DEFAULT_AIRCRAFT;
 use crate::scenario::check::{self, Check, InvalidValue};
 
 use super::actuators::{ActuatorLimits, Actuators};
 
-/// The seed follower's data file, built into the program (`assets/aircraft/follower.toml`).
+/// The seed follower's data file, built into the program (`assets/aircraft/follower.toml`,
+/// [`DEFAULT_AIRCRAFT`]).
 const SEED_FOLLOWER_TOML: &str = include_str!("../../../assets/aircraft/follower.toml");
-/// The path [`AircraftParams::seed_follower`] names in its messages.
-const SEED_FOLLOWER_PATH: &str = "assets/aircraft/follower.toml";
 
 /// Mass and inertia (seed 7.4; J as in (7.16)).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -425,7 +425,18 @@ impl AircraftParams {
     /// The seed's follower (seed 7.4 with the Aerosonde derivatives), from the data file built
     /// into the program.
     pub fn seed_follower() -> Result<Self, AircraftFileError> {
-        Self::from_toml_str(SEED_FOLLOWER_TOML, Path::new(SEED_FOLLOWER_PATH))
+        Self::from_toml_str(SEED_FOLLOWER_TOML, Path::new(DEFAULT_AIRCRAFT))
+    }
+
+    /// The aircraft a scenario's path names (`follower.aircraft`): the file, or the copy of
+    /// the seed's aircraft built into the program when the path is the shipped default and
+    /// there is no such file.
+    pub fn from_scenario_path(path: &str) -> Result<Self, AircraftFileError> {
+        if path == DEFAULT_AIRCRAFT && !Path::new(path).exists() {
+            Self::seed_follower()
+        } else {
+            Self::load(Path::new(path))
+        }
     }
 
     /// These parameters with a speed brake of ΔC_D = `c_drag` at full deflection on the
