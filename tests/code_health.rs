@@ -192,3 +192,281 @@ fn c(x: [u8; 2]) -> u8 { x[0] }
         vec![("a".to_string(), 2, 6), ("c".to_string(), 9, 1)]
     );
 }
+
+const MAX_FILE_LINES: usize = 800;
+
+/// Every `.rs` file under `src/`.
+fn source_files() -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    rust_files(&repo().join("src"), &mut files);
+    files.sort();
+    files
+}
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// House rule: no source file is over 800 lines; a longer one holds more than one concept.
+#[test]
+fn no_file_in_src_is_longer_than_800_lines() {
+    let long: Vec<String> = source_files()
+        .iter()
+        .filter_map(|file| {
+            let lines = std::fs::read_to_string(file)
+                .expect("readable")
+                .lines()
+                .count();
+            (lines > MAX_FILE_LINES).then(|| format!("{} ({lines} lines)", file.display()))
+        })
+        .collect();
+    assert!(
+        long.is_empty(),
+        "files over {MAX_FILE_LINES} lines:\n{}",
+        long.join("\n")
+    );
+}
+
+/// What the repository ships as text for its users to read: its sources, tests, scenarios,
+/// studies, scripts, shaders and documents.
+fn shipped_text_files() -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    let mut stack: Vec<PathBuf> = [
+        "src",
+        "tests",
+        "benches",
+        "examples",
+        "scenarios",
+        "studies",
+        "scripts",
+        "shaders",
+        "docs",
+        ".ci",
+    ]
+    .iter()
+    .map(|d| repo().join(d))
+    .collect();
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).expect("readable folder") {
+            let path = entry.expect("readable entry").path();
+            let text_like = path.extension().is_some_and(|e| {
+                ["rs", "toml", "md", "sh", "wgsl", "yaml", "py"].contains(&e.to_str().unwrap_or(""))
+            });
+            if path.is_dir() {
+                stack.push(path);
+            } else if text_like || path.file_name().is_some_and(|n| n == "run") {
+                files.push(path);
+            }
+        }
+    }
+    files.push(repo().join("README.md"));
+    files
+}
+
+/// The documents a citation may not name: they are not in the repository, so a user cannot
+/// read them (the model is `docs/equations.md`, the program `docs/design.md`).
+const ABSENT_DOCUMENTS: [&str; 5] = ["SPEC §", "SPEC.md", "DESIGN §", "DESIGN.md", "../shared"];
+
+#[test]
+fn no_shipped_file_cites_a_document_outside_the_repository() {
+    let this_file = repo().join("tests").join("code_health.rs");
+    let mut found = Vec::new();
+    for file in shipped_text_files().iter().filter(|f| **f != this_file) {
+        let text = std::fs::read_to_string(file).expect("readable");
+        for (i, line) in text.lines().enumerate() {
+            if let Some(name) = ABSENT_DOCUMENTS.iter().find(|d| line.contains(*d)) {
+                found.push(format!("{}:{}: cites {name}", file.display(), i + 1));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "citations of absent documents:\n{}",
+        found.join("\n")
+    );
+}
+
+/// The source with everything from its first `#[cfg(test)]` on removed: the unit tests at a
+/// file's end may import what the module itself must not.
+fn without_tests(src: &[u8]) -> &[u8] {
+    find(src, b"#[cfg(test)]").map_or(src, |at| &src[..at])
+}
+
+/// The module names `text` reaches by the path prefix `prefix` (`crate::`, `super::`), as
+/// written in code (comments and literals blanked).
+fn reached(text: &[u8], prefix: &[u8]) -> Vec<String> {
+    let mut names = Vec::new();
+    let mut i = 0;
+    while let Some(p) = find(&text[i..], prefix) {
+        let at = i + p;
+        i = at + prefix.len();
+        if at > 0 && (text[at - 1].is_ascii_alphanumeric() || text[at - 1] == b'_') {
+            continue;
+        }
+        let name: String = text[i..]
+            .iter()
+            .take_while(|b| b.is_ascii_alphanumeric() || **b == b'_')
+            .map(|b| *b as char)
+            .collect();
+        if !name.is_empty() {
+            names.push(name);
+        }
+    }
+    names
+}
+
+/// A cycle in the graph `edges` (node to the nodes it imports), as the path around it.
+fn cycle(
+    edges: &std::collections::BTreeMap<String, std::collections::BTreeSet<String>>,
+) -> Option<Vec<String>> {
+    fn visit(
+        node: &str,
+        edges: &std::collections::BTreeMap<String, std::collections::BTreeSet<String>>,
+        path: &mut Vec<String>,
+        done: &mut std::collections::BTreeSet<String>,
+    ) -> Option<Vec<String>> {
+        if let Some(start) = path.iter().position(|n| n == node) {
+            let mut around = path[start..].to_vec();
+            around.push(node.to_string());
+            return Some(around);
+        }
+        if done.contains(node) {
+            return None;
+        }
+        path.push(node.to_string());
+        for next in edges.get(node).into_iter().flatten() {
+            if let Some(found) = visit(next, edges, path, done) {
+                return Some(found);
+            }
+        }
+        path.pop();
+        done.insert(node.to_string());
+        None
+    }
+    let mut done = std::collections::BTreeSet::new();
+    edges
+        .keys()
+        .find_map(|node| visit(node, edges, &mut Vec::new(), &mut done))
+}
+
+/// The top-level modules in the order `src/lib.rs` lists them ("each imports only those before
+/// it").
+fn module_order() -> Vec<String> {
+    let lib = std::fs::read_to_string(repo().join("src").join("lib.rs")).expect("lib.rs");
+    let from = lib
+        .find("Modules, in the order")
+        .expect("lib.rs lists the module order");
+    let list = &lib[from..];
+    let list = &list[..list.find("\n//!\n").unwrap_or(list.len())];
+    list.split("[`")
+        .skip(1)
+        .filter_map(|s| s.split('`').next())
+        .map(str::to_string)
+        .collect()
+}
+
+/// The files of a top-level module: `src/NAME.rs` or everything under `src/NAME/`.
+fn module_files(name: &str) -> Vec<PathBuf> {
+    let dir = repo().join("src").join(name);
+    let mut files = Vec::new();
+    if dir.is_dir() {
+        rust_files(&dir, &mut files);
+    } else {
+        files.push(repo().join("src").join(format!("{name}.rs")));
+    }
+    files
+}
+
+fn code_of(file: &Path) -> Vec<u8> {
+    let src = std::fs::read_to_string(file).expect("readable source");
+    without_tests(&blank_comments_and_literals(&src)).to_vec()
+}
+
+/// Each top-level module imports only the modules `src/lib.rs` lists before it (so the
+/// modules form no cycle).
+#[test]
+fn modules_import_only_those_before_them() {
+    let order = module_order();
+    assert!(order.len() > 10, "module order not found: {order:?}");
+    let mut late = Vec::new();
+    for (i, module) in order.iter().enumerate() {
+        for file in module_files(module) {
+            for used in reached(&code_of(&file), b"crate::") {
+                if order[i + 1..].contains(&used) {
+                    late.push(format!("{} uses {used}", file.display()));
+                }
+            }
+        }
+    }
+    late.sort();
+    late.dedup();
+    assert!(
+        late.is_empty(),
+        "imports of later modules:\n{}",
+        late.join("\n")
+    );
+}
+
+/// Inside each module with submodules, the submodules import one another without a cycle.
+#[test]
+fn submodules_form_no_cycle() {
+    use std::collections::{BTreeMap, BTreeSet};
+    let mut checked = 0;
+    for module in module_order() {
+        let dir = repo().join("src").join(&module);
+        if !dir.is_dir() {
+            continue;
+        }
+        let siblings: BTreeSet<String> = std::fs::read_dir(&dir)
+            .expect("readable")
+            .map(|e| e.expect("entry").path())
+            .filter_map(|p| Some(p.file_stem()?.to_str()?.to_string()))
+            .filter(|n| n != "mod")
+            .collect();
+        let mut edges: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+        for name in &siblings {
+            let mut files = Vec::new();
+            let sub = dir.join(name);
+            if sub.is_dir() {
+                rust_files(&sub, &mut files);
+            } else {
+                files.push(dir.join(format!("{name}.rs")));
+            }
+            let own_prefix = format!("crate::{module}::");
+            for file in files {
+                let code = code_of(&file);
+                let used = reached(&code, b"super::")
+                    .into_iter()
+                    .chain(reached(&code, own_prefix.as_bytes()));
+                let entry = edges.entry(name.clone()).or_default();
+                entry.extend(used.filter(|u| u != name && siblings.contains(u)));
+            }
+        }
+        checked += 1;
+        assert_eq!(
+            cycle(&edges),
+            None,
+            "an import cycle inside {module}: {edges:?}"
+        );
+    }
+    assert!(checked > 8, "too few modules with submodules: {checked}");
+}
+
+/// The cycle finder itself.
+#[test]
+fn cycle_finder_finds_cycles() {
+    use std::collections::{BTreeMap, BTreeSet};
+    let graph = |pairs: &[(&str, &str)]| {
+        let mut edges: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+        for (a, b) in pairs {
+            edges
+                .entry(a.to_string())
+                .or_default()
+                .insert(b.to_string());
+        }
+        edges
+    };
+    assert_eq!(cycle(&graph(&[("a", "b"), ("b", "c"), ("a", "c")])), None);
+    let around = cycle(&graph(&[("a", "b"), ("b", "c"), ("c", "a")])).expect("a cycle");
+    assert_eq!(around.len(), 4, "{around:?}");
+}
