@@ -1,7 +1,6 @@
 //! Off-screen renderer: draws the target mesh, as the follower's camera sees it, into an RGBA8
 //! texture (optionally 4x multisampled and resolved) and reads it back into a [`CameraImage`]
-//! ([`crate::render::readback`]). Pixel noise is then added on the CPU
-//! ([`crate::render::noise`]).
+//! (`render::readback`). Pixel noise is then added on the CPU ([`crate::render::noise`]).
 //!
 //! A frame may be drawn and read back in an [`ImageRegion`] only, so that the camera's cost
 //! follows the target, not the image size: the region's sky is copied from a sky texture drawn
@@ -93,7 +92,7 @@ pub struct Renderer {
     windows: WindowTargetsCache,
     /// The whole image's framebuffers; its resolve texture is the image read back.
     image: RenderTargets,
-    /// The sky alone over the whole image (see [`sky_texture`]).
+    /// The sky alone over the whole image, drawn once (see `targets::sky_texture`).
     sky: wgpu::Texture,
     staging: Staging,
     noise: Option<NoiseGenerator>,
