@@ -1,5 +1,5 @@
 // Target silhouette and sky background, seen from the follower's camera.
-// Layout must match `FrameUniforms` in src/render/renderer.rs (192 bytes).
+// Layout must match `FrameUniforms` in src/render/uniforms.rs (192 bytes).
 // Pixel noise is added on the CPU after readback (src/render/noise.rs): cheaper on lavapipe.
 
 struct FrameUniforms {

@@ -1,4 +1,5 @@
-//! Generator of the seed's target: a low-poly fixed-wing aircraft of 8 ft span (SPEC §2, b = 8 ft).
+//! Generator of the seed's target: a low-poly fixed-wing aircraft of 8 ft span (b = 8 ft in
+//! (3.12); docs/equations.md, What the camera measures).
 //!
 //! Target-body axes: x forward, y right wing, z down, ft; origin at the centre of gravity, on the
 //! wing's quarter-chord line. The wing (5° dihedral, 10-12 % thick) ends in a single tip vertex

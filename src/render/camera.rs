@@ -3,7 +3,7 @@
 //! Image coordinates (yI right, zI up, px) are relative to the principal point, which sits at
 //! the image centre (cx, cy) = (width/2, height/2). Pixel column u grows right, row v grows down,
 //! and pixel (i, j) covers [i, i+1) x [j, j+1), so its centre is (i + 0.5, j + 0.5):
-//! `u = cx + yI`, `v = cy - zI` (SPEC §1).
+//! `u = cx + yI`, `v = cy - zI` ((3.1); docs/equations.md, What the camera measures).
 
 use crate::frames::{Mat3, Vec3};
 

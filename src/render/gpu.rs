@@ -6,7 +6,8 @@
 //! it (it is not set here: changing the environment of a running multi-threaded program is
 //! unsound).
 
-/// What to install when no adapter exists (DESIGN §6).
+/// What to install when no adapter exists (Mesa's lavapipe; docs/design.md, The camera on a
+/// CPU).
 pub const INSTALL_HINT: &str = "apt-get install -y mesa-vulkan-drivers libvulkan1";
 
 /// Why no GPU context could be created.

@@ -203,7 +203,7 @@ impl TargetMesh {
         Ok(mesh)
     }
 
-    /// Largest distance between two vertices, ft: the target's maximal size b (SPEC §1).
+    /// Largest distance between two vertices, ft: the target's maximal size b of (3.12).
     pub fn max_dimension_ft(&self) -> f64 {
         super::diameter::diameter(&self.vertices_ft)
     }

@@ -4,8 +4,8 @@
 //! clamped to 0-255. It is a pure function of (seed, frame index, pixel): a 64-bit hash of the
 //! frame's key and the pixel's index gives four 16-bit draws (one each for four neighbouring
 //! pixels), each mapped through a table of the 65 536 standard-normal quantiles
-//! Φ⁻¹((k + ½) / 65 536) (so samples reach ±4.3σ). On lavapipe this is about 8x cheaper than
-//! hashing and Box-Muller in the fragment shader.
+//! Φ⁻¹((k + ½) / 65 536) (so samples reach ±4.3σ). On lavapipe this is cheaper than hashing
+//! and Box-Muller in the fragment shader (docs/findings.md, Rendering on lavapipe).
 
 use crate::render::image::CameraImage;
 use crate::render::region::ImageRegion;

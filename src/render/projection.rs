@@ -1,7 +1,7 @@
 //! The clip-space projection that makes the rasteriser agree with [`CameraIntrinsics`].
 //!
 //! A camera/body point (X fwd, Y right, Z down) lands at pixel u = cx + l Y/X, v = cy + l Z/X
-//! (SPEC §1). wgpu maps NDC to framebuffer pixels by u = (x_ndc + 1) W / 2,
+//! ((3.1); docs/equations.md, What the camera measures). wgpu maps NDC to framebuffer pixels by u = (x_ndc + 1) W / 2,
 //! v = (1 - y_ndc) H / 2 and samples pixel (i, j) at its centre (i + 0.5, j + 0.5), the same
 //! convention as `camera.rs`. So with w_clip = X:
 //! `x_clip = (2 cx / W - 1) X + (2 l / W) Y`, `y_clip = (1 - 2 cy / H) X - (2 l / H) Z`.

@@ -82,7 +82,8 @@ pub struct RenderSettings {
     /// Camera resolution and focal length; the projection matches it exactly.
     pub intrinsics: CameraIntrinsics,
     /// Samples per pixel: 1 (aliased edges; pixel drawn when its centre is covered) or 4 (edge
-    /// pixels blend target and sky by coverage; about 5x slower on lavapipe).
+    /// pixels blend target and sky by coverage; slower on lavapipe, docs/findings.md,
+    /// Rendering on lavapipe).
     pub msaa_samples: u32,
     /// Draw the target (multisampled when there are several samples) only in a window around
     /// its projected bounding box, over a one-sample sky (see [`crate::render::window`]);

@@ -2,7 +2,7 @@
 //!
 //! On a software adapter (lavapipe) a 4x multisampled frame costs its clear and its resolve
 //! over every sample of the image, whatever the target covers: at 640x480 that is most of a
-//! frame's time (measured: 3.6 ms against 1.1 ms with one sample). The target covers a small
+//! frame's time (docs/findings.md, Rendering on lavapipe). The target covers a small
 //! window of the image, and the sky needs no multisampling (it is the same at every sample of
 //! a pixel). So a frame is drawn as a one-sample sky over the image, and the target (with
 //! depth, multisampled when the camera has several samples) into a framebuffer that covers
@@ -36,10 +36,9 @@ pub enum FramePlan {
 
 /// The side of a window framebuffer holding `extent_px` pixels: the next of 16, 20, 24, 28,
 /// 32, 40, 48, 56, 64, 80... (four sizes an octave), so that few framebuffers serve every
-/// frame (they are kept, [`WindowTargets`]) and a window is at most 25% wider than its
+/// frame (the renderer keeps them) and a window is at most 25% wider than its
 /// target. The clear and resolve of a multisampled framebuffer cost in proportion to its
-/// area on lavapipe (measured: 256² costs 2.5 times 128² for the same target), so a tight
-/// window is most of a frame's saving.
+/// area on lavapipe, so a tight window is most of a frame's saving.
 pub fn window_side_px(extent_px: u32) -> u32 {
     let extent = extent_px.max(MIN_SIDE_PX);
     let step = 1u32 << (31 - (extent - 1).leading_zeros()).saturating_sub(2);

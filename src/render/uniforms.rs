@@ -1,0 +1,197 @@
+//! The per-frame uniforms: the block the shaders read and the buffer that holds it twice, once
+//! with the whole image's projection and once with the target window's.
+//!
+//! Per frame only this 192-byte block changes; the mesh is uploaded once.
+
+use bytemuck::{Pod, Zeroable};
+use nalgebra::Matrix4;
+
+use crate::render::camera::TargetPoseInCamera;
+use crate::render::projection::{
+    PixelWindow, body_from_target, clip_from_body, clip_from_body_in_window,
+};
+use crate::render::settings::{RenderSettings, Sky};
+
+/// The per-frame uniform block; layout matches `FrameUniforms` in `shaders/target.wgsl`
+/// (mat3x3 columns padded to vec4, total 192 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct FrameUniforms {
+    clip_from_target: [[f32; 4]; 4],
+    body_from_target: [[f32; 4]; 3],
+    light_dir_body: [f32; 4],
+    target_grey: [f32; 4],
+    sky_top: [f32; 4],
+    sky_bottom: [f32; 4],
+    image: [f32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 192);
+
+/// The uniform buffer's two slots, the whole image's projection and the target window's, a
+/// bind group for each, and the block last written to the first.
+#[derive(Debug)]
+pub(super) struct UniformSlots {
+    buffer: wgpu::Buffer,
+    /// Binds the first slot: the whole image's projection.
+    whole: wgpu::BindGroup,
+    /// Binds the second slot: the target window's projection.
+    window: wgpu::BindGroup,
+    /// Byte offset of the second slot.
+    window_offset: u64,
+    /// The first slot's block (the second is this one with the window's projection).
+    uniforms: FrameUniforms,
+    /// The whole image's projection of camera/body points.
+    clip_from_body: Matrix4<f64>,
+}
+
+impl UniformSlots {
+    /// The buffer, its second slot at the first multiple of `min_offset_alignment` after the
+    /// first slot, and the slots' bind groups of `layout`; the first slot is written with the
+    /// block of `settings` (no target pose yet).
+    pub(super) fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layout: &wgpu::BindGroupLayout,
+        min_offset_alignment: u32,
+        settings: &RenderSettings,
+    ) -> Self {
+        let uniforms = initial_uniforms(settings);
+        let uniform_size = std::mem::size_of::<FrameUniforms>() as u64;
+        let window_offset = uniform_size.next_multiple_of(u64::from(min_offset_alignment));
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame uniforms"),
+            size: window_offset + uniform_size,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let slot = |offset: u64| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("frame uniforms"),
+                layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &buffer,
+                        offset,
+                        size: wgpu::BufferSize::new(uniform_size),
+                    }),
+                }],
+            })
+        };
+        let slots = Self {
+            whole: slot(0),
+            window: slot(window_offset),
+            window_offset,
+            buffer,
+            uniforms,
+            clip_from_body: clip_from_body(&settings.intrinsics),
+        };
+        queue.write_buffer(&slots.buffer, 0, bytemuck::bytes_of(&slots.uniforms));
+        slots
+    }
+
+    /// The bind group of the whole image's projection or, `in_window`, of the window's.
+    pub(super) fn bind_group(&self, in_window: bool) -> &wgpu::BindGroup {
+        if in_window { &self.window } else { &self.whole }
+    }
+
+    /// Writes the first slot (the whole image's projection of the target at `pose`) and
+    /// returns the target-to-body transform.
+    pub(super) fn write_image(
+        &mut self,
+        queue: &wgpu::Queue,
+        pose: &TargetPoseInCamera,
+    ) -> Matrix4<f64> {
+        let target_to_body = body_from_target(pose);
+        let clip_from_target = self.clip_from_body * target_to_body;
+        self.uniforms.clip_from_target = columns_f32(&clip_from_target);
+        let r = &pose.body_from_target;
+        self.uniforms.body_from_target =
+            std::array::from_fn(|c| [r[(0, c)] as f32, r[(1, c)] as f32, r[(2, c)] as f32, 0.0]);
+        queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(&self.uniforms));
+        target_to_body
+    }
+
+    /// Writes the second slot: the first with the projection of `settings`' camera into
+    /// `window`.
+    pub(super) fn write_window(
+        &self,
+        queue: &wgpu::Queue,
+        settings: &RenderSettings,
+        window: &PixelWindow,
+        target_to_body: &Matrix4<f64>,
+    ) {
+        let mut in_window = self.uniforms;
+        in_window.clip_from_target =
+            columns_f32(&(clip_from_body_in_window(&settings.intrinsics, window) * target_to_body));
+        in_window.image[1] = window.v0_px as f32;
+        queue.write_buffer(
+            &self.buffer,
+            self.window_offset,
+            bytemuck::bytes_of(&in_window),
+        );
+    }
+}
+
+/// The layout of one uniform slot: a [`FrameUniforms`] at binding 0, seen by both stages.
+pub(super) fn uniform_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("frame uniforms"),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: wgpu::BufferSize::new(
+                    std::mem::size_of::<FrameUniforms>() as u64
+                ),
+            },
+            count: None,
+        }],
+    })
+}
+
+/// The sky's colours at the top and at the bottom of the image (RGB, 0-255).
+pub(super) fn sky_top_bottom_rgb(sky: &Sky) -> ([u8; 3], [u8; 3]) {
+    match *sky {
+        Sky::Uniform { rgb } => (rgb, rgb),
+        Sky::VerticalGradient {
+            top_rgb,
+            bottom_rgb,
+        } => (top_rgb, bottom_rgb),
+    }
+}
+
+fn unit_rgb(rgb: [u8; 3]) -> [f32; 4] {
+    [
+        f32::from(rgb[0]) / 255.0,
+        f32::from(rgb[1]) / 255.0,
+        f32::from(rgb[2]) / 255.0,
+        1.0,
+    ]
+}
+
+fn columns_f32(m: &Matrix4<f64>) -> [[f32; 4]; 4] {
+    std::array::from_fn(|c| std::array::from_fn(|r| m[(r, c)] as f32))
+}
+
+fn initial_uniforms(settings: &RenderSettings) -> FrameUniforms {
+    let (top, bottom) = sky_top_bottom_rgb(&settings.background.sky);
+    let light = settings.shading.light_dir_body.normalize();
+    FrameUniforms {
+        clip_from_target: [[0.0; 4]; 4],
+        body_from_target: [[0.0; 4]; 3],
+        light_dir_body: [light.x as f32, light.y as f32, light.z as f32, 0.0],
+        target_grey: [
+            f32::from(settings.shading.unlit_grey) / 255.0,
+            f32::from(settings.shading.lit_grey) / 255.0,
+            0.0,
+            0.0,
+        ],
+        sky_top: unit_rgb(top),
+        sky_bottom: unit_rgb(bottom),
+        image: [settings.intrinsics.height_px as f32, 0.0, 0.0, 0.0],
+    }
+}
