@@ -62,8 +62,8 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
         &t,
         &velocity,
     )?;
-    if let Some(moving_mean) = set.acceleration {
-        draw_acceleration_figures(dir, numbers, moving_mean, &t, logged)?;
+    if let Some(with_mean) = set.acceleration {
+        draw_acceleration_figures(dir, numbers, with_mean, &t, logged)?;
     }
     if let Some(noise) = &set.measurement {
         draw_measurement_figure(dir, noise, size_ft, &t, logged)?;
@@ -176,12 +176,12 @@ fn versus_target(
         .collect()
 }
 
-/// Acceleration law: a_F against a_T (with `moving_mean`, also a_F's 1 s moving mean, which
+/// Acceleration law: a_F against a_T (with `with_mean`, also a_F's 1 s moving mean, which
 /// shows whether it follows a_T under a sensor's noise), and a_T alone.
 fn draw_acceleration_figures(
     dir: &Path,
     numbers: &FigureNumbers,
-    moving_mean: bool,
+    with_mean: bool,
     t: &[f64],
     logged: &[Snapshot],
 ) -> Result<(), PlotError> {
@@ -195,7 +195,7 @@ fn draw_acceleration_figures(
         }),
         ("a_T (target)", |s| s.target.accel_ned_fps2),
     );
-    if moving_mean {
+    if with_mean {
         let step_s = match (t.first(), t.get(1)) {
             (Some(a), Some(b)) if b > a => b - a,
             _ => 1.0,
