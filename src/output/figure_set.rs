@@ -109,9 +109,12 @@ impl FigureNumbers {
             {
                 numbers("seed Fig 6.2", "seed Fig 6.3", "seed Fig 6.1", "")
             }
-            (GuidanceLawKind::Velocity, false) => {
-                numbers("seed Fig 4.3 / 4.6", "seed Fig 4.4", "seed Fig 4.5 / 4.7", "")
-            }
+            (GuidanceLawKind::Velocity, false) => numbers(
+                "seed Fig 4.3 / 4.6",
+                "seed Fig 4.4",
+                "seed Fig 4.5 / 4.7",
+                "",
+            ),
         }
     }
 }

@@ -11,11 +11,11 @@
 //! the size each frame's silhouette implies; the excitation's amplitude). 6-DOF follower: the
 //! Chapter 7 figures of [`super::aircraft_figures`].
 
+use super::figure_set::{FigureNumbers, FigureSet, MotionEstimate};
 use super::plots::{
     EXTRA, HIGHLIGHT, Panel, PlotError, REFERENCE, Series, TRUTH, draw_error, draw_figure,
     moving_mean,
 };
-use super::figure_set::{FigureNumbers, FigureSet, MotionEstimate};
 use crate::frames::Vec3;
 use crate::scenario::Scenario;
 use crate::sim::Snapshot;
@@ -110,11 +110,7 @@ fn estimate_panels(motion: MotionEstimate, size_ft: f64, logged: &[Snapshot]) ->
                 logged.iter().map(|s| s.b_hat_ft).collect(),
                 TRUTH,
             ),
-            Series::new(
-                "b true",
-                vec![size_ft; logged.len()],
-                REFERENCE,
-            ),
+            Series::new("b true", vec![size_ft; logged.len()], REFERENCE),
         ],
     };
     match motion {
@@ -299,11 +295,7 @@ fn draw_size_figure(
         Series::new("b̂ (Kalman)", filter(|b, _| b), TRUTH),
         Series::new("b̂ + 3σ", filter(|b, sigma| b + 3.0 * sigma), EXTRA),
         Series::new("b̂ - 3σ", filter(|b, sigma| b - 3.0 * sigma), EXTRA),
-        Series::new(
-            "b true",
-            vec![size_ft; logged.len()],
-            REFERENCE,
-        ),
+        Series::new("b true", vec![size_ft; logged.len()], REFERENCE),
     ];
     if let Some(focal_px) = focal_px {
         let apparent = logged

@@ -2,8 +2,8 @@
 //! driver that steps a simulation while writing them.
 
 pub mod aircraft_figures;
-pub mod figure_set;
 pub mod columns;
+pub mod figure_set;
 pub mod figures;
 pub mod folder;
 pub mod frame_images;
