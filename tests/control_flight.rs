@@ -244,7 +244,8 @@ fn vertical_rms_unlimited(flight: &Flight, from_s: f64) -> f64 {
 }
 
 /// Lowest speed of the seed's target profile, ft/s (x = 25(1 + cos), y = 25(1 - cos) cross
-/// at 25√2; SPEC §2 "35-60 ft/s").
+/// at 25√2; docs/equations.md, The relative motion and the seed's scenario: "about 35-60
+/// ft/s").
 const PROFILE_MIN_SPEED_FPS: f64 = 35.355;
 
 fn report(name: &str, flight: &Flight, from_s: f64) -> Stats {
@@ -324,7 +325,8 @@ fn constant_velocity_step_is_reached_and_held() {
     );
 }
 
-/// (b) The seed's target velocity profile (SPEC §2; Fig 7.2) commanded for 140 s from the
+/// (b) The seed's target velocity profile (docs/equations.md, The relative motion and the
+/// seed's scenario; Fig 7.2) commanded for 140 s from the
 /// 50 ft/s trim heading north: the aircraft's velocity follows it, every surface stays inside
 /// its limits, the sideslip stays small and the airspeed inside 30-70 ft/s (Fig 7.5-7.6).
 ///
@@ -333,9 +335,9 @@ fn constant_velocity_step_is_reached_and_held() {
 ///   ramps without lag; what is left is their response to the profile's curvature.
 /// - down RMS < 2.5 ft/s (measured 0.53): the profile climbs at 6 ft/s while slowing to
 ///   40 ft/s, which needs m g sin γ + D ≈ 4.9 lbf against 6.6 lbf of full thrust at that speed
-///   (T ∝ V²; with the data file's first C_TδT = 0.15, 3.3 lbf, the RMS was 1.80). Where the
-///   flight-path limit still holds the climb (thrust margin), the follower climbs less; with
-///   those stretches set aside the down RMS is < 0.6 ft/s (measured 0.17).
+///   (T ∝ V²). Where the flight-path limit still holds the climb (thrust margin), the
+///   follower climbs less; with those stretches set aside the down RMS is < 0.6 ft/s
+///   (measured 0.17).
 /// - |β| < 5° and no surface clamped (the issue's criteria; measured 0.5°, 13°, 1.9°, 2.9°).
 /// - airspeed in [30, 70] ft/s (the issue's band; measured 35.1-60.4).
 /// - |α| after 5 s: the issue asks for < 5°, which this airframe cannot meet: level flight at
@@ -646,12 +648,11 @@ fn a_limited_descent_keeps_the_horizontal_speed() {
 }
 
 /// A command slower than the aircraft can fly (25 ft/s north, below the 35 ft/s floor): flown
-/// straight the aircraft covers 35 ft/s of ground (measured 34.97); with 8 s S-turns it flies
-/// legs either side of north and covers less (measured mean over 10-60 s: 29.4 ft/s north,
-/// 0.9 east): the turns between legs, at the bank limit, take part of each leg. The S-turns
-/// cost height at this speed: the seed's thrust T ∝ V² is weakest there, the throttle sits at
-/// full for 62% of the time and the aircraft sinks 3.2 ft/s (measured). Bands: north below
-/// 31 ft/s with S-turns and above 34 straight; east within 3 ft/s.
+/// straight the aircraft covers 35 ft/s of ground; with 8 s S-turns it flies legs either side
+/// of north and covers less: the turns between legs, at the bank limit, take part of each leg
+/// (what a run gives, and what the S-turns cost in height: docs/findings.md, Measurements
+/// behind the code and tests). Bands: north below 31 ft/s with S-turns and above 34
+/// straight; east within 3 ft/s.
 #[test]
 fn a_command_slower_than_the_aircraft_is_flown_as_s_turns() {
     let command = Vec3::new(25.0, 0.0, 0.0);

@@ -107,8 +107,8 @@ fn other_camera_settings_identify_the_target_and_hold_the_slot() {
 }
 
 /// The moderate-turbulence streams 1 to 5: no frame lost, RMS of R - R_c below 5 ft
-/// per axis over the last 20 s (measured: at most 3.8 ft, stream 2's z). Over streams 1-30 six of thirty
-/// lose frames (docs/formation.md): these five are the issue's, not chosen for passing.
+/// per axis over the last 20 s. These five are the issue's, not chosen for passing (what the
+/// other streams give: docs/findings.md, Measurements behind the code and tests).
 #[test]
 fn moderate_turbulence_streams_1_to_5_keep_the_target_and_the_slot() {
     for seed in 1..=5 {

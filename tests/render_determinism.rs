@@ -1,5 +1,5 @@
 //! Rendering is a pure function of (settings, mesh, pose, frame index) on one machine: the same
-//! inputs give identical bytes, also from two threads sharing one device (DESIGN §3, §6).
+//! inputs give identical bytes, also from two threads sharing one device.
 //! Pixel noise is keyed by (seed, frame index) and has the requested standard deviation.
 
 mod render_support;

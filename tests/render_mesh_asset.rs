@@ -1,5 +1,6 @@
 //! The committed target mesh `assets/target_aircraft.obj` loads, is what the generator
-//! (`examples/make_target_mesh.rs`) writes, and its maximal size is the seed's b = 8 ft (SPEC §2):
+//! (`examples/make_target_mesh.rs`) writes, and its maximal size is the seed's b = 8 ft
+//! (docs/equations.md, What the camera measures):
 //! the largest vertex-to-vertex distance is the span between the two tip vertices, 8 ft to
 //! 1e-6 ft (the tips are exact in f32; everything else is at least 0.1 ft shorter).
 

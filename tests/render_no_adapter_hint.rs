@@ -1,5 +1,5 @@
 //! Without a usable adapter, `GpuContext::new` fails with one line that says what to install
-//! (DESIGN §3, §6). The test re-runs itself in a child process whose Vulkan loader is pointed
+//! (docs/design.md, Tests). The test re-runs itself in a child process whose Vulkan loader is pointed
 //! at a driver manifest that does not exist, so no adapter can be found there.
 
 use std::process::Command;

@@ -11,7 +11,7 @@ use common::wingman_cli as wingman;
 fn a_target_lost_longer_than_the_limit_stops_the_run() {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("lost");
-    // The inertial command leaves the 60° field of view at about t = 20 s (SPEC §2); a first
+    // The inertial command leaves the 60° field of view at about t = 20 s; a first
     // loss of 2.9 s is survived, the second, from t = 22.6 s, stops the run 5 s later.
     let (code, stderr) = wingman(&[
         "run",

@@ -1,4 +1,4 @@
-//! A run writes the DESIGN §4 outputs: the resolved scenario (re-runnable, giving identical
+//! A run writes the outputs of docs/outputs.md: the resolved scenario (re-runnable, giving identical
 //! telemetry), telemetry.csv, summary.json with its keys, and plots; a diverging run stops
 //! with exit code 1 and keeps the telemetry written so far.
 

@@ -4,7 +4,7 @@
 //! the references φ_c, θ_c, ψ_c of (7.24)), `body_rates.png` (p, q, r against the filtered
 //! rate commands of (7.25)), `surfaces.png` (δe, δa, δr and δT) and `air_data.png` (V against
 //! V_c, α and β); seed Figs 7.5-7.6 and 7.12-7.13 show the surfaces well inside their limits
-//! and α and β small (SPEC §7).
+//! and α and β small (docs/equations.md, The 6-DOF follower).
 
 use super::plots::{EXTRA, Panel, PlotError, REFERENCE, Series, TRUTH, draw_figure};
 use crate::follower::AircraftActuation;
@@ -59,11 +59,8 @@ fn single(
 /// The panels of one figure from the logged rows.
 type Panels = fn(&[Snapshot]) -> Vec<Panel>;
 
-/// Draws the 6-DOF figures into `dir` (nothing when no row carries aircraft data).
+/// Draws the 6-DOF figures into `dir` (for runs whose telemetry carries aircraft data).
 pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Result<(), PlotError> {
-    if logged.iter().all(|s| s.aircraft.is_none()) {
-        return Ok(());
-    }
     let figures: [(&str, &str, Panels); 5] = [
         (
             "flight_velocity.png",

@@ -1,21 +1,23 @@
-//! Which figures a run draws: the panels of the seed's figures for the run's law and sensor.
+//! A run's figures: the panels of the seed's figures for the run's law and sensor, drawn as
+//! its [`super::figure_set::FigureSet`] says.
 //!
 //! Every run: `relative_position.png` (R vs R_c, seed Figs 4.3 / 4.6, 5.3, 6.2, 6.5, 6.8),
 //! `parameter_estimates.png` (b̂ and b̂ d̂ vs V_T for the velocity law, Figs 4.4, 6.3, 6.6; b̂
 //! and ‖d̂‖ for the acceleration law, Figs 5.4, 6.9) and `velocity.png` (V_F vs V_T, Figs
 //! 4.5 / 4.7, 6.1, 6.4). Acceleration law: `acceleration.png` (a_F vs a_T, Figs 5.2, 6.7) and
 //! `target_acceleration.png` (Fig 5.1). Noisy sensor: `measurement.png` (r* against the
-//! noise-free r; the seed shows no such figure). A Kalman filter (SPEC §9):
+//! noise-free r; the seed shows no such figure). A Kalman filter:
 //! `size_estimate.png` (its b̂ with the ±3σ_b band against the true b and, in camera runs,
 //! the size each frame's silhouette implies; the excitation's amplitude). 6-DOF follower: the
 //! Chapter 7 figures of [`super::aircraft_figures`].
 
+use super::figure_set::{FigureNumbers, FigureSet, MotionEstimate};
 use super::plots::{
     EXTRA, HIGHLIGHT, Panel, PlotError, REFERENCE, Series, TRUTH, draw_error, draw_figure,
     moving_mean,
 };
 use crate::frames::Vec3;
-use crate::scenario::{FollowerModel, GuidanceLawKind, Mission, NoiseOn, Scenario, SensorMode};
+use crate::scenario::Scenario;
 use crate::sim::Snapshot;
 use std::path::Path;
 
@@ -25,76 +27,13 @@ fn component(logged: &[Snapshot], f: impl Fn(&Snapshot) -> Vec3, axis: usize) ->
     logged.iter().map(|s| f(s)[axis]).collect()
 }
 
-/// The seed figure numbers a run's panels reproduce, for the titles.
-struct FigureNumbers {
-    relative: &'static str,
-    estimates: &'static str,
-    velocity: &'static str,
-    acceleration: &'static str,
-}
-
-impl FigureNumbers {
-    fn of(scenario: &Scenario) -> Self {
-        if scenario.follower.model == FollowerModel::Aircraft {
-            return Self {
-                relative: "seed Ch 7, Figs 7.1-7.13",
-                estimates: "seed Ch 7",
-                velocity: "seed Ch 7",
-                acceleration: "seed Ch 7",
-            };
-        }
-        let noisy = scenario.sensor.mode == SensorMode::Noisy;
-        let intercept = scenario.guidance.mission == Mission::Intercept;
-        match (scenario.guidance.law, noisy) {
-            (GuidanceLawKind::Acceleration, _) if intercept => Self {
-                relative: "Remark 6, no seed figure",
-                estimates: "Remark 6",
-                velocity: "no seed figure",
-                acceleration: "Remark 6",
-            },
-            (GuidanceLawKind::Acceleration, false) => Self {
-                relative: "seed Fig 5.3",
-                estimates: "seed Fig 5.4",
-                velocity: "no seed figure",
-                acceleration: "seed Fig 5.2",
-            },
-            (GuidanceLawKind::Acceleration, true) => Self {
-                relative: "seed Fig 6.8",
-                estimates: "seed Fig 6.9",
-                velocity: "no seed figure",
-                acceleration: "seed Fig 6.7",
-            },
-            (GuidanceLawKind::Velocity, true) => Self {
-                relative: "seed Fig 6.5",
-                estimates: "seed Fig 6.6",
-                velocity: "seed Fig 6.4",
-                acceleration: "",
-            },
-            (GuidanceLawKind::Velocity, false)
-                if scenario.guidance.estimator && scenario.sensor.mode == SensorMode::Perfect =>
-            {
-                Self {
-                    relative: "seed Fig 6.2",
-                    estimates: "seed Fig 6.3",
-                    velocity: "seed Fig 6.1",
-                    acceleration: "",
-                }
-            }
-            (GuidanceLawKind::Velocity, false) => Self {
-                relative: "seed Fig 4.3 / 4.6",
-                estimates: "seed Fig 4.4",
-                velocity: "seed Fig 4.5 / 4.7",
-                acceleration: "",
-            },
-        }
-    }
-}
-
-/// Draws every figure that applies to this run into `dir`.
+/// Draws the figures of this run's [`FigureSet`] into `dir`.
 pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<(), PlotError> {
     std::fs::create_dir_all(dir).map_err(draw_error(dir))?;
     let t: Vec<f64> = logged.iter().map(|s| s.t_s).collect();
-    let numbers = FigureNumbers::of(scenario);
+    let set = FigureSet::of(scenario, logged);
+    let numbers = &set.numbers;
+    let size_ft = scenario.target.size_ft;
     draw_figure(
         &dir.join("relative_position.png"),
         &format!(
@@ -108,7 +47,7 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
         &dir.join("parameter_estimates.png"),
         &format!("Parameter estimates ({})", numbers.estimates),
         &t,
-        &estimate_panels(scenario, logged),
+        &estimate_panels(set.motion_estimate, size_ft, logged),
     )?;
     let velocity = versus_target(
         logged,
@@ -123,18 +62,19 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
         &t,
         &velocity,
     )?;
-
-    if scenario.guidance.law == GuidanceLawKind::Acceleration {
-        let noisy = scenario.sensor.mode != SensorMode::Perfect;
-        draw_acceleration_figures(dir, &numbers, noisy, &t, logged)?;
+    if let Some(with_mean) = set.acceleration {
+        draw_acceleration_figures(dir, numbers, with_mean, &t, logged)?;
     }
-    if scenario.sensor.mode == SensorMode::Noisy {
-        draw_measurement_figure(dir, scenario, &t, logged)?;
+    if let Some(noise) = &set.measurement {
+        draw_measurement_figure(dir, noise, size_ft, &t, logged)?;
     }
-    if logged.iter().any(|s| s.filter.is_present()) {
-        draw_size_figure(dir, scenario, &t, logged)?;
+    if let Some(focal_px) = set.size {
+        draw_size_figure(dir, size_ft, focal_px, &t, logged)?;
     }
-    super::aircraft_figures::draw_aircraft_figures(dir, &t, logged)
+    if set.aircraft {
+        super::aircraft_figures::draw_aircraft_figures(dir, &t, logged)?;
+    }
+    Ok(())
 }
 
 /// `relative_position.png`: R against R_c and the excited R*_c, per NED axis.
@@ -161,7 +101,7 @@ fn relative_position_panels(logged: &[Snapshot]) -> Vec<Panel> {
 
 /// `parameter_estimates.png`: b̂ against b, then the law's estimates of the target's motion
 /// (b̂ d̂ against V_T for the velocity law, ‖d̂‖ for the acceleration law).
-fn estimate_panels(scenario: &Scenario, logged: &[Snapshot]) -> Vec<Panel> {
+fn estimate_panels(motion: MotionEstimate, size_ft: f64, logged: &[Snapshot]) -> Vec<Panel> {
     let b_panel = Panel {
         y_label: "b, ft".to_string(),
         series: vec![
@@ -170,16 +110,12 @@ fn estimate_panels(scenario: &Scenario, logged: &[Snapshot]) -> Vec<Panel> {
                 logged.iter().map(|s| s.b_hat_ft).collect(),
                 TRUTH,
             ),
-            Series::new(
-                "b true",
-                vec![scenario.target.size_ft; logged.len()],
-                REFERENCE,
-            ),
+            Series::new("b true", vec![size_ft; logged.len()], REFERENCE),
         ],
     };
-    match scenario.guidance.law {
-        GuidanceLawKind::Velocity => velocity_law_estimates(b_panel, logged),
-        GuidanceLawKind::Acceleration => vec![
+    match motion {
+        MotionEstimate::ScaledVelocity => velocity_law_estimates(b_panel, logged),
+        MotionEstimate::AccelerationBound => vec![
             b_panel,
             Panel {
                 y_label: "‖d̂‖, ft/s".to_string(),
@@ -236,12 +172,12 @@ fn versus_target(
         .collect()
 }
 
-/// Acceleration law: a_F against a_T (with noise, also a_F's 1 s moving mean, which shows
-/// whether it follows a_T under the noise), and a_T alone.
+/// Acceleration law: a_F against a_T (with `with_mean`, also a_F's 1 s moving mean, which
+/// shows whether it follows a_T under a sensor's noise), and a_T alone.
 fn draw_acceleration_figures(
     dir: &Path,
     numbers: &FigureNumbers,
-    noisy: bool,
+    with_mean: bool,
     t: &[f64],
     logged: &[Snapshot],
 ) -> Result<(), PlotError> {
@@ -255,7 +191,7 @@ fn draw_acceleration_figures(
         }),
         ("a_T (target)", |s| s.target.accel_ned_fps2),
     );
-    if noisy {
+    if with_mean {
         let step_s = match (t.first(), t.get(1)) {
             (Some(a), Some(b)) if b > a => b - a,
             _ => 1.0,
@@ -295,14 +231,14 @@ fn draw_acceleration_figures(
     )
 }
 
-/// Noisy sensor: the measured r* against the noise-free r = R/b.
+/// Noisy sensor: the measured r* against the noise-free r = R/b; `noise` as the title says it.
 fn draw_measurement_figure(
     dir: &Path,
-    scenario: &Scenario,
+    noise: &str,
+    size_ft: f64,
     t: &[f64],
     logged: &[Snapshot],
 ) -> Result<(), PlotError> {
-    let size_ft = scenario.target.size_ft;
     let panels: Vec<Panel> = (0..3)
         .map(|i| Panel {
             y_label: format!("r{}", AXES[i]),
@@ -327,10 +263,6 @@ fn draw_measurement_figure(
             ],
         })
         .collect();
-    let noise = match scenario.sensor.noise_on {
-        NoiseOn::ScaledPosition => format!("SNR {} dB", scenario.sensor.snr_db),
-        NoiseOn::Pixels => format!("pixel noise {:?} px", scenario.sensor.pixel_noise_px),
-    };
     draw_figure(
         &dir.join("measurement.png"),
         &format!("Measured and noise-free scaled relative position ({noise})"),
@@ -339,11 +271,13 @@ fn draw_measurement_figure(
     )
 }
 
-/// Kalman filter: b̂ with its ±3σ_b band against the true b and the size the frames' silhouettes
-/// imply (b_i ‖R‖ / f, camera runs), and the excitation's amplitude.
+/// Kalman filter: b̂ with its ±3σ_b band against the true b and, given the camera's focal
+/// length `focal_px`, the size the frames' silhouettes imply (b_i ‖R‖ / f), and the
+/// excitation's amplitude.
 fn draw_size_figure(
     dir: &Path,
-    scenario: &Scenario,
+    size_ft: f64,
+    focal_px: Option<f64>,
     t: &[f64],
     logged: &[Snapshot],
 ) -> Result<(), PlotError> {
@@ -361,14 +295,9 @@ fn draw_size_figure(
         Series::new("b̂ (Kalman)", filter(|b, _| b), TRUTH),
         Series::new("b̂ + 3σ", filter(|b, sigma| b + 3.0 * sigma), EXTRA),
         Series::new("b̂ - 3σ", filter(|b, sigma| b - 3.0 * sigma), EXTRA),
-        Series::new(
-            "b true",
-            vec![scenario.target.size_ft; logged.len()],
-            REFERENCE,
-        ),
+        Series::new("b true", vec![size_ft; logged.len()], REFERENCE),
     ];
-    if scenario.sensor.mode == SensorMode::Camera {
-        let focal_px = scenario.camera.focal_length_px();
+    if let Some(focal_px) = focal_px {
         let apparent = logged
             .iter()
             .map(|s| {

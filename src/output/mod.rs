@@ -1,11 +1,14 @@
-//! A run's outputs (DESIGN §4): the resolved scenario, telemetry, summary and plots, and the
+//! A run's outputs (docs/outputs.md): the resolved scenario, telemetry, summary and plots, and the
 //! driver that steps a simulation while writing them.
 
 pub mod aircraft_figures;
+pub mod columns;
+pub mod figure_set;
 pub mod figures;
 pub mod folder;
 pub mod frame_images;
 pub mod interrupt;
+pub mod outputs_doc;
 pub mod plots;
 pub mod preflight;
 pub mod summary;

@@ -1,4 +1,5 @@
-//! `summary.json`: the numbers a run is judged by (DESIGN §4).
+//! `summary.json`: the numbers a run is judged by (docs/design.md, How a run ends; its keys
+//! are listed in docs/outputs.md).
 
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::GimbalSection;
@@ -110,6 +111,45 @@ pub struct Summary {
     /// cameras).
     pub gimbal: Option<GimbalSummary>,
 }
+
+/// Every key of `summary.json` in the order [`Summary`] writes them, and what it holds (for
+/// `docs/outputs.md`; `tests/outputs_doc.rs` checks the list against a run's summary).
+#[rustfmt::skip]
+pub static SUMMARY_KEYS: &[(&str, &str)] = &[
+    ("scenario", "the scenario's name (its file stem)"),
+    ("status", "how the run ended: completed, intercepted, lost, diverged or interrupted"),
+    ("message", "why it stopped early (null if it did not)"),
+    ("duration_s", "simulated time, s"),
+    ("steps", "integration steps taken"),
+    ("frames", "camera frames rendered"),
+    ("wall_s", "wall-clock time of the simulation loop, s"),
+    ("realtime_factor", "simulated seconds per wall-clock second"),
+    ("b_true_ft", "the target's true size b, ft"),
+    ("b_hat_final_ft", "b̂ at the end, ft"),
+    ("law", "the guidance law: velocity or acceleration"),
+    ("estimator", "the estimator the guidance flew on: adaptive or kalman"),
+    ("kalman_b_hat_final_ft", "the Kalman filter's b̂ at the end, ft (null without a filter)"),
+    ("b_sigma_final_ft", "the Kalman filter's σ_b at the end, ft (null without a filter)"),
+    ("b_known_time_s", "when σ_b / b̂ first fell under `estimator.known_sigma_fraction`, s (null without a filter or if it never did)"),
+    ("d_hat_norm_final", "‖d̂‖ at the end, in the law's unit: 1/s (velocity law), ft/s (acceleration law)"),
+    ("intercept_time_s", "time of interception, s (null if none)"),
+    ("min_range_ft", "smallest ‖R‖ over the run, ft"),
+    ("rms_error_last20s_ft", "RMS of R - R_c per axis (n, e, d) over the last 20 s, ft"),
+    ("lost_frames", "frames in which the target was not measured"),
+    ("loss_episodes", "each run of frames without the target: start, frames, length, found again (camera runs)"),
+    ("noise_snr_db", "the SNR the noisy sensor realised, dB (noisy runs)"),
+    ("notes", "what the set-up decided, e.g. a Riccati observer gain that fell back to the fixed one (also printed)"),
+    ("centroid_rms_px", "RMS of the measured centroid minus the projected reference point, px (camera runs)"),
+    ("centroid_vs_silhouette_rms_px", "RMS of the measured centroid minus the exact centroid of the projected mesh's silhouette, px (camera runs)"),
+    ("length_rms_px", "RMS of the measured minus the true maximal length, px (camera runs)"),
+    ("apparent_size_last20s_ft", "the target size the frames of the last 20 s imply, ‖R‖ / aI, from the measured and from the projected-mesh maximal length (`measured`, `projected`; compare with b̂), ft (camera runs)"),
+    ("adapter", "the graphics adapter that rendered (camera runs)"),
+    ("per_frame_ms", "mean wall time per frame of render submission, readback, vision, truth, estimator, guidance, flight control, plant and `integration` (the steps as a whole), ms (camera runs)"),
+    ("frame_regions", "how the frames were drawn and measured: `windowed` in the tracking window, of which `redrawn_whole` drawn again whole and `binned` binned by `camera.measure_max_length_px`; `whole_untracked` without a track, `whole_saved` to be saved (camera runs)"),
+    ("stage_wall_s", "wall time of guidance, estimator, control, plant and all steps (`integration`) over the run, s"),
+    ("aircraft", "the largest |α| and |β| after the first 5 s, the airspeed and throttle ranges, the largest surface deflections beside their limits, and the ticks at which a command was clamped, per actuator (6-DOF runs)"),
+    ("gimbal", "the pan and tilt ranges (°) and the logged rows at which an axis sat within 0.1° of its limit (gimballed cameras)"),
+];
 
 /// The gimbal's travel over the logged rows.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

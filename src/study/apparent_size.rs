@@ -110,11 +110,3 @@ fn column(name: &str, value: Value) -> Column {
 fn number(x: Option<f64>) -> Value {
     x.filter(|x| x.is_finite()).map_or(Value::Null, Value::from)
 }
-
-/// The columns an apparent-size study plots by default.
-pub const DEFAULT_OUTCOMES: [&str; 4] = [
-    "size_measured_ft",
-    "size_mesh_ft",
-    "size_four_point_ft",
-    "ratio_measured_true",
-];

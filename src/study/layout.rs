@@ -3,8 +3,8 @@
 //! it tells a rerun whether the folder holds the same study (and so which cases are done),
 //! and tells `wingman sweep merge` how to lay out and plot shards without the study file.
 
-use super::apparent_size;
 use super::results::CaseRecord;
+use super::setting::SEED_KEY;
 use super::spec::StudyKind;
 use serde::{Deserialize, Serialize};
 
@@ -16,6 +16,14 @@ pub const SWEEP_OUTCOMES: [&str; 6] = [
     "lost_frames",
     "centroid_rms_px",
     "length_rms_px",
+];
+
+/// The columns an apparent-size study plots by default.
+pub const APPARENT_SIZE_OUTCOMES: [&str; 4] = [
+    "size_measured_ft",
+    "size_mesh_ft",
+    "size_four_point_ft",
+    "ratio_measured_true",
 ];
 
 /// One axis as `results.csv` shows it.
@@ -89,7 +97,7 @@ impl StudyLayout {
     pub fn setting_keys(&self) -> Vec<String> {
         let mut keys: Vec<String> = self.axes.iter().flat_map(|a| a.keys.clone()).collect();
         if self.replicated {
-            keys.push(super::plan::SEED_KEY.to_string());
+            keys.push(SEED_KEY.to_string());
         }
         keys
     }
@@ -124,7 +132,7 @@ impl StudyLayout {
             None => {
                 let defaults: &[&str] = match self.kind {
                     StudyKind::Sweep => &SWEEP_OUTCOMES,
-                    StudyKind::ApparentSize => &apparent_size::DEFAULT_OUTCOMES,
+                    StudyKind::ApparentSize => &APPARENT_SIZE_OUTCOMES,
                 };
                 defaults
                     .iter()

@@ -4,7 +4,8 @@
 //! relative orientation and range.
 //!
 //! - [`spec`]: the study file's schema; [`plan`]: its cases, validated before anything runs,
-//!   and the shards; [`layout`]: `plan.json`, what the results are made of.
+//!   and the shards; [`setting`]: one key a case sets; [`layout`]: `plan.json`, what the
+//!   results are made of.
 //! - [`run`]: the cases in parallel, resumable; [`workers`]: what each worker keeps across
 //!   cases; [`apparent_size`] and [`view`]: the apparent-size case.
 //! - [`results`]: a case's record and `results.csv`; [`outputs`]: the sweep folder;
@@ -18,6 +19,7 @@ pub mod plan;
 pub mod plots;
 pub mod results;
 pub mod run;
+pub mod setting;
 pub mod spec;
 pub mod view;
 pub mod workers;

@@ -4,6 +4,7 @@
 
 use super::StudyError;
 use super::layout::{AxisLayout, StudyLayout};
+use super::setting::{SEED_KEY, Setting, value_cell};
 use super::spec::{AxisSpec, Combine, MAX_AXIS_VALUES, StudyFile, StudyKind};
 use super::view::{VIEW_SECTION, View};
 use crate::scenario::Scenario;
@@ -36,35 +37,6 @@ impl Axis {
                 .map(|v| v.iter().map(value_cell).collect())
                 .collect(),
         }
-    }
-}
-
-/// One key set to one value by a case.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Setting {
-    /// `section.key`.
-    pub key: String,
-    /// The value.
-    pub value: toml::Value,
-}
-
-impl Setting {
-    /// The `--set` text: `section.key=value`, the value as TOML.
-    pub fn override_text(&self) -> String {
-        format!("{}={}", self.key, self.value)
-    }
-
-    /// The value as a `results.csv` cell: strings bare, everything else as TOML.
-    pub fn cell(&self) -> String {
-        value_cell(&self.value)
-    }
-}
-
-/// A value as a `results.csv` cell: strings bare, everything else as TOML.
-pub fn value_cell(value: &toml::Value) -> String {
-    match value {
-        toml::Value::String(s) => s.clone(),
-        other => other.to_string(),
     }
 }
 
@@ -279,9 +251,6 @@ impl Plan {
         Ok(())
     }
 }
-
-/// The key replicates set.
-pub const SEED_KEY: &str = "run.seed";
 
 /// `a = 1, b = x` for messages.
 fn describe(settings: &[Setting]) -> String {

@@ -2,9 +2,8 @@
 //! the cases a previous run completed, with progress (cases done, failed, time left).
 //!
 //! Camera cases render on one GPU device per worker thread, opened at its first camera case
-//! and kept in [`super::workers`]: on lavapipe (2 cores, 8 runs of 20 s of
-//! `vision_ch4_formation` on 2 workers) one device per worker took 4.2-4.4 s, one shared
-//! 5.5-7.0 s and one per run 5.7-6.6 s (`examples/sweep_gpu_sharing.rs`).
+//! and kept in [`super::workers`]: the fastest of the three ways `examples/sweep_gpu_sharing.rs`
+//! compares (docs/findings.md, Measurements behind the code and tests).
 
 use super::layout::StudyLayout;
 use super::plan::{Case, Plan, Shard};

@@ -2,7 +2,7 @@
 //! turned by yaw, pitch and roll relative to the camera, and the seed's flat four-point model
 //! of its apparent size (8.1)-(8.2).
 
-use super::plan::Setting;
+use super::setting::Setting;
 use crate::frames::{EulerAngles, Mat3, Vec3};
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use crate::sensing::CaptureGeometry;

@@ -1,5 +1,5 @@
 //! Helpers shared by the `render_*` tests: one GPU context per test binary (its tests run on
-//! several threads against one device, as DESIGN §6 expects), poses and pixel masks.
+//! several threads against one device), poses and pixel masks.
 #![allow(dead_code)]
 
 use std::sync::OnceLock;
@@ -11,7 +11,7 @@ use wingman::sensing::line_of_sight_body;
 use wingman::vision::VisionConfig;
 
 /// The shared GPU context. Panics (fails the test) with the install hint when there is no
-/// adapter: a skipped GPU test would hide a broken set-up (DESIGN §3).
+/// adapter: a skipped GPU test would hide a broken set-up (docs/design.md, Tests).
 pub fn gpu() -> &'static GpuContext {
     static GPU: OnceLock<Result<GpuContext, String>> = OnceLock::new();
     match GPU.get_or_init(|| GpuContext::new().map_err(|e| e.to_string())) {
