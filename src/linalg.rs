@@ -397,7 +397,7 @@ mod tests {
         assert!(is_hurwitz(&(&a - &sol.gain * &c)));
     }
 
-    /// (6.62) as SPEC writes it, without Q, for a Hurwitz A_m: the stabilising solution is
+    /// (6.62) as the seed writes it, without Q, for a Hurwitz A_m: the stabilising solution is
     /// X = 0 (no process noise, nothing to estimate), so L = 0. This is why the simulator
     /// adds the process-noise term Q.
     #[test]

@@ -101,10 +101,10 @@ pub struct CameraSection {
     /// Bring each held measurement forward to the current time with the follower's own known
     /// displacement and the estimated target drift (see `sim`); false holds r* as measured.
     pub compensate_delay: bool,
-    /// The camera's fixed pitch on the body, deg, positive up (SPEC §1's optional mounting
-    /// rotation; 0: camera = body). A fixed camera on an aircraft that flies at an angle of
-    /// attack looks above its flight path by α; a camera pitched down by about the α of its
-    /// usual speeds keeps a target at its own level near the image's centre.
+    /// The camera's fixed pitch on the body, deg, positive up (an optional mounting rotation
+    /// the seed's Chapter 3 leaves out; 0: camera = body). A fixed camera on an aircraft that
+    /// flies at an angle of attack looks above its flight path by α; a camera pitched down by
+    /// about the α of its usual speeds keeps a target at its own level near the image's centre.
     pub mount_pitch_deg: f64,
     /// The pan/tilt gimbal, when the camera rides one.
     pub gimbal: super::GimbalSection,
