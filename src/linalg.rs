@@ -372,8 +372,8 @@ mod tests {
         assert!(riccati_residual(&a, &c, &qm, &rm, &sol.x) < 1e-12);
     }
 
-    /// A 6-state, 2-output system with an unstable mode: relative residual below 1e-9 (the
-    /// issue's bound), X symmetric positive semidefinite, A - L C Hurwitz.
+    /// A 6-state, 2-output system with an unstable mode: relative residual below 1e-9, X
+    /// symmetric positive semidefinite, A - L C Hurwitz.
     #[test]
     fn larger_system_residual_and_stability() {
         let a = DMatrix::from_fn(6, 6, |i, j| {
