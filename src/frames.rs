@@ -1,4 +1,4 @@
-//! Reference frames and attitude conventions (SPEC §0).
+//! Reference frames and attitude conventions (docs/equations.md, Frames and angles).
 //!
 //! Inertial frame E is flat-Earth NED (x North, y East, z Down); an aircraft's body frame B has
 //! x forward, y right wing, z down. Attitudes are 3-2-1 Euler angles (roll φ, pitch θ, yaw ψ).
@@ -12,9 +12,9 @@ pub type Vec3 = Vector3<f64>;
 /// A 3x3 matrix of `f64`.
 pub type Mat3 = Matrix3<f64>;
 
-/// Standard gravity, ft/s^2 (SPEC §0).
+/// Standard gravity, ft/s^2.
 pub const GRAVITY_FPS2: f64 = 32.174;
-/// Sea-level air density, slug/ft^3 (SPEC §0).
+/// Sea-level air density, slug/ft^3.
 pub const SEA_LEVEL_DENSITY_SLUG_FT3: f64 = 0.002377;
 
 /// 3-2-1 Euler angles in radians.
@@ -38,7 +38,7 @@ impl EulerAngles {
         }
     }
 
-    /// L_BE, the direction-cosine matrix from NED to body (SPEC §0).
+    /// L_BE, the direction-cosine matrix from NED to body.
     pub fn body_from_ned(&self) -> Mat3 {
         let (sf, cf) = self.phi_rad.sin_cos();
         let (st, ct) = self.theta_rad.sin_cos();
@@ -69,7 +69,7 @@ impl EulerAngles {
         }
     }
 
-    /// The matrix P of SPEC §7 mapping body rates [p, q, r] to Euler-angle rates.
+    /// The matrix P of (7.16) mapping body rates [p, q, r] to Euler-angle rates.
     pub fn rates_from_body_rates_matrix(&self) -> Mat3 {
         let (sf, cf) = self.phi_rad.sin_cos();
         let (st, ct) = self.theta_rad.sin_cos();
@@ -98,8 +98,8 @@ pub fn wrap_angle_rad(angle_rad: f64) -> f64 {
 }
 
 /// Attitude of a body whose x axis is along `velocity_ned` (θ = γ, ψ = χ) with the given bank
-/// angle: the kinematic attitude of SPEC §2 ("Commands and the camera's field of view") and
-/// Remark 9. Returns `None` when the speed is zero (the heading is undefined).
+/// angle: the kinematic attitude of the seed's Remark 9 (docs/equations.md, Commands and the
+/// camera's field of view). Returns `None` when the speed is zero (the heading is undefined).
 pub fn attitude_along_velocity(velocity_ned_fps: &Vec3, bank_rad: f64) -> Option<EulerAngles> {
     let speed_fps = velocity_ned_fps.norm();
     if speed_fps <= 0.0 || !speed_fps.is_finite() {
@@ -110,7 +110,7 @@ pub fn attitude_along_velocity(velocity_ned_fps: &Vec3, bank_rad: f64) -> Option
     Some(EulerAngles::new(bank_rad, gamma_rad, chi_rad))
 }
 
-/// Coordinated-turn bank angle φ = atan(ψ̇ V / g) (SPEC §2, (7.14) with α = β = 0) for a
+/// Coordinated-turn bank angle φ = atan(ψ̇ V / g) ((7.14) with α = β = 0) for a
 /// velocity and acceleration in NED; ψ̇ is the rate of the horizontal course angle.
 pub fn coordinated_turn_bank_rad(velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> f64 {
     let horizontal_sq = velocity_ned_fps.x.powi(2) + velocity_ned_fps.y.powi(2);

@@ -372,8 +372,8 @@ mod tests {
         assert!(riccati_residual(&a, &c, &qm, &rm, &sol.x) < 1e-12);
     }
 
-    /// A 6-state, 2-output system with an unstable mode: relative residual below 1e-9 (the
-    /// issue's bound), X symmetric positive semidefinite, A - L C Hurwitz.
+    /// A 6-state, 2-output system with an unstable mode: relative residual below 1e-9, X
+    /// symmetric positive semidefinite, A - L C Hurwitz.
     #[test]
     fn larger_system_residual_and_stability() {
         let a = DMatrix::from_fn(6, 6, |i, j| {
@@ -397,7 +397,7 @@ mod tests {
         assert!(is_hurwitz(&(&a - &sol.gain * &c)));
     }
 
-    /// (6.62) as SPEC writes it, without Q, for a Hurwitz A_m: the stabilising solution is
+    /// (6.62) as the seed writes it, without Q, for a Hurwitz A_m: the stabilising solution is
     /// X = 0 (no process noise, nothing to estimate), so L = 0. This is why the simulator
     /// adds the process-noise term Q.
     #[test]

@@ -1,4 +1,4 @@
-//! Range and size from the follower's own motion (SPEC §9): a Kalman filter on
+//! Range and size from the follower's own motion (docs/equations.md): a Kalman filter on
 //! x = [r (3), d (3), a (3), β], with r = R/b the scaled relative position, d = V_T/b the scaled
 //! target velocity (1/s), a = a_T/b its acceleration (1/s²) and β = 1/b (1/ft):
 //! ```text
@@ -97,7 +97,7 @@ pub struct Innovation {
     pub normalised_sq: f64,
 }
 
-/// The Kalman filter of SPEC §9: posterior at the time of the last fused measurement.
+/// The Kalman filter of this module: posterior at the time of the last fused measurement.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TargetFilter {
     x: State,

@@ -1,11 +1,11 @@
-//! The estimator stage, between sensing and guidance (DESIGN §1): what the guidance law is
-//! given at each instant.
+//! The estimator stage, between sensing and guidance (docs/design.md, One tick): what the
+//! guidance law is given at each instant.
 //!
 //! - `adaptive` (the seed's, [`hold`]): the law estimates b and d itself; this stage hands it
 //!   r, continuous or the camera's held frame brought forward by the follower's own motion.
 //!   The Kalman filter may run beside it for comparison (`estimator.log_kalman`).
-//! - `kalman` ([`tracker`], [`kalman`], SPEC §9): a Kalman filter infers r, d, a and 1/b from
-//!   the measurements and the follower's own velocity; the law flies on its estimate.
+//! - `kalman` ([`tracker`], [`kalman`]): a Kalman filter infers r, d, a and 1/b from the
+//!   measurements and the follower's own velocity; the law flies on its estimate.
 
 pub mod aspect;
 pub mod hold;

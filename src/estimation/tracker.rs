@@ -1,4 +1,4 @@
-//! The Kalman estimator stage (`[estimator] kind = "kalman"`, SPEC §9): starts the filter of
+//! The Kalman estimator stage (`[estimator] kind = "kalman"`): starts the filter of
 //! [`super::kalman`] on the first measurement, fuses every camera frame at its capture time with
 //! a covariance mapped from pixel noise through the sensing transform's Jacobian (a 20-pixel
 //! silhouette at 200 ft counts for less than a 130-pixel one at 33 ft), or samples a continuous

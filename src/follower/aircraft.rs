@@ -3,7 +3,7 @@
 //!
 //! State slice: `[plant (STATE_LEN) | autopilot (AUTOPILOT_STATE_LEN) | V_F (3, acceleration
 //! law only)]`. The velocity law commands V_F itself (4.3); for the acceleration law the slice
-//! integrates V_F = V_F(0) + ∫ a_F (SPEC §7), V_F(0) the trimmed aircraft's inertial velocity.
+//! integrates V_F = V_F(0) + ∫ a_F, V_F(0) the trimmed aircraft's inertial velocity.
 //! In both cases the autopilot flies V_F (7.1)-(7.33).
 //!
 //! The aircraft starts trimmed in straight and level flight (`trim_level_flight`) at the

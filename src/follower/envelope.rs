@@ -4,8 +4,8 @@
 
 use super::aircraft::AircraftActuation;
 
-/// α and β are judged after this time, s (issue 5: "after the first 5 s", when the guidance's
-/// first transient has passed).
+/// α and β are judged after this time, s (the first 5 s, when the guidance's first transient
+/// has passed).
 pub const ANGLES_FROM_S: f64 = 5.0;
 
 /// Ticks at which the controller's command to an actuator was clamped to its limit.

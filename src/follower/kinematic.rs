@@ -2,7 +2,7 @@
 //! a commanded velocity (Chapter 4, 6.2: Ṙ_F = V_F) or a commanded inertial acceleration
 //! (Chapter 5, 6.3: Ṙ_F = V_F, V̇_F = a_F). It has no attitude dynamics of its own; its camera
 //! needs an attitude, so the body x axis turns to the direction of a velocity v (θ → γ,
-//! ψ → χ) and the wings to the coordinated-turn bank φ = atan(ψ̇ V / g) (SPEC §2, Remark 9),
+//! ψ → χ) and the wings to the coordinated-turn bank φ = atan(ψ̇ V / g) (Remark 9),
 //! through first-order lags of time constant τ.
 //!
 //! v is a state: when the follower realises accelerations it is V_F itself; when it realises
@@ -98,7 +98,7 @@ impl KinematicFollower {
         Vec3::new(phi_rate, theta_rate, psi_rate)
     }
 
-    /// Body rates [p, q, r] of a state slice, from its Euler-angle rates: H = P⁻¹ (SPEC §7).
+    /// Body rates [p, q, r] of a state slice, from its Euler-angle rates: H = P⁻¹.
     pub fn body_rates(&self, x: &[f64]) -> Vec3 {
         Self::attitude(x).body_rates_from_rates_matrix() * self.attitude_rates(x)
     }

@@ -1,4 +1,4 @@
-//! The follower stage as the simulation sees it (DESIGN §1, `[follower] model`): the
+//! The follower stage as the simulation sees it (`[follower] model`): the
 //! kinematic follower of the seed's Chapters 4-6 ([`KinematicFollower`]), or the 6-DOF
 //! aircraft flown by the Chapter 7 flight controller ([`AircraftFollower`]). Which kind of
 //! command it is given (V_F or a_F) is decided by the simulation and handed in with its

@@ -1,5 +1,5 @@
-//! `[acceleration]`: gains of the Chapter 5 acceleration guidance law (SPEC §5) and of its
-//! Chapter 6 observer-gain design (SPEC §6, (6.62)). The projection bound of b̂ and b̂(0) are
+//! `[acceleration]`: gains of the Chapter 5 acceleration guidance law and of its Chapter 6
+//! observer-gain design (6.62). The projection bound of b̂ and b̂(0) are
 //! shared with the velocity law and live in `[guidance]`; d̂, which is a filtered
 //! acceleration bound in ft/s here and not a scaled velocity, is bounded here.
 

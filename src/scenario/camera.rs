@@ -43,10 +43,10 @@ pub enum CameraPipeline {
     /// measurement and the follower's attitude (`vision::tracking`); the whole image at
     /// acquisition, after a lost frame, for a frame to be saved (`output.frames_every`), and
     /// again, in the same frame, when the target reaches the window's edge. The camera's cost
-    /// then follows the target, not the image size (issue 13), and the measurements are the
-    /// whole image's: to the bit on a noise-free uniform sky (formation.toml flies the same
-    /// telemetry), within 0.004 px on a gradient sky, and with pixel noise by less than a
-    /// new draw of the noise changes them (`tests/camera_window.rs`).
+    /// then follows the target, not the image size, and the measurements are the whole
+    /// image's: to the bit on a noise-free uniform sky (formation.toml flies the same
+    /// telemetry), within 0.004 px on a gradient sky, and with pixel noise by less than a new
+    /// draw of the noise changes them (`tests/camera_window.rs`).
     Window,
     /// Every frame whole: the reference the window is compared with.
     Whole,
@@ -101,19 +101,19 @@ pub struct CameraSection {
     /// Bring each held measurement forward to the current time with the follower's own known
     /// displacement and the estimated target drift (see `sim`); false holds r* as measured.
     pub compensate_delay: bool,
-    /// The camera's fixed pitch on the body, deg, positive up (SPEC §1's optional mounting
-    /// rotation; 0: camera = body). A fixed camera on an aircraft that flies at an angle of
-    /// attack looks above its flight path by α; a camera pitched down by about the α of its
-    /// usual speeds keeps a target at its own level near the image's centre.
+    /// The camera's fixed pitch on the body, deg, positive up (an optional mounting rotation
+    /// the seed's Chapter 3 leaves out; 0: camera = body). A fixed camera on an aircraft that
+    /// flies at an angle of attack looks above its flight path by α; a camera pitched down by
+    /// about the α of its usual speeds keeps a target at its own level near the image's centre.
     pub mount_pitch_deg: f64,
     /// The pan/tilt gimbal, when the camera rides one.
     pub gimbal: super::GimbalSection,
     /// The point of the silhouette the bearing and elevation (yI, zI) are measured to. The
     /// seed's is the centroid; an extended target's centroid is not at the depth of the points
     /// its maximal length spans (the wing tips, seen from behind), and as the follower moves
-    /// it shifts by parallax a few percent more than the target's reference point (measured
-    /// on vision_ch4_formation: the centroid's elevation moved 3.3% more), which a filter that
-    /// learns the range from the follower's own motion reads as a 3-4% smaller target.
+    /// it shifts by parallax a few percent more than the target's reference point, which a
+    /// filter that learns the range from the follower's own motion reads as a smaller target
+    /// (docs/findings.md, The bearing point).
     pub bearing_point: BearingPoint,
     /// A candidate pixel joins the target mask when at least this fraction of it is covered,
     /// in (0, 1]; lower keeps thin parts (a wing seen edge-on) connected.

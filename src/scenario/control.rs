@@ -78,23 +78,19 @@ pub struct AutopilotSection {
     /// (true): below the commanded speed at full throttle the climb waits until the speed is
     /// there. With false (the limits of steady speed) a follower slowed by a climb keeps
     /// climbing at the speed it has, and, the seed's thrust T ∝ V² being least at low speed,
-    /// may never gain the thrust to speed up (measured: held at 32-35 ft/s by a target
-    /// climbing 6 ft/s while accelerating to 50 ft/s, it fell 190 ft behind).
+    /// may never gain the thrust to speed up (docs/findings.md, Flight-path limits).
     pub climb_waits_for_speed: bool,
     /// When the descent limit holds γ_c above the command's, fly the command's horizontal
     /// air speed, V_c = ‖V_h‖ / cos γ_c (true), instead of its norm ‖V_F‖ (7.1) (false, the
     /// seed's). With the norm, a descent the airframe cannot fly (a sustained updraft holding
-    /// it high) turns the commanded vertical speed into horizontal speed: the follower flew
-    /// 62 ft/s over the ground behind a target at 59 ft/s, overtook it and lost it
-    /// (formation.toml, moderate turbulence, stream 2, measured). Climbs keep the norm: a
-    /// follower held low needs the speed (T ∝ V²), and with the horizontal speed two streams of
-    /// five fell 80 ft below a climbing target (measured).
+    /// it high) turns the commanded vertical speed into horizontal speed, and the follower
+    /// overtakes the target (the reason is in formation.toml). Climbs keep the norm: a
+    /// follower held low needs the speed (T ∝ V²; docs/findings.md, Flight-path limits).
     pub limited_descent_keeps_horizontal_speed: bool,
     /// The steepest descent keeps the deceleration the airspeed law asks for (true): above
     /// the commanded speed at idle the descent waits until the speed is there. With false (the
     /// limits of steady speed) a follower held high by an updraft and then let down dives at
-    /// the speed it has and overtakes the target (formation.toml, moderate turbulence,
-    /// measured). The deceleration is the one the airspeed law asks for toward the command's
+    /// the speed it has and overtakes the target (see formation.toml). The deceleration is the one the airspeed law asks for toward the command's
     /// norm, also when `limited_descent_keeps_horizontal_speed` flies less, so with both the
     /// excess speed goes only a little sooner (tests/control_flight.rs).
     pub descent_waits_for_speed: bool,

@@ -1,7 +1,8 @@
-//! `[estimator]`: what infers the target's range and size between sensing and guidance
-//! (DESIGN §1): the seed's adaptive laws, which estimate b̂ and d̂ inside the guidance law, or
-//! the Kalman filter of SPEC §9, which infers r, d, a and 1/b from the measurements and the
-//! follower's own velocity and hands them to the law (`estimation::kalman`).
+//! `[estimator]`: what infers the target's range and size between sensing and guidance: the
+//! seed's adaptive laws, which estimate b̂ and d̂ inside the guidance law, or the Kalman filter
+//! (docs/equations.md, Range and size from the follower's own motion), which infers r, d, a
+//! and 1/b from the measurements and the follower's own velocity and hands them to the law
+//! (`estimation::kalman`).
 
 use serde::{Deserialize, Serialize};
 
@@ -13,7 +14,8 @@ use super::check::{self, Check};
 pub enum EstimatorKind {
     /// The seed's adaptive laws (4.5), (5.20)-(5.41), (6.16): b̂ and d̂ adapt inside the law.
     Adaptive,
-    /// The Kalman filter of SPEC §9; the law flies on its estimates (certainty equivalence).
+    /// The Kalman filter (`estimation::kalman`); the law flies on its estimates (certainty
+    /// equivalence).
     Kalman,
 }
 
@@ -54,8 +56,8 @@ pub struct EstimatorSection {
     /// the target's reference point with its attitude at close range; its maximal length
     /// reads short by 1-7% with range and aspect.
     pub pixel_sigma_px: [f64; 3],
-    /// Factor on the measurement covariance (SPEC §9: about 2 keeps b̂ from sitting low on
-    /// the short-reading lengths; matched, b̂ sat 1-3% low in an independent study).
+    /// Factor on the measurement covariance (about 2 keeps b̂ from sitting low on the
+    /// short-reading lengths; matched, b̂ sat 1-3% low in an independent study).
     pub measurement_inflation: f64,
     /// σ of r per axis (scaled units) below which a continuous sensor's measurement is not
     /// trusted (the `perfect` sensor has none of its own).

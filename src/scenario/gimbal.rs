@@ -1,4 +1,5 @@
-//! `[camera.gimbal]`: the camera's pan/tilt gimbal (SPEC §10, `sensing::gimbal`).
+//! `[camera.gimbal]`: the camera's pan/tilt gimbal (docs/equations.md, Gimballed camera;
+//! `sensing::gimbal`).
 
 use super::check::{self, Check};
 use serde::{Deserialize, Serialize};

@@ -61,7 +61,7 @@ impl RunSection {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum TargetMotion {
-    /// The seed's piecewise velocity profile (SPEC §2, Section 4.4).
+    /// The seed's piecewise velocity profile (Section 4.4).
     SeedProfile,
     /// Constant velocity `straight_velocity_fps`.
     Straight,
@@ -118,7 +118,7 @@ pub const AIRCRAFT_MIN_SPEED_FPS: f64 = 35.0;
 /// limits; the seed flies 35-60 ft/s).
 pub const AIRCRAFT_MAX_SPEED_FPS: f64 = 100.0;
 /// Largest integration step with the 6-DOF follower, s: its roll mode has a time constant
-/// near 10-17 ms and its servos 25 ms (issue 5, SPEC §7).
+/// near 10-17 ms and its servos 25 ms.
 pub const AIRCRAFT_MAX_DT_S: f64 = 0.005;
 
 /// `[follower]`: the aircraft carrying the camera.
@@ -260,7 +260,8 @@ pub enum CommandFrame {
     /// with the lag `command_heading_lag_s` (see `guidance::command`).
     Heading,
     /// `command_ft` in the frame of the target's estimated velocity (x along it, y right, z
-    /// down), which follows the estimate with the lag `command_target_lag_s` (SPEC §11).
+    /// down), which follows the estimate with the lag `command_target_lag_s`
+    /// (docs/equations.md, Formation command in the target's velocity frame).
     Target,
 }
 
@@ -506,7 +507,7 @@ impl GuidanceSection {
     }
 }
 
-/// How the excitation amplitude a(t) is computed (SPEC §4).
+/// How the excitation amplitude a(t) is computed (4.31).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ExcitationMode {
@@ -517,8 +518,9 @@ pub enum ExcitationMode {
     /// a(t) from the integral over the last whole period, held through the next ((2.28), (5.27)).
     PerPeriod,
     /// a(t) = min(k_sigma σ_b(t), k1 - k3) + k3 from the Kalman estimator's uncertainty of b
-    /// (SPEC §9): large while b is unknown, fading once known (needs `estimator.kind =
-    /// "kalman"` or `estimator.log_kalman`).
+    /// (docs/equations.md, Range and size from the follower's own motion): large while b is
+    /// unknown, fading once known (needs `estimator.kind = "kalman"` or
+    /// `estimator.log_kalman`).
     Uncertainty,
 }
 
@@ -626,7 +628,7 @@ impl Default for OutputSection {
     }
 }
 
-/// A whole scenario: one section per stage of the loop (DESIGN §4).
+/// A whole scenario: one section per stage of the loop (docs/design.md, Scenarios).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields, default)]
 pub struct Scenario {

@@ -1,5 +1,5 @@
-//! `[sensor]`: where the guidance's measurement of r comes from (DESIGN §1), and the noise
-//! model of the `noisy` sensor (SPEC §6, seed (6.1)-(6.9)).
+//! `[sensor]`: where the guidance's measurement of r comes from, and the noise model of the
+//! `noisy` sensor ((6.1)-(6.9); docs/equations.md, Noisy measurements).
 
 use serde::{Deserialize, Serialize};
 

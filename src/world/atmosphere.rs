@@ -75,7 +75,7 @@ impl AtmosphereSample {
 }
 
 impl Default for AtmosphereSample {
-    /// Calm air at sea-level density (SPEC §0).
+    /// Calm air at sea-level density.
     fn default() -> Self {
         Self::calm(SEA_LEVEL_DENSITY_SLUG_FT3)
     }

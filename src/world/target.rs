@@ -1,5 +1,6 @@
-//! Target motion: the seed's piecewise velocity profile (SPEC §2, Section 4.4) integrated in
-//! closed form, or straight flight; and the target's attitude for rendering.
+//! Target motion: the seed's piecewise velocity profile (Section 4.4; docs/equations.md, The
+//! relative motion and the seed's scenario) integrated in closed form, or straight flight; and
+//! the target's attitude for rendering.
 
 use crate::frames::{EulerAngles, Vec3, attitude_along_velocity, coordinated_turn_bank_rad};
 use crate::scenario::{TargetMotion, TargetSection};
@@ -115,8 +116,8 @@ impl PiecewiseProfile {
     }
 }
 
-/// The seed's profile for V_Tx, V_Ty, V_Tz in ft/s (SPEC §2; the seed's "(36,50]" read as
-/// (38,50]).
+/// The seed's profile for V_Tx, V_Ty, V_Tz in ft/s (Section 4.4; the seed's "(36,50]", a
+/// typo, read as (38,50] so that the pieces join).
 fn seed_profile() -> [PiecewiseProfile; 3] {
     let w30 = PI / 30.0;
     let w15 = PI / 15.0;
@@ -274,7 +275,7 @@ mod tests {
         TargetMotionModel::from_section(&TargetSection::default())
     }
 
-    /// Each piece joins the next continuously (SPEC §2).
+    /// Each piece joins the next continuously.
     #[test]
     fn profile_is_continuous() {
         for axis in seed_profile() {
@@ -303,9 +304,10 @@ mod tests {
         assert_eq!(m.velocity_ned_fps(130.0), Vec3::new(0.0, -50.0, 0.0));
     }
 
-    /// Speed within about 35-60 ft/s (SPEC §2). SPEC's "acceleration within about 3.2 ft/s²"
-    /// holds per axis (the largest, 30π/30 = π ft/s², on x and y in (43, 73]); the norm is up
-    /// to √2 π plus the small vertical part, since x and y peak together.
+    /// Speed within about 35-60 ft/s (docs/equations.md, The relative motion and the seed's
+    /// scenario). Its "accelerations up to about 3.2 ft/s²" holds per axis (the largest,
+    /// 30π/30 = π ft/s², on x and y in (43, 73]); the norm is up to √2 π plus the small
+    /// vertical part, since x and y peak together.
     #[test]
     fn speed_and_acceleration_envelope() {
         let m = seed();

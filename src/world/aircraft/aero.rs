@@ -122,7 +122,8 @@ fn stall_blend(alpha_rad: f64, alpha0_rad: f64, sharpness_per_rad: f64) -> f64 {
 
 impl AircraftParams {
     /// Force and moment coefficients (Beard & McLain 2012, 4.9-4.15 with the stall blend on
-    /// C_L(α); SPEC §7 drag polar on the static C_L).
+    /// C_L(α); the drag polar C_D0 + K C_L² on the static C_L, docs/equations.md, The 6-DOF
+    /// follower).
     pub fn coefficients(
         &self,
         air: &AirAngles,

@@ -1,5 +1,5 @@
 //! The follower's 6-DOF equations of motion in a singularity-free body-axis form, equivalent to
-//! the seed's wind/body form (7.15)-(7.16) (SPEC §7 allows it):
+//! the seed's wind/body form (7.15)-(7.16) (docs/equations.md, The 6-DOF follower):
 //! ```text
 //! ṗ_NED = R(q) v                       (position)
 //! v̇     = F / m - ω × v                (v = [u, v, w]: inertial velocity in body axes)

@@ -1,4 +1,4 @@
-//! The follower's 6-DOF plant (seed Chapter 7, (7.15)-(7.19); SPEC §7): aircraft data,
+//! The follower's 6-DOF plant (seed Chapter 7, (7.15)-(7.19)): aircraft data,
 //! aerodynamics and thrust, actuators, equations of motion over a flat state, air data for the
 //! flight controller, and trim.
 //!

@@ -90,7 +90,7 @@ impl Geometry {
     }
 }
 
-/// Nondimensional aerodynamic derivatives (Beard & McLain 2012, eqs. 4.6-4.15; SPEC §7).
+/// Nondimensional aerodynamic derivatives (Beard & McLain 2012, eqs. 4.6-4.15).
 ///
 /// Rate derivatives (`_p`, `_q`, `_r`) multiply the nondimensional rates p̂ = b p / 2V,
 /// q̂ = c q / 2V, r̂ = b r / 2V; the others are per radian of α, β or a surface deflection.
@@ -475,7 +475,7 @@ impl AircraftParams {
         self.actuators.validate()
     }
 
-    /// Induced-drag factor K = 1 / (π e AR) of C_D = C_D0 + K C_L² (SPEC §7).
+    /// Induced-drag factor K = 1 / (π e AR) of C_D = C_D0 + K C_L².
     pub fn induced_drag_factor(&self) -> f64 {
         1.0 / (std::f64::consts::PI * self.aero.oswald_efficiency * self.geometry.aspect_ratio())
     }

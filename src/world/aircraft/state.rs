@@ -6,7 +6,7 @@
 //! actuator positions δe, δa, δr (rad), δT.
 //!
 //! The quaternion q is the rotation that carries the NED axes onto the body axes: its rotation
-//! matrix R(q) maps body components to NED components, R(q) = L_BEᵀ (SPEC §0), and for 3-2-1
+//! matrix R(q) maps body components to NED components, R(q) = L_BEᵀ (`frames`), and for 3-2-1
 //! Euler angles q = q_z(ψ) q_y(θ) q_x(φ).
 
 use nalgebra::{Quaternion, UnitQuaternion};
@@ -122,7 +122,7 @@ impl AircraftState {
         EulerAngles::from_body_from_ned(&self.body_from_ned())
     }
 
-    /// L_BE (SPEC §0): NED components to body components.
+    /// L_BE: NED components to body components.
     pub fn body_from_ned(&self) -> Mat3 {
         self.attitude.to_rotation_matrix().matrix().transpose()
     }
