@@ -65,7 +65,7 @@
 use crate::frames::{
     EulerAngles, GRAVITY_FPS2, Mat3, SEA_LEVEL_DENSITY_SLUG_FT3, Vec3, wrap_angle_rad,
 };
-use crate::guidance::projection::BallBound;
+use crate::projection::BallBound;
 use crate::scenario::AutopilotSection;
 use crate::scenario::check::{InvalidValue, require};
 use crate::state_block::{StateReader, StateWriter};
@@ -432,7 +432,7 @@ impl Autopilot {
     }
 
     /// Pulls every weight vector back into Ω_1 after an integration step (see
-    /// [`crate::guidance::projection`]).
+    /// [`crate::projection`]).
     pub fn enforce_bounds(&self, x: &mut [f64]) {
         let mut state = AutopilotState::unpack(x);
         for (k, w) in state.weights.iter_mut().enumerate() {

@@ -25,11 +25,11 @@
 //! a_F (the 6-DOF aircraft): the law then runs on y - ℓ/b̂.
 
 use super::compensation::ShortfallCompensation;
-use super::projection::{BallBound, EstimateBounds, IntervalBound};
 use super::shaping::{CommandShaping, ShapedCommand};
 use super::signals::GuidanceInput;
 use crate::frames::Vec3;
 use crate::linalg::solve_continuous_are;
+use crate::projection::{BallBound, EstimateBounds, IntervalBound};
 use crate::scenario::{AccelerationSection, GuidanceSection, ObserverGainMode};
 use crate::state_block::{StateReader, StateWriter};
 use nalgebra::{DMatrix, Matrix2, Vector2};
@@ -524,7 +524,7 @@ impl AccelerationGuidance {
             .map(|(c, lead)| c.lead_rate(&lead, &shortfall))
     }
 
-    /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`super::projection`]).
+    /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`crate::projection`]).
     pub fn enforce_bounds(&self, x: &mut [f64]) {
         let mut state = self.unpack(x);
         (state.b_hat_ft, state.d_hat_fps) = self.bounds.clamp(state.b_hat_ft, &state.d_hat_fps);

@@ -8,11 +8,11 @@
 //! compensation)]`.
 
 use super::compensation::VelocityLagCompensation;
-use super::projection::{BallBound, EstimateBounds, IntervalBound};
 use super::shaping::{CommandShaping, ShapedCommand};
 use super::signals::{ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput};
 use super::velocity_estimator::VelocityEstimator;
 use crate::frames::Vec3;
+use crate::projection::{BallBound, EstimateBounds, IntervalBound};
 use crate::scenario::GuidanceSection;
 use crate::state_block::{StateReader, StateWriter};
 use nalgebra::SMatrix;
@@ -253,7 +253,7 @@ impl VelocityGuidance {
         (g, b_rate_of(&g))
     }
 
-    /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`super::projection`]).
+    /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`crate::projection`]).
     pub fn enforce_bounds(&self, x: &mut [f64]) {
         let mut state = self.unpack(x);
         (state.b_hat_ft, state.d_hat_per_s) = self.bounds.clamp(state.b_hat_ft, &state.d_hat_per_s);
