@@ -31,7 +31,8 @@ use crate::guidance::signals::{CommandKind, FollowerCommand, GuidanceInput, Guid
 use crate::integrate::Rk4;
 use crate::render::GpuContext;
 use crate::scenario::{
-    ExcitationUnits, FollowerModel, GimbalKind, GuidanceLawKind, Mission, Scenario, SensorMode,
+    EstimatorKind, ExcitationUnits, FollowerModel, GimbalKind, GuidanceLawKind, Mission, Scenario,
+    SensorMode,
 };
 use crate::sensing::gimbal::{GIMBAL_STATE_NAMES, Gimbal, GimbalAngles};
 use crate::sensing::losses::{LossEpisode, LossLog};
@@ -240,8 +241,12 @@ impl Simulation {
             command_kind,
         })?;
         let compensate = scenario.follower.model == FollowerModel::Aircraft;
-        let kind = scenario.estimator.kind;
-        let (guidance, notes) = GuidanceLaw::new(g, &scenario.acceleration, kind, compensate)?;
+        let (guidance, notes) = match scenario.estimator.kind {
+            EstimatorKind::Adaptive => {
+                GuidanceLaw::adaptive(g, &scenario.acceleration, compensate)?
+            }
+            EstimatorKind::Kalman => (GuidanceLaw::on_estimate(g, compensate), Vec::new()),
+        };
         let mut sensor = Sensor::new(scenario, g.command_length_ft(), gpu)
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let estimator = Estimator::new(scenario, sensor.is_continuous());
