@@ -26,7 +26,7 @@
 
 use super::compensation::ShortfallCompensation;
 use super::shaping::{CommandShaping, ShapedCommand};
-use super::signals::GuidanceInput;
+use super::signals::{AccelerationGuidanceOutput, GuidanceInput};
 use crate::frames::Vec3;
 use crate::linalg::solve_continuous_are;
 use crate::projection::{BallBound, EstimateBounds, IntervalBound};
@@ -228,31 +228,6 @@ pub fn riccati_observer_gain(
             lambda_rps: axis.lambda_rps,
         })
     }
-}
-
-/// The law's output at one instant.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AccelerationGuidanceOutput {
-    /// Commanded follower acceleration a_F (5.38), NED, ft/s².
-    pub accel_cmd_ned_fps2: Vec3,
-    /// The scaled command y_c the law tracks (shaped, excitation included).
-    pub y_command: Vec3,
-    /// ẏ_c, including -b̂' y_c,ft / b̂², 1/s.
-    pub y_command_rate: Vec3,
-    /// Reference-model output y_m = C z_m.
-    pub y_model: Vec3,
-    /// Observer output C ẑ.
-    pub y_observer: Vec3,
-    /// Combined measurable output y_a = 2y - y_m - C ẑ (SPEC §5).
-    pub y_combined: Vec3,
-    /// Virtual control w_f = b̂ h - S_f d̂ (5.36), ft/s.
-    pub virtual_control_fps: Vec3,
-    /// Its exact derivative ẇ_f, ft/s².
-    pub virtual_control_rate_fps2: Vec3,
-    /// Tracking error of the measurement y - y_c (what the excitation amplitude integrates).
-    pub error: Vec3,
-    /// b̂', ft/s.
-    pub b_hat_rate_fps: f64,
 }
 
 /// Acceleration guidance (5.2)-(5.41), Remark 6, noisy form (6.39)-(6.42), with compensation

@@ -4,10 +4,12 @@
 //! simulation says the follower does not realise the command, the compensation of
 //! [`super::compensation`].
 
-use super::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
+use super::acceleration::AccelerationGuidance;
 use super::compensation::{ShortfallCompensation, VelocityLagCompensation};
 use super::on_estimate::{self, VelocityOnEstimate};
-use super::signals::{ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput};
+use super::signals::{
+    AccelerationGuidanceOutput, ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput,
+};
 use super::velocity::VelocityGuidance;
 use super::velocity_estimator::{VelocityEstimator, steady_state_estimator_gain};
 use crate::estimation::{LawEstimates, TargetMotionEstimate};

@@ -4,8 +4,7 @@
 use crate::estimation::{TargetEstimate, TargetMotionEstimate};
 use crate::follower::AircraftActuation;
 use crate::frames::{EulerAngles, Vec3, wrap_angle_rad};
-use crate::guidance::acceleration::AccelerationGuidanceOutput;
-use crate::guidance::signals::FollowerCommand;
+use crate::guidance::signals::{AccelerationGuidanceOutput, FollowerCommand};
 use crate::sim::Snapshot;
 use crate::vision::{BlobStatus, ImageMeasurement};
 use std::fs::File;
