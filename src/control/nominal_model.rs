@@ -9,7 +9,8 @@ use super::state::{AutopilotState, DRAG, PITCH, ROLL, YAW};
 use crate::frames::{SEA_LEVEL_DENSITY_SLUG_FT3, Vec3};
 use crate::world::aircraft::{AirAngles, CoefficientValues, ControlEffectiveness, Controls};
 
-/// What the controller knows of the aircraft at one instant (step 0 of [`super::Autopilot::derivative`]).
+/// What the controller knows of the aircraft at one instant (step 0 of
+/// [`super::Autopilot::derivative`]).
 pub(super) struct NominalModel {
     /// q̄ the inversions use, floored at the minimum control airspeed, lbf/ft².
     pub(super) qbar_control: f64,

@@ -1,10 +1,12 @@
-//! Acceleration guidance (Chapter 5, SPEC §5) and its noisy-measurement form (6.39)-(6.42).
+//! Acceleration guidance (Chapter 5; docs/equations.md, Acceleration guidance (Chapter 5)) and
+//! its noisy-measurement form (6.39)-(6.42).
 //!
 //! Per axis i the plant is x_i = [r_i, ṙ_i], ẋ = A x + (1/b) B (a_T - a_F), y = C x = r. The
 //! input-filtered coordinates z = x - (1/b) B (w + d) (5.2)-(5.5) have relative degree one;
 //! the law tracks a reference model z_m (5.6) with an observer ẑ (5.10), the virtual control
 //! w_f = b̂ h - S_f d̂ (5.33)-(5.36) and the backstepping command
-//! a_F = -Λ w_f - ẇ_f + y_a (5.38, sign fixed by SPEC §5), with ẇ_f computed exactly from
+//! a_F = -Λ w_f - ẇ_f + y_a (5.38, its sign fixed so that the Lyapunov argument
+//! (5.12)-(5.15), (5.43) holds), with ẇ_f computed exactly from
 //! the right-hand sides of every state it depends on.
 //!
 //! Interception (Remark 6) is the same law with y_c ≡ 0: feed R_c = 0, no excitation and
@@ -584,7 +586,7 @@ mod tests {
         assert!(dx.iter().all(|v| v.abs() < 1e-12), "{dx:?}");
     }
 
-    /// Sign check of (5.38) as SPEC fixes it: a target further ahead than commanded
+    /// Sign check of (5.38) as fixed here (module docs): a target further ahead than commanded
     /// (y = y_c + δ, δ > 0 on x) makes the follower accelerate towards it: at the equilibrium
     /// a_F,x = (b̂ K L + 2) δ > 0, and only the x axis reacts.
     #[test]

@@ -32,7 +32,8 @@ pub enum GuidanceLaw {
     Velocity(VelocityGuidance),
     /// Acceleration guidance (5.2)-(5.41), (6.39)-(6.42).
     Acceleration(AccelerationGuidance),
-    /// The velocity law flown on the Kalman estimator's estimates (SPEC §9).
+    /// The velocity law flown on the Kalman estimator's estimates (docs/equations.md, Beyond
+    /// the seed: range from the follower's own motion).
     VelocityOnEstimate(VelocityOnEstimate),
 }
 

@@ -149,7 +149,8 @@ pub struct AccelerationGuidanceOutput {
     pub y_model: Vec3,
     /// Observer output C ẑ.
     pub y_observer: Vec3,
-    /// Combined measurable output y_a = 2y - y_m - C ẑ (SPEC §5).
+    /// Combined measurable output y_a = 2y - y_m - C ẑ (docs/equations.md, Acceleration
+    /// guidance (Chapter 5)).
     pub y_combined: Vec3,
     /// Virtual control w_f = b̂ h - S_f d̂ (5.36), ft/s.
     pub virtual_control_fps: Vec3,

@@ -1,8 +1,9 @@
-//! Velocity guidance (Chapter 4, SPEC §4): V_F = b̂ g with adaptive estimates of the target's
-//! size b̂ and scaled velocity d̂, the command shaping of [`super::shaping`], and optionally
-//! the state estimator of Chapter 6 ((6.10)-(6.17)) for noisy measurements. For a follower
-//! that does not realise V_F (the 6-DOF aircraft) the law carries the lag compensation of
-//! [`super::compensation`]: it feeds the error back with k_F and adapts on ē = e - η.
+//! Velocity guidance ((4.3)-(4.5); docs/equations.md, Velocity guidance (Chapter 4)):
+//! V_F = b̂ g with adaptive estimates of the target's size b̂ and scaled velocity d̂, the command
+//! shaping of [`super::shaping`], and optionally the state estimator of Chapter 6 ((6.10)-(6.17))
+//! for noisy measurements. For a follower that does not realise V_F (the 6-DOF aircraft) the law
+//! carries the lag compensation of [`super::compensation`]: it feeds the error back with k_F and
+//! adapts on ē = e - η.
 //!
 //! State: [`VelocityState`], `[b̂, d̂ (3), r_cf (3), r̂ (3, with the estimator), η (3, with
 //! compensation)]`.
