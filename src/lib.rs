@@ -27,9 +27,10 @@
 //! reads and writes its slice through a typed block ([`state_block`]).
 //!
 //! Modules, in the order data flows (each imports only those before it): [`frames`],
-//! [`state_block`], [`linalg`], [`integrate`], [`scenario`], [`world`], [`render`], [`vision`],
-//! [`sensing`], [`estimation`], [`guidance`], [`control`], [`follower`], [`sim`], [`output`],
-//! [`study`] (sweeps of many runs, `wingman sweep`).
+//! [`state_block`], [`linalg`], [`integrate`], [`projection`] (the projection operator the
+//! adaptive laws of [`guidance`] and [`control`] share), [`scenario`], [`world`], [`render`],
+//! [`vision`], [`sensing`], [`estimation`], [`guidance`], [`control`], [`follower`], [`sim`],
+//! [`output`], [`study`] (sweeps of many runs, `wingman sweep`).
 #![warn(missing_docs)]
 
 pub mod control;
@@ -40,6 +41,7 @@ pub mod guidance;
 pub mod integrate;
 pub mod linalg;
 pub mod output;
+pub mod projection;
 pub mod render;
 pub mod scenario;
 pub mod sensing;

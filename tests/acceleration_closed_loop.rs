@@ -17,8 +17,8 @@ use std::cell::Cell;
 use std::f64::consts::PI;
 use wingman::frames::Vec3;
 use wingman::guidance::GuidanceInput;
-use wingman::guidance::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
-use wingman::guidance::excitation::ExcitationOffset;
+use wingman::guidance::acceleration::AccelerationGuidance;
+use wingman::guidance::signals::{AccelerationGuidanceOutput, ExcitationOffset};
 use wingman::integrate::Rk4;
 use wingman::scenario::{
     AccelerationSection, GuidanceSection, ObserverGainMode, TargetMotion, TargetSection,

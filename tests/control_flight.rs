@@ -528,7 +528,7 @@ fn course_through_south_is_unwrapped() {
 /// perturbations (Ŵ_DᵀΦ ≈ ΔD/m within 3 %, ŴᵀΦ ≈ J⁻¹Δ within 2 %); without it the same
 /// perturbations leave steady errors of degrees (backstepping without adaptation has no
 /// integral action: e_θ = J⁻¹ΔM / (k_q k_θ + 1) ≈ 7.8° here). This is the check on the sign of (7.23) (module
-/// docs of `control::autopilot`): with the seed's printed sign the drag estimate would run
+/// docs of `control::adaptation`): with the seed's printed sign the drag estimate would run
 /// away from the drag instead.
 #[test]
 fn unmodelled_drag_and_moments_are_learned() {

@@ -1,5 +1,5 @@
 //! Gaussian radial basis functions (2.34) of the flight condition (the weights are bounded by
-//! the ball projection of Appendix A, [`crate::guidance::projection::BallBound`]).
+//! the ball projection of Appendix A, [`crate::projection::BallBound`]).
 //!
 //! Inputs (7.18): ξ = (V, α, β, p, q, r) and u = (δT, δa, δe, δr), where u are the actuator
 //! *positions* (plant states), not the commands being computed, so Φ never closes an algebraic

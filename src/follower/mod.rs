@@ -218,7 +218,7 @@ impl Follower {
             ),
             Self::Aircraft(_) => {
                 let mut names = crate::world::aircraft::state::state_names();
-                names.extend(crate::control::autopilot::autopilot_state_names());
+                names.extend(crate::control::autopilot_state_names());
                 names.extend(element_names(
                     "autopilot",
                     &[("V_F integrated from a_F, ft/s", NED)],

@@ -1,10 +1,12 @@
-//! Acceleration guidance (Chapter 5, SPEC §5) and its noisy-measurement form (6.39)-(6.42).
+//! Acceleration guidance (Chapter 5; docs/equations.md, Acceleration guidance (Chapter 5)) and
+//! its noisy-measurement form (6.39)-(6.42).
 //!
 //! Per axis i the plant is x_i = [r_i, ṙ_i], ẋ = A x + (1/b) B (a_T - a_F), y = C x = r. The
 //! input-filtered coordinates z = x - (1/b) B (w + d) (5.2)-(5.5) have relative degree one;
 //! the law tracks a reference model z_m (5.6) with an observer ẑ (5.10), the virtual control
 //! w_f = b̂ h - S_f d̂ (5.33)-(5.36) and the backstepping command
-//! a_F = -Λ w_f - ẇ_f + y_a (5.38, sign fixed by SPEC §5), with ẇ_f computed exactly from
+//! a_F = -Λ w_f - ẇ_f + y_a (5.38, its sign fixed so that the Lyapunov argument
+//! (5.12)-(5.15), (5.43) holds), with ẇ_f computed exactly from
 //! the right-hand sides of every state it depends on.
 //!
 //! Interception (Remark 6) is the same law with y_c ≡ 0: feed R_c = 0, no excitation and
@@ -25,11 +27,11 @@
 //! a_F (the 6-DOF aircraft): the law then runs on y - ℓ/b̂.
 
 use super::compensation::ShortfallCompensation;
-use super::projection::{BallBound, EstimateBounds, IntervalBound};
 use super::shaping::{CommandShaping, ShapedCommand};
-use super::signals::GuidanceInput;
+use super::signals::{AccelerationGuidanceOutput, GuidanceInput};
 use crate::frames::Vec3;
 use crate::linalg::solve_continuous_are;
+use crate::projection::{BallBound, EstimateBounds, IntervalBound};
 use crate::scenario::{AccelerationSection, GuidanceSection, ObserverGainMode};
 use crate::state_block::{StateReader, StateWriter};
 use nalgebra::{DMatrix, Matrix2, Vector2};
@@ -228,31 +230,6 @@ pub fn riccati_observer_gain(
             lambda_rps: axis.lambda_rps,
         })
     }
-}
-
-/// The law's output at one instant.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AccelerationGuidanceOutput {
-    /// Commanded follower acceleration a_F (5.38), NED, ft/s².
-    pub accel_cmd_ned_fps2: Vec3,
-    /// The scaled command y_c the law tracks (shaped, excitation included).
-    pub y_command: Vec3,
-    /// ẏ_c, including -b̂' y_c,ft / b̂², 1/s.
-    pub y_command_rate: Vec3,
-    /// Reference-model output y_m = C z_m.
-    pub y_model: Vec3,
-    /// Observer output C ẑ.
-    pub y_observer: Vec3,
-    /// Combined measurable output y_a = 2y - y_m - C ẑ (SPEC §5).
-    pub y_combined: Vec3,
-    /// Virtual control w_f = b̂ h - S_f d̂ (5.36), ft/s.
-    pub virtual_control_fps: Vec3,
-    /// Its exact derivative ẇ_f, ft/s².
-    pub virtual_control_rate_fps2: Vec3,
-    /// Tracking error of the measurement y - y_c (what the excitation amplitude integrates).
-    pub error: Vec3,
-    /// b̂', ft/s.
-    pub b_hat_rate_fps: f64,
 }
 
 /// Acceleration guidance (5.2)-(5.41), Remark 6, noisy form (6.39)-(6.42), with compensation
@@ -524,7 +501,7 @@ impl AccelerationGuidance {
             .map(|(c, lead)| c.lead_rate(&lead, &shortfall))
     }
 
-    /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`super::projection`]).
+    /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`crate::projection`]).
     pub fn enforce_bounds(&self, x: &mut [f64]) {
         let mut state = self.unpack(x);
         (state.b_hat_ft, state.d_hat_fps) = self.bounds.clamp(state.b_hat_ft, &state.d_hat_fps);
@@ -609,7 +586,7 @@ mod tests {
         assert!(dx.iter().all(|v| v.abs() < 1e-12), "{dx:?}");
     }
 
-    /// Sign check of (5.38) as SPEC fixes it: a target further ahead than commanded
+    /// Sign check of (5.38) as fixed here (module docs): a target further ahead than commanded
     /// (y = y_c + δ, δ > 0 on x) makes the follower accelerate towards it: at the equilibrium
     /// a_F,x = (b̂ K L + 2) δ > 0, and only the x axis reacts.
     #[test]

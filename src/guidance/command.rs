@@ -1,17 +1,19 @@
-//! The user's relative-position command R_c and its derivative (SPEC §2, (3.13)-(3.14)).
+//! The user's relative-position command R_c and its derivative ((3.13)-(3.14); docs/equations.md,
+//! The relative motion and the seed's scenario (3.1-3.15, 4.4)).
 //!
 //! Frames:
 //! - `inertial`: R_c fixed in NED (the seed's simulations).
 //! - `body`: range, bearing, elevation in the follower's body frame, R_c = range L_BEᵀ T_IBc,
 //!   Ṙ_c = range L_BEᵀ (ω × T_IBc) (3.13)-(3.14).
-//! - `target` (SPEC §11): `command_ft` in the frame V of the target's velocity (x along it, y
-//!   right, z down): R_c = L_VE(χ_c, γ_c)ᵀ R_c,V, L_VE the §0 DCM at (0, γ_c, χ_c), its angles
-//!   following the heading and flight-path angle of a velocity through a first-order lag τ,
+//! - `target` (docs/equations.md, Beyond the seed): `command_ft` in the frame V of the target's
+//!   velocity (x along it, y right, z down): R_c = L_VE(χ_c, γ_c)ᵀ R_c,V, L_VE the DCM of
+//!   docs/equations.md, Frames and angles, at (0, γ_c, χ_c), its angles following the heading and
+//!   flight-path angle of a velocity through a first-order lag τ,
 //!   χ̇_c = wrap(χ̂ - χ_c)/τ, γ̇_c = (γ̂ - γ_c)/τ, and
-//!   Ṙ_c = (∂L_VEᵀ/∂χ χ̇_c + ∂L_VEᵀ/∂γ γ̇_c) R_c,V. The velocity it follows is the simulation's
-//!   choice ([`CommandInput::track_ned`]): the target's estimated velocity once the estimator
-//!   knows b; before, the frame holds still (the estimate's direction is wrong while b̂ is,
-//!   and a frame that followed the follower's own track would turn the command with every
+//!   Ṙ_c = (∂L_VEᵀ/∂χ χ̇_c + ∂L_VEᵀ/∂γ γ̇_c) R_c,V. The velocity it follows is
+//!   the simulation's choice ([`CommandInput::track_ned`]): the target's estimated velocity once
+//!   the estimator knows b; before, the frame holds still (the estimate's direction is wrong while
+//!   b̂ is, and a frame that followed the follower's own track would turn the command with every
 //!   turn of the follower, as the body frame does). The
 //!   seed's [32, 8, 0] ft puts the follower 32 ft behind and 8 ft to the left of the target,
 //!   14° right of the nose of a follower flying parallel to it; unlike the body and heading
@@ -25,9 +27,8 @@
 //!   the target stays at the commanded bearing once the follower flies the target's heading.
 //!   The level frame also keeps the target's size b identifiable: with the body frame the
 //!   commanded point tilts and turns with every motion an excitation asks of the follower,
-//!   against the excitation, and b̂ learns nothing from it (measured with perfect
-//!   measurements: b̂ 4.3 ft against 8.17 ft with the inertial command; a vertical excitation
-//!   with the heading frame gives 8.43 ft; `tests/vision_ch4_formation.rs`). A vertical
+//!   against the excitation, and b̂ learns nothing from it (docs/findings.md, What the
+//!   guidance and control code rests on). A vertical
 //!   excitation moves the level frame not at all; with the kinematic follower's 0.25 s
 //!   attitude lag a heading lag of 0.5 s is enough (`vision_ch4_formation.toml`).
 //!
@@ -81,7 +82,7 @@ fn ned_from_heading(psi_rad: f64) -> (Mat3, Mat3) {
 }
 
 /// L_VE(χ, γ)ᵀ, NED from the target-velocity frame, and its derivatives with respect to χ and
-/// γ (SPEC §0 with φ = 0, θ = γ, ψ = χ).
+/// γ (docs/equations.md, Frames and angles, with φ = 0, θ = γ, ψ = χ).
 fn ned_from_velocity_frame(chi_rad: f64, gamma_rad: f64) -> (Mat3, Mat3, Mat3) {
     let (sc, cc) = chi_rad.sin_cos();
     let (sg, cg) = gamma_rad.sin_cos();

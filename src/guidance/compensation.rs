@@ -2,17 +2,16 @@
 //! aircraft; beyond the seed, whose Chapters 4-6 follower flies the command exactly). With the
 //! kinematic follower no law carries it and each is the seed's law unchanged.
 //!
-//! **Velocity law.** The adaptive laws (4.5) and the estimator (6.10) rest on ṙ = d - V_F/b.
-//! An aircraft flies V_a ≠ V_F (its velocity lags the command by a second or two, its speed and
-//! turn rate are bounded). Then the seed's gain k = 3.5 on the error makes the loop through the
-//! aircraft oscillate (measured: stable up to k ≈ 0.5 with b̂ = b), and the shortfall g - g_a,
-//! g_a = V_a/b̂ the realised scaled velocity, drives e: the adaptation reads it as a wrong b̂
-//! and d̂ and winds up (measured: b̂ runs to its bound within seconds and the follower loses
-//! the target). The law therefore flies V_F = b̂ (k_F e + d̂ - ṙ_c) with a gentler k_F
-//! (`guidance.k_aircraft`) and, with the follower's realised velocity V_a (its own
-//! navigation), runs its adaptation on a compensated error, as command-filtered backstepping
-//! does (Farrell, Polycarpou, Sharma and Dong, "Command filtered backstepping", IEEE TAC
-//! 54(6), 2009). The lag error η obeys
+//! **Velocity law.** The adaptive laws (4.5) and the estimator (6.10) rest on ṙ = d - V_F/b. An
+//! aircraft flies V_a ≠ V_F (its velocity lags the command by a second or two, its speed and turn
+//! rate are bounded). Then the seed's gain k = 3.5 on the error makes the loop through the aircraft
+//! oscillate, and the shortfall g - g_a, g_a = V_a/b̂ the realised scaled velocity, drives e: the
+//! adaptation reads it as a wrong b̂ and d̂ and winds up (docs/findings.md, What the guidance and
+//! control code rests on). The law therefore flies V_F = b̂ (k_F e + d̂ - ṙ_c) with a gentler k_F
+//! (`guidance.k_aircraft`) and, with the follower's realised velocity V_a (its own navigation),
+//! runs its adaptation on a compensated error, as command-filtered backstepping does (Farrell,
+//! Polycarpou, Sharma and Dong, "Command filtered backstepping", IEEE TAC 54(6), 2009). The lag
+//! error η obeys
 //! ```text
 //! η' = -k η + (k - k_F) e + (g - g_a),   ē = e - η   ⇒   ē' = -k ē + d̃ - (b̃/b) g_a
 //! ```
@@ -24,7 +23,7 @@
 //! **Acceleration law.** Its design assumes the follower flies V_F = V_F(0) + ∫ a_F; an
 //! aircraft's velocity V_a lags V_F by a second or two and is bounded. Left alone, the lag
 //! enters y as if the target had manoeuvred, the observer, d̂ and b̂ chase it and a_F grows
-//! until the follower loses the target (measured). The follower's navigation gives the
+//! until the follower loses the target. The follower's navigation gives the
 //! shortfall s = V_F - V_a; its leaky integral, the lead ℓ' = s - ℓ/τ (ft), is how far the
 //! follower is behind where a_F would have put it, recently. The law runs on y - ℓ/b̂, the
 //! measurement as if the follower had realised its commands over the last τ; a shortfall that

@@ -1,32 +1,10 @@
 //! Intelligent excitation (4.31, 2.28): R*_c = R_c + a(t) sin(ωt) E, with an amplitude that
 //! grows with the recent tracking error and fades to k3 once the error is small.
 
-use super::signals::ExcitationErrors;
+use super::signals::{ExcitationErrors, ExcitationOffset};
 use crate::frames::Vec3;
 use crate::scenario::{ExcitationError, ExcitationMode, ExcitationSection, ExcitationUnits};
 use std::collections::VecDeque;
-
-/// The excitation offset a sin(ωt) E and its rate as the laws add them to the command after the
-/// shaping filter: given in ft (the law divides by b̂, (4.14)) or in scaled units (added as
-/// they are), per `excitation.units`; the other pair is zero.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct ExcitationOffset {
-    /// Offset in ft, NED.
-    pub ned_ft: Vec3,
-    /// Its rate, ft/s.
-    pub rate_ned_fps: Vec3,
-    /// Offset in scaled units, NED.
-    pub scaled: Vec3,
-    /// Its rate, 1/s.
-    pub scaled_rate_per_s: Vec3,
-}
-
-impl ExcitationOffset {
-    /// The offset in ft for the size estimate b̂ (scaled offsets times b̂).
-    pub fn in_ft(&self, b_hat_ft: f64) -> Vec3 {
-        self.ned_ft + self.scaled * b_hat_ft
-    }
-}
 
 /// Amplitude state of the intelligent excitation. Fed once per tick with eᵀe; evaluated at
 /// any time within the next step.

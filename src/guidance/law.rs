@@ -4,18 +4,18 @@
 //! simulation says the follower does not realise the command, the compensation of
 //! [`super::compensation`].
 
-use super::acceleration::{AccelerationGuidance, AccelerationGuidanceOutput};
+use super::acceleration::AccelerationGuidance;
 use super::compensation::{ShortfallCompensation, VelocityLagCompensation};
 use super::on_estimate::{self, VelocityOnEstimate};
-use super::signals::{ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput};
+use super::signals::{
+    AccelerationGuidanceOutput, ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput,
+};
 use super::velocity::VelocityGuidance;
 use super::velocity_estimator::{VelocityEstimator, steady_state_estimator_gain};
 use crate::estimation::{LawEstimates, TargetMotionEstimate};
 use crate::frames::{Mat3, Vec3};
 use crate::linalg::LinalgError;
-use crate::scenario::{
-    AccelerationSection, EstimatorGainMode, EstimatorKind, GuidanceLawKind, GuidanceSection,
-};
+use crate::scenario::{AccelerationSection, EstimatorGainMode, GuidanceLawKind, GuidanceSection};
 
 /// Why a guidance law could not be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -32,27 +32,22 @@ pub enum GuidanceLaw {
     Velocity(VelocityGuidance),
     /// Acceleration guidance (5.2)-(5.41), (6.39)-(6.42).
     Acceleration(AccelerationGuidance),
-    /// The velocity law flown on the Kalman estimator's estimates (SPEC §9).
+    /// The velocity law flown on the Kalman estimator's estimates (docs/equations.md, Beyond
+    /// the seed: range from the follower's own motion).
     VelocityOnEstimate(VelocityOnEstimate),
 }
 
 impl GuidanceLaw {
-    /// The law of a `[guidance]` (and `[acceleration]`) section, on the estimates of the
-    /// estimator `estimator`, compensating for a follower that does not realise the command
-    /// when `compensate`, and the notes its design leaves for the run's log (the estimator
-    /// gain in use; a Riccati observer gain that fell back to the fixed one).
-    pub fn new(
+    /// The seed's adaptive law of a `[guidance]` (and `[acceleration]`) section, in which b̂
+    /// and d̂ adapt inside the law, compensating for a follower that does not realise the
+    /// command when `compensate`, and the notes its design leaves for the run's log (the
+    /// estimator gain in use; a Riccati observer gain that fell back to the fixed one).
+    pub fn adaptive(
         g: &GuidanceSection,
         acceleration: &AccelerationSection,
-        estimator: EstimatorKind,
         compensate: bool,
     ) -> Result<(Self, Vec<String>), GuidanceSetupError> {
         let mut notes = Vec::new();
-        if estimator == EstimatorKind::Kalman {
-            let gain = if compensate { g.k_aircraft } else { g.k };
-            let law = VelocityOnEstimate::new(g, gain);
-            return Ok((Self::VelocityOnEstimate(law), notes));
-        }
         match g.law {
             GuidanceLawKind::Velocity => {
                 let estimator = if g.estimator {
@@ -82,6 +77,13 @@ impl GuidanceLaw {
                 Ok((Self::Acceleration(law), notes))
             }
         }
+    }
+
+    /// The velocity law flown on the Kalman estimator's estimates, with the gentler gain
+    /// `k_aircraft` when it compensates for a follower that does not realise the command.
+    pub fn on_estimate(g: &GuidanceSection, compensate: bool) -> Self {
+        let gain = if compensate { g.k_aircraft } else { g.k };
+        Self::VelocityOnEstimate(VelocityOnEstimate::new(g, gain))
     }
 
     /// Length of the law's state slice.
@@ -211,7 +213,7 @@ mod tests {
     use crate::scenario::ObserverGainMode;
 
     fn build(g: &GuidanceSection, a: &AccelerationSection) -> (GuidanceLaw, Vec<String>) {
-        GuidanceLaw::new(g, a, EstimatorKind::Adaptive, false).expect("builds")
+        GuidanceLaw::adaptive(g, a, false).expect("builds")
     }
 
     /// The law follows `[guidance] law`; a Riccati observer gain that falls back leaves a
@@ -249,7 +251,7 @@ mod tests {
         for law in [GuidanceLawKind::Velocity, GuidanceLawKind::Acceleration] {
             g.law = law;
             let plain = build(&g, &a).0.state_len();
-            let compensated = GuidanceLaw::new(&g, &a, EstimatorKind::Adaptive, true)
+            let compensated = GuidanceLaw::adaptive(&g, &a, true)
                 .expect("builds")
                 .0
                 .state_len();

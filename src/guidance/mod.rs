@@ -1,9 +1,9 @@
 //! Guidance: the adaptive laws that turn the scaled relative position r into a follower
 //! command ([`law`] chooses between [`velocity`] and [`acceleration`]), with what they share:
 //! the command frames ([`command`]), the shaping of the scaled command ([`shaping`]), the
-//! intelligent excitation ([`excitation`]), the projection bounds ([`projection`]), the
-//! compensation for a follower that does not realise the command ([`compensation`]) and the
-//! signals in and out ([`signals`]).
+//! intelligent excitation ([`excitation`]), the compensation for a follower that does not
+//! realise the command ([`compensation`]) and the signals in and out ([`signals`]). The
+//! projection bounds of the laws' estimates are [`crate::projection`]'s.
 
 pub mod acceleration;
 pub mod command;
@@ -11,7 +11,6 @@ pub mod compensation;
 pub mod excitation;
 pub mod law;
 pub mod on_estimate;
-pub mod projection;
 pub mod shaping;
 pub mod signals;
 pub mod velocity;

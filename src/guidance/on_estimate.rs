@@ -1,5 +1,6 @@
-//! The seed's velocity law flown on the Kalman estimator's estimates (SPEC §9, certainty
-//! equivalence): with b̂ = 1/β̂, d̂ and r̂ from the filter, e = r̂ - r_c and
+//! The seed's velocity law flown on the Kalman estimator's estimates (docs/equations.md, Beyond the
+//! seed: range from the follower's own motion; certainty equivalence): with b̂ = 1/β̂, d̂ and r̂
+//! from the filter, e = r̂ - r_c and
 //! ```text
 //! V_F = b̂ (k_F e + d̂ - ṙ_c)       (4.3) with the filter's estimates in place of (4.5)'s
 //! ```

@@ -2,12 +2,13 @@
 //! (4.14), smoothed by the Chapter 4 shaping filter, with the excitation added after the filter
 //! (4.31), and its rate (4.15).
 //!
-//! Shaping filter (SPEC §4): ṙ_cf = -p (r_cf - R_c/b̂) + Ṙ_c/b̂, started at the first
-//! measurement r(0). For the seed's constant inertial R_c this is the seed's filter. In the
-//! target frame, which turns at ω with the target (not with the follower), the filter runs in
-//! that frame: ṙ_cf = ω × r_cf - p (r_cf - R_c/b̂) + (Ṙ_c - ω × R_c)/b̂, so that a slot still
-//! being approached from afar turns with the target around it (in NED the follower would fly
-//! the target's new heading while the point it closes on stayed on the old side, and the
+//! Shaping filter (docs/equations.md, Velocity guidance (Chapter 4)):
+//! ṙ_cf = -p (r_cf - R_c/b̂) + Ṙ_c/b̂, started at the first measurement r(0). For the seed's
+//! constant inertial R_c this is the seed's filter. In the target frame, which turns at ω with
+//! the target (not with the follower), the filter runs in that frame:
+//! ṙ_cf = ω × r_cf - p (r_cf - R_c/b̂) + (Ṙ_c - ω × R_c)/b̂, so that a slot still being
+//! approached from afar turns with the target around it (in NED the follower would fly the
+//! target's new heading while the point it closes on stayed on the old side, and the
 //! target would leave the camera's view in the first turn). A command
 //! that turns (body, heading frames) has Ṙ_c ≠ 0, and the feed-forward Ṙ_c/b̂ lets r_cf turn
 //! with it instead of lagging every turn by 1/p (10 s at the seed's pole). (Shaping R_c/b̂ by

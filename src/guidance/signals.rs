@@ -2,8 +2,6 @@
 //! the excitation in; the follower's command and the signals telemetry and the excitation read
 //! out.
 
-use super::acceleration::AccelerationGuidanceOutput;
-use super::excitation::ExcitationOffset;
 use crate::estimation::TargetEstimate;
 use crate::frames::Vec3;
 
@@ -88,6 +86,28 @@ impl GuidanceInput {
     }
 }
 
+/// The excitation offset a sin(ωt) E and its rate as the laws add them to the command after the
+/// shaping filter: given in ft (the law divides by b̂, (4.14)) or in scaled units (added as
+/// they are), per `excitation.units`; the other pair is zero.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ExcitationOffset {
+    /// Offset in ft, NED.
+    pub ned_ft: Vec3,
+    /// Its rate, ft/s.
+    pub rate_ned_fps: Vec3,
+    /// Offset in scaled units, NED.
+    pub scaled: Vec3,
+    /// Its rate, 1/s.
+    pub scaled_rate_per_s: Vec3,
+}
+
+impl ExcitationOffset {
+    /// The offset in ft for the size estimate b̂ (scaled offsets times b̂).
+    pub fn in_ft(&self, b_hat_ft: f64) -> Vec3 {
+        self.ned_ft + self.scaled * b_hat_ft
+    }
+}
+
 /// The errors whose energy sets the intelligent excitation's amplitude (4.31), (5.27).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ExcitationErrors {
@@ -114,4 +134,30 @@ pub struct GuidanceOutput {
     pub excitation_errors: ExcitationErrors,
     /// The acceleration law's internal signals (y_m, C ẑ, y_a, w_f, …).
     pub acceleration: Option<AccelerationGuidanceOutput>,
+}
+
+/// The acceleration law's output at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AccelerationGuidanceOutput {
+    /// Commanded follower acceleration a_F (5.38), NED, ft/s².
+    pub accel_cmd_ned_fps2: Vec3,
+    /// The scaled command y_c the law tracks (shaped, excitation included).
+    pub y_command: Vec3,
+    /// ẏ_c, including -b̂' y_c,ft / b̂², 1/s.
+    pub y_command_rate: Vec3,
+    /// Reference-model output y_m = C z_m.
+    pub y_model: Vec3,
+    /// Observer output C ẑ.
+    pub y_observer: Vec3,
+    /// Combined measurable output y_a = 2y - y_m - C ẑ (docs/equations.md, Acceleration
+    /// guidance (Chapter 5)).
+    pub y_combined: Vec3,
+    /// Virtual control w_f = b̂ h - S_f d̂ (5.36), ft/s.
+    pub virtual_control_fps: Vec3,
+    /// Its exact derivative ẇ_f, ft/s².
+    pub virtual_control_rate_fps2: Vec3,
+    /// Tracking error of the measurement y - y_c (what the excitation amplitude integrates).
+    pub error: Vec3,
+    /// b̂', ft/s.
+    pub b_hat_rate_fps: f64,
 }

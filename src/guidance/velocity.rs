@@ -1,18 +1,19 @@
-//! Velocity guidance (Chapter 4, SPEC §4): V_F = b̂ g with adaptive estimates of the target's
-//! size b̂ and scaled velocity d̂, the command shaping of [`super::shaping`], and optionally
-//! the state estimator of Chapter 6 ((6.10)-(6.17)) for noisy measurements. For a follower
-//! that does not realise V_F (the 6-DOF aircraft) the law carries the lag compensation of
-//! [`super::compensation`]: it feeds the error back with k_F and adapts on ē = e - η.
+//! Velocity guidance ((4.3)-(4.5); docs/equations.md, Velocity guidance (Chapter 4)):
+//! V_F = b̂ g with adaptive estimates of the target's size b̂ and scaled velocity d̂, the command
+//! shaping of [`super::shaping`], and optionally the state estimator of Chapter 6 ((6.10)-(6.17))
+//! for noisy measurements. For a follower that does not realise V_F (the 6-DOF aircraft) the law
+//! carries the lag compensation of [`super::compensation`]: it feeds the error back with k_F and
+//! adapts on ē = e - η.
 //!
 //! State: [`VelocityState`], `[b̂, d̂ (3), r_cf (3), r̂ (3, with the estimator), η (3, with
 //! compensation)]`.
 
 use super::compensation::VelocityLagCompensation;
-use super::projection::{BallBound, EstimateBounds, IntervalBound};
 use super::shaping::{CommandShaping, ShapedCommand};
 use super::signals::{ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput};
 use super::velocity_estimator::VelocityEstimator;
 use crate::frames::Vec3;
+use crate::projection::{BallBound, EstimateBounds, IntervalBound};
 use crate::scenario::GuidanceSection;
 use crate::state_block::{StateReader, StateWriter};
 use nalgebra::SMatrix;
@@ -253,7 +254,7 @@ impl VelocityGuidance {
         (g, b_rate_of(&g))
     }
 
-    /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`super::projection`]).
+    /// Clamps b̂ and d̂ back into Ω_1 after an integration step (see [`crate::projection`]).
     pub fn enforce_bounds(&self, x: &mut [f64]) {
         let mut state = self.unpack(x);
         (state.b_hat_ft, state.d_hat_per_s) = self.bounds.clamp(state.b_hat_ft, &state.d_hat_per_s);

@@ -6,7 +6,7 @@
 use crate::estimation::{TargetEstimate, TargetMotionEstimate};
 use crate::follower::AircraftActuation;
 use crate::frames::{EulerAngles, Vec3, wrap_angle_rad};
-use crate::guidance::acceleration::AccelerationGuidanceOutput;
+use crate::guidance::signals::AccelerationGuidanceOutput;
 use crate::guidance::signals::FollowerCommand;
 use crate::sim::{GimbalReading, Snapshot};
 use crate::vision::{BlobStatus, ImageMeasurement};

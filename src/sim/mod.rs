@@ -242,8 +242,7 @@ impl Simulation {
             command_kind,
         })?;
         let compensate = scenario.follower.model == FollowerModel::Aircraft;
-        let kind = scenario.estimator.kind;
-        let (guidance, notes) = GuidanceLaw::new(g, &scenario.acceleration, kind, compensate)?;
+        let (guidance, notes) = guidance_law(scenario, compensate)?;
         let mut sensor = Sensor::new(scenario, g.command_length_ft(), gpu)
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let estimator = estimator_of(scenario, sensor.is_continuous());
@@ -774,6 +773,20 @@ impl Simulation {
             guidance: self.guidance.state_names(),
         };
         self.layout.describe(i, &names)
+    }
+}
+
+/// The guidance law for the scenario's estimator: the seed's adaptive laws, or the velocity law
+/// on the Kalman estimate; compensating for a follower that does not realise the command when
+/// `compensate`.
+fn guidance_law(
+    scenario: &Scenario,
+    compensate: bool,
+) -> Result<(GuidanceLaw, Vec<String>), GuidanceSetupError> {
+    let g = &scenario.guidance;
+    match scenario.estimator.kind {
+        EstimatorKind::Adaptive => GuidanceLaw::adaptive(g, &scenario.acceleration, compensate),
+        EstimatorKind::Kalman => Ok((GuidanceLaw::on_estimate(g, compensate), Vec::new())),
     }
 }
 

@@ -1,4 +1,5 @@
-//! The projection operator of Appendix A (SPEC §3), for a scalar interval and a vector ball.
+//! The projection operator of Appendix A (Proj in (4.5); docs/equations.md, Velocity guidance
+//! (Chapter 4)), for a scalar interval and a vector ball.
 //!
 //! For a convex f with Ω_c = {θ : f(θ) ≤ c}:
 //! Proj(θ, y) = y if f(θ) < 0 or ∇fᵀy ≤ 0, else y - (∇f ∇fᵀ y / ‖∇f‖²) f(θ).

@@ -1,0 +1,198 @@
+//! Step 1 of the controller: V_F → V_c, γ_c, χ_c (7.1)-(7.3), on the air-relative command
+//! of [`super::wind`]; γ in (7.20) is the air-relative flight path, as in (7.15).
+//!
+//! - γ_c is kept between the steepest descent and climb the thrust range allows at steady
+//!   speed ([`super::reference::limit_flight_path`]): a commanded speed change does not bend
+//!   the path (with the speed reference's rate V̇_m in the limits, a follower slowing at idle
+//!   would be held level or climbing while told to descend); the slowing waits.
+//! - V_c is kept within [`min_airspeed_cmd_fps`, `max_airspeed_cmd_fps`]: a margin above the
+//!   stall speed, and a top speed the seed's thrust model T ∝ V² lacks (its excess thrust at
+//!   full throttle grows with V², so an unbounded command, e.g. from a guidance law closing a
+//!   gap, would accelerate the aircraft without end).
+//! - Beyond the seed, each off by default: `climb_waits_for_speed` and
+//!   `descent_waits_for_speed` keep in the climb and descent limits the acceleration or
+//!   deceleration the airspeed law asks for (a slow follower gains speed before it climbs, a
+//!   fast one sheds it before it dives); `limited_descent_keeps_horizontal_speed` flies a
+//!   descent the limit holds short at the command's horizontal speed, V_c = ‖V_h‖ / cos γ_c,
+//!   not at its norm; `weave_period_s` turns a command slower than the aircraft can fly into
+//!   S-turns: χ_c ± acos(‖V_h‖ / (V_min cos γ_c)), the side alternating every half period,
+//!   which keeps the commanded speed along the course.
+
+use super::control_law::ControlLaw;
+use super::nominal_model::NominalModel;
+use super::prefilter::FilteredCommand;
+use super::reference::{VelocityReference, flight_path_for_thrust_rad, limit_flight_path};
+use super::signals::AutopilotInput;
+use super::state::AutopilotState;
+use super::wind::air_velocity_ned_fps;
+use crate::frames::Vec3;
+use crate::world::aircraft::AirData;
+
+/// Largest course offset of an S-turn leg (60°: half the commanded speed along the course).
+const MAX_WEAVE_OFFSET_RAD: f64 = std::f64::consts::FRAC_PI_3;
+
+/// Step 1's references.
+pub(super) struct VelocityReferences {
+    /// χ_c of the air-relative command, rad (None when it is vertical or zero).
+    pub(super) course_rad: Option<f64>,
+    /// V_c, ft/s.
+    pub(super) airspeed_cmd_fps: f64,
+    /// V_m and V̇_m.
+    pub(super) airspeed_ref: FilteredCommand,
+    /// e_V = V - V_m, ft/s.
+    pub(super) airspeed_error_fps: f64,
+    /// γ of the air-relative velocity, rad.
+    pub(super) air_flight_path_rad: f64,
+    /// γ_c before and after the flight-path limits, rad.
+    pub(super) raw_flight_path_rad: f64,
+    pub(super) flight_path_cmd_rad: f64,
+}
+
+/// The S-turn leg after `flown_s` of flight: +1 (right of the commanded course) for the first
+/// half of each `weave_period_s`, -1 (left) for the second; +1 without S-turns (period 0).
+pub fn weave_side(flown_s: f64, weave_period_s: f64) -> f64 {
+    if weave_period_s > 0.0 && (flown_s / weave_period_s).fract() >= 0.5 {
+        -1.0
+    } else {
+        1.0
+    }
+}
+
+impl ControlLaw {
+    /// Step 1: the wind estimate, then V_F → V_c, γ_c, χ_c (held at the filter states for a
+    /// non-finite command), the airspeed prefilter, the flight-path limits and the S-turn's
+    /// course offset.
+    pub(super) fn velocity_references(
+        &self,
+        state: &AutopilotState,
+        input: &AutopilotInput,
+        model: &NominalModel,
+        rates: &mut AutopilotState,
+    ) -> VelocityReferences {
+        let g = &self.gains;
+        let air = &input.air_data;
+        let air_velocity_cmd = self.air_velocity_cmd_ned_fps(state, input, rates);
+        let air_flight_path_rad = if air.airspeed_fps > 0.0 {
+            (-air_velocity_ned_fps(air).z / air.airspeed_fps)
+                .clamp(-1.0, 1.0)
+                .asin()
+        } else {
+            0.0
+        };
+        let reference = VelocityReference::from_velocity_ned(&air_velocity_cmd);
+        let norm_cmd_fps = reference
+            .map_or(state.airspeed_filter[1], |r| r.airspeed_fps)
+            .clamp(g.min_airspeed_cmd_fps, g.max_airspeed_cmd_fps);
+        let raw_flight_path_rad = reference.map_or(air_flight_path_rad, |r| r.flight_path_rad);
+        // What the airspeed law (7.20) asks of the thrust beyond holding the speed, for the
+        // norm of the command (the flight-path limits keep it).
+        let norm_ref = self.airspeed_filter.derivative(
+            &state.airspeed_filter,
+            norm_cmd_fps,
+            &mut rates.airspeed_filter,
+        );
+        let airspeed_error_fps = air.airspeed_fps - norm_ref.value;
+        let speed_demand_fps2 = norm_ref.rate - g.airspeed_gain_per_s * airspeed_error_fps;
+        let flight_path_cmd_rad =
+            self.limited_flight_path(raw_flight_path_rad, air, model, speed_demand_fps2);
+        // A descent held short of the command (the descent limit raised it).
+        let descent_limited = reference.is_some() && flight_path_cmd_rad > raw_flight_path_rad;
+        let (airspeed_cmd_fps, airspeed_ref) =
+            if descent_limited && g.limited_descent_keeps_horizontal_speed {
+                let cmd = self.horizontal_airspeed_cmd_fps(&air_velocity_cmd, flight_path_cmd_rad);
+                let filtered = self.airspeed_filter.derivative(
+                    &state.airspeed_filter,
+                    cmd,
+                    &mut rates.airspeed_filter,
+                );
+                (cmd, filtered)
+            } else {
+                (norm_cmd_fps, norm_ref)
+            };
+        let weave_offset_rad = self.weave_offset_rad(&air_velocity_cmd, flight_path_cmd_rad);
+        VelocityReferences {
+            course_rad: reference
+                .and_then(|r| r.course_rad)
+                .map(|course| course + input.weave_side * weave_offset_rad),
+            airspeed_cmd_fps,
+            airspeed_ref,
+            airspeed_error_fps,
+            air_flight_path_rad,
+            raw_flight_path_rad,
+            flight_path_cmd_rad,
+        }
+    }
+
+    /// γ_c kept between the steepest descent and climb that (7.20) can hold with the
+    /// throttle inside its range less the margins ([`limit_flight_path`]); unchanged with
+    /// `flight_path_limits` off. The limits are those of steady speed (module docs), with
+    /// the drag correction Ŵ_DᵀΦ; with `climb_waits_for_speed` the climb's also keeps the
+    /// acceleration `speed_demand_fps2` the airspeed law asks for (when positive).
+    fn limited_flight_path(
+        &self,
+        raw_rad: f64,
+        air: &AirData,
+        model: &NominalModel,
+        speed_demand_fps2: f64,
+    ) -> f64 {
+        let g = &self.gains;
+        if !g.flight_path_limits {
+            return raw_rad;
+        }
+        let thrust_per_throttle_lbf = model.effectiveness.thrust_per_throttle_lbf;
+        let full = thrust_per_throttle_lbf * self.params.actuators.throttle.max;
+        let idle = thrust_per_throttle_lbf * self.params.actuators.throttle.min;
+        let margin = g.thrust_margin_fraction * (full - idle);
+        let at_thrust = |thrust: f64, specific_force_fps2: f64| {
+            flight_path_for_thrust_rad(
+                thrust,
+                air.alpha_rad,
+                air.beta_rad,
+                model.nominal_drag_lbf,
+                self.params.mass.mass_slug,
+                specific_force_fps2,
+            )
+        };
+        let steady = model.drag_correction_fps2;
+        let climbing = if g.climb_waits_for_speed {
+            steady + speed_demand_fps2.max(0.0)
+        } else {
+            steady
+        };
+        let descending = if g.descent_waits_for_speed {
+            steady + speed_demand_fps2.min(0.0)
+        } else {
+            steady
+        };
+        limit_flight_path(
+            raw_rad,
+            at_thrust(idle + margin, descending),
+            at_thrust(full - margin, climbing),
+        )
+    }
+
+    /// V_c = ‖V_h‖ / cos γ_c: the command's horizontal air speed on the limited path, within
+    /// [`min_airspeed_cmd_fps`, `max_airspeed_cmd_fps`], ft/s.
+    fn horizontal_airspeed_cmd_fps(&self, air_velocity_cmd: &Vec3, flight_path_rad: f64) -> f64 {
+        let g = &self.gains;
+        (air_velocity_cmd.x.hypot(air_velocity_cmd.y) / flight_path_rad.cos())
+            .clamp(g.min_airspeed_cmd_fps, g.max_airspeed_cmd_fps)
+    }
+
+    /// The course offset of an S-turn, rad: when the commanded horizontal air speed is below
+    /// the slowest the aircraft flies on the commanded path, V_min cos γ_c, the aircraft flies
+    /// V_min at acos(V_h,cmd / (V_min cos γ_c)) (at most [`MAX_WEAVE_OFFSET_RAD`]) off the
+    /// commanded course, which keeps the commanded speed along it. 0 with `weave_period_s` 0.
+    fn weave_offset_rad(&self, air_velocity_cmd: &Vec3, flight_path_cmd_rad: f64) -> f64 {
+        let g = &self.gains;
+        if g.weave_period_s <= 0.0 {
+            return 0.0;
+        }
+        let slowest_horizontal_fps = g.min_airspeed_cmd_fps * flight_path_cmd_rad.cos();
+        let horizontal_fps = air_velocity_cmd.x.hypot(air_velocity_cmd.y);
+        (horizontal_fps / slowest_horizontal_fps)
+            .min(1.0)
+            .acos()
+            .min(MAX_WEAVE_OFFSET_RAD)
+    }
+}
