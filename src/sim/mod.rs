@@ -36,7 +36,8 @@ use crate::scenario::{
 use crate::sensing::gimbal::{GIMBAL_STATE_NAMES, Gimbal, GimbalAngles};
 use crate::sensing::losses::{LossEpisode, LossLog};
 use crate::sensing::{
-    CameraSensor, CaptureGeometry, FrameRecord, NoisySensor, Sensor, SensorError,
+    CameraSensor, CaptureGeometry, FollowerPose, FrameRecord, NoisySensor, Sensor, SensorConfig,
+    SensorError,
 };
 use crate::world::target::{TargetMotionModel, TargetState};
 use layout::StateLayout;
@@ -242,8 +243,9 @@ impl Simulation {
         let compensate = scenario.follower.model == FollowerModel::Aircraft;
         let kind = scenario.estimator.kind;
         let (guidance, notes) = GuidanceLaw::new(g, &scenario.acceleration, kind, compensate)?;
-        let mut sensor = Sensor::new(scenario, g.command_length_ft(), gpu)
-            .map_err(|e| SimError::Sensor(Box::new(e)))?;
+        let sensor_config = SensorConfig::of(scenario, g.command_length_ft());
+        let mut sensor =
+            Sensor::new(&sensor_config, gpu).map_err(|e| SimError::Sensor(Box::new(e)))?;
         let estimator = Estimator::new(scenario, sensor.is_continuous());
         let target = TargetMotionModel::from_section(&scenario.target);
         let gimbal = (scenario.sensor.mode == SensorMode::Camera
@@ -260,7 +262,10 @@ impl Simulation {
         sensor.draw_initial_noise(&geometry);
         let r0 = geometry.relative_ned_ft / scenario.target.size_ft;
         let r_first = sensor
-            .continuous_measurement(&geometry.relative_ned_ft, &geometry.camera_from_ned())
+            .continuous_measurement(
+                &geometry.relative_ned_ft,
+                &geometry.navigation.camera_from_ned(),
+            )
             .unwrap_or(r0);
         let layout = StateLayout::new(
             follower_x.len(),
@@ -270,7 +275,7 @@ impl Simulation {
         );
         let mut state = follower_x;
         state.extend(gimbal_x);
-        state.extend(FormationCommand::initial_state(&geometry.follower_attitude));
+        state.extend(FormationCommand::initial_state(&geometry.follower.attitude));
         state.extend(guidance.initial_state(&r_first));
         let mut sim = Self {
             rk4: Rk4::new(state.len()),
@@ -437,8 +442,7 @@ impl Simulation {
                     source: Box::new(e),
                 })?;
         let started = Instant::now();
-        let follower_x = self.layout.split(&self.state).follower;
-        let velocity = self.follower.track_ned_fps(follower_x);
+        let velocity = geometry.navigation.velocity_ned_fps;
         let first = match delivered {
             Some(record) => {
                 self.losses.record(record.t_s, record.r_measured.is_some());
@@ -467,7 +471,7 @@ impl Simulation {
         if self.estimator.tracker().is_none() || !self.sensor.is_sample_tick(self.tick) {
             return;
         }
-        let body_from_ned = geometry.camera_from_ned();
+        let body_from_ned = geometry.navigation.camera_from_ned();
         let relative = &geometry.relative_ned_ft;
         if let Some(r_star) = self.sensor.continuous_measurement(relative, &body_from_ned) {
             let variance = self.sensor.continuous_variance(relative, &body_from_ned);
@@ -475,7 +479,7 @@ impl Simulation {
                 self.time_s(),
                 &r_star,
                 variance,
-                &geometry.follower_position_ned_ft,
+                &geometry.navigation.position_ned_ft,
                 follower_velocity_ned_fps,
             );
         }
@@ -816,14 +820,17 @@ fn capture_geometry(
     t_s: f64,
     camera_from_body: &Mat3,
 ) -> CaptureGeometry {
-    let follower_position_ned_ft = follower.position_ned_ft(follower_x);
-    CaptureGeometry {
-        relative_ned_ft: target.position_ned_ft(t_s) - follower_position_ned_ft,
-        follower_position_ned_ft,
-        follower_attitude: follower.attitude(follower_x),
+    let pose = FollowerPose {
+        position_ned_ft: follower.position_ned_ft(follower_x),
+        velocity_ned_fps: follower.track_ned_fps(follower_x),
+        attitude: follower.attitude(follower_x),
         camera_from_body: *camera_from_body,
-        target_attitude: target.state(t_s).attitude,
-    }
+    };
+    CaptureGeometry::exact(
+        target.position_ned_ft(t_s) - pose.position_ned_ft,
+        target.state(t_s).attitude,
+        pose,
+    )
 }
 
 #[cfg(test)]
