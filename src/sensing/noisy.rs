@@ -1,4 +1,4 @@
-//! The `noisy` sensor of the seed's Chapter 6 (SPEC §6): the perfect measurement with white
+//! The `noisy` sensor of the seed's Chapter 6 (`docs/equations.md`, Noisy measurements): the perfect measurement with white
 //! noise, r* = r + n_r (6.8), or noise on the image measurements (yI, zI, bI) propagated
 //! through the sensing transform (6.1)-(6.3).
 //!
