@@ -72,6 +72,12 @@ impl CaptureGeometry {
         }
     }
 
+    /// L_CB L_BE, NED to camera axes, as the follower's navigation knows it: the rotation
+    /// sensing turns measurements with.
+    pub fn camera_from_ned(&self) -> Mat3 {
+        self.navigation.camera_from_ned()
+    }
+
     /// The target's true pose in the true camera axes (what a frame draws).
     pub fn pose(&self) -> TargetPoseInCamera {
         let camera_from_ned = self.follower.camera_from_ned();

@@ -122,7 +122,7 @@ impl Sensor {
             Self::Perfect { .. } => Ok(None),
             Self::Noisy(sensor) => {
                 if tick > 0 && sensor.is_sample_tick(tick) {
-                    let body_from_ned = geometry.navigation.camera_from_ned();
+                    let body_from_ned = geometry.camera_from_ned();
                     sensor.draw(&geometry.relative_ned_ft, &body_from_ned);
                 }
                 Ok(None)
@@ -135,7 +135,7 @@ impl Sensor {
     /// Draws the noisy sensor's first sample, for the measurement the filters start at.
     pub fn draw_initial_noise(&mut self, geometry: &CaptureGeometry) {
         if let Self::Noisy(sensor) = self {
-            let body_from_ned = geometry.navigation.camera_from_ned();
+            let body_from_ned = geometry.camera_from_ned();
             sensor.draw(&geometry.relative_ned_ft, &body_from_ned);
         }
     }

@@ -243,9 +243,8 @@ impl Simulation {
         let compensate = scenario.follower.model == FollowerModel::Aircraft;
         let kind = scenario.estimator.kind;
         let (guidance, notes) = GuidanceLaw::new(g, &scenario.acceleration, kind, compensate)?;
-        let sensor_config = SensorConfig::of(scenario, g.command_length_ft());
-        let mut sensor =
-            Sensor::new(&sensor_config, gpu).map_err(|e| SimError::Sensor(Box::new(e)))?;
+        let mut sensor = Sensor::new(&SensorConfig::of(scenario, g.command_length_ft()), gpu)
+            .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let estimator = Estimator::new(scenario, sensor.is_continuous());
         let target = TargetMotionModel::from_section(&scenario.target);
         let gimbal = (scenario.sensor.mode == SensorMode::Camera
@@ -262,10 +261,7 @@ impl Simulation {
         sensor.draw_initial_noise(&geometry);
         let r0 = geometry.relative_ned_ft / scenario.target.size_ft;
         let r_first = sensor
-            .continuous_measurement(
-                &geometry.relative_ned_ft,
-                &geometry.navigation.camera_from_ned(),
-            )
+            .continuous_measurement(&geometry.relative_ned_ft, &geometry.camera_from_ned())
             .unwrap_or(r0);
         let layout = StateLayout::new(
             follower_x.len(),
@@ -471,7 +467,7 @@ impl Simulation {
         if self.estimator.tracker().is_none() || !self.sensor.is_sample_tick(self.tick) {
             return;
         }
-        let body_from_ned = geometry.navigation.camera_from_ned();
+        let body_from_ned = geometry.camera_from_ned();
         let relative = &geometry.relative_ned_ft;
         if let Some(r_star) = self.sensor.continuous_measurement(relative, &body_from_ned) {
             let variance = self.sensor.continuous_variance(relative, &body_from_ned);

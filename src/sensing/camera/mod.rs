@@ -177,7 +177,7 @@ impl CameraSensor {
         geometry: &CaptureGeometry,
     ) -> Result<Option<FrameRecord>, SensorError> {
         let index = self.schedule.next_index();
-        let camera_from_ned = geometry.navigation.camera_from_ned();
+        let camera_from_ned = geometry.camera_from_ned();
         let (region, window, factor) = self.drawing.plan(index, &camera_from_ned);
         let exposure = self.schedule.expose(t_s, geometry);
         let pending = self.drawing.begin(&exposure, &region, window, factor)?;
@@ -233,7 +233,7 @@ impl CameraSensor {
                     .measure_whole(&frame, selection, &mut self.timings)?
             }
         };
-        let camera_from_ned = exposure.geometry.navigation.camera_from_ned();
+        let camera_from_ned = exposure.geometry.camera_from_ned();
         self.drawing
             .observe(exposure.index, &blob, &camera_from_ned);
         Ok(self.record(exposure, blob))
@@ -243,7 +243,7 @@ impl CameraSensor {
     fn record(&mut self, exposure: &Exposure, blob: BlobMeasurement) -> FrameRecord {
         let truth_started = Instant::now();
         let geometry = &exposure.geometry;
-        let camera_from_ned = geometry.navigation.camera_from_ned();
+        let camera_from_ned = geometry.camera_from_ned();
         let intrinsics = *self.drawing.intrinsics();
         let pose = geometry.pose();
         let measured = self.metering.image_measurement(&blob, &intrinsics);
