@@ -18,7 +18,7 @@ use wingman::frames::{EulerAngles, Vec3};
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{GpuContext, ImageRegion, RenderSettings, Renderer, TargetMesh};
 use wingman::scenario::Scenario;
-use wingman::sensing::{CameraSensor, CaptureGeometry};
+use wingman::sensing::{CameraConfig, CameraSensor, CaptureGeometry, FollowerPose};
 use wingman::vision::{BlobSelection, TrackingWindow, VisionConfig, VisionPipeline};
 
 fn frame_pipeline(c: &mut Criterion) {
@@ -102,13 +102,11 @@ fn frame_pipeline(c: &mut Criterion) {
 /// swaying by a degree so that the tracker's window moves.
 fn slot_geometry(index: u64) -> CaptureGeometry {
     let sway = 0.017 * (0.2 * index as f64).sin();
-    CaptureGeometry {
-        relative_ned_ft: Vec3::new(32.0, 8.0, 0.0),
-        follower_position_ned_ft: Vec3::zeros(),
-        follower_attitude: EulerAngles::new(sway, 0.02, sway),
-        target_attitude: EulerAngles::new(0.1, 0.02, 0.0),
-        camera_from_body: Mat3::identity(),
-    }
+    CaptureGeometry::exact(
+        Vec3::new(32.0, 8.0, 0.0),
+        EulerAngles::new(0.1, 0.02, 0.0),
+        FollowerPose::at_origin(EulerAngles::new(sway, 0.02, sway)),
+    )
 }
 
 fn camera_capture(c: &mut Criterion) {
@@ -125,7 +123,7 @@ fn camera_capture(c: &mut Criterion) {
             let path = std::path::Path::new("scenarios/formation.toml");
             let camera = Scenario::load(path, &overrides)
                 .map_err(|e| e.to_string())
-                .and_then(|s| CameraSensor::new(&s).map_err(|e| e.to_string()));
+                .and_then(|s| CameraSensor::new(&CameraConfig::of(&s)).map_err(|e| e.to_string()));
             let mut camera = match camera {
                 Ok(camera) => camera,
                 Err(e) => {

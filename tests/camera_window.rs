@@ -32,7 +32,7 @@ use wingman::frames::{EulerAngles, Mat3, Vec3};
 use wingman::render::camera::CameraIntrinsics;
 use wingman::render::{Background, CameraImage, PixelNoise, RenderSettings, Renderer, Sky};
 use wingman::sensing::camera::WindowCounts;
-use wingman::sensing::{CameraSensor, CaptureGeometry};
+use wingman::sensing::{CameraConfig, CameraSensor, CaptureGeometry, FollowerPose};
 use wingman::sim::{Simulation, StepOutcome};
 use wingman::vision::{BlobMeasurement, BlobSelection, BlobStatus, TrackingWindow, VisionPipeline};
 
@@ -199,7 +199,7 @@ fn camera_with(overrides: &[&str]) -> CameraSensor {
     let mut keys = overrides.to_vec();
     keys.push("output.frames_every=0");
     let scenario = common::load("formation", &keys);
-    CameraSensor::new(&scenario).unwrap_or_else(|e| panic!("{e}"))
+    CameraSensor::new(&CameraConfig::of(&scenario)).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Frame `k` of a sequence: the target 60 ft ahead, 12° right, drifting; a 35° roll of the
@@ -212,13 +212,11 @@ fn geometry(k: u64) -> CaptureGeometry {
         6..12 => (0.21, 0.6),
         _ => (0.21 - 0.45, 0.6),
     };
-    CaptureGeometry {
-        relative_ned_ft: Vec3::new(60.0 * bearing.cos(), 60.0 * bearing.sin() + drift, -4.0),
-        follower_position_ned_ft: Vec3::zeros(),
-        follower_attitude: EulerAngles::new(roll, 0.02, 0.0),
-        target_attitude: EulerAngles::new(0.3, 0.05, 0.4),
-        camera_from_body: Mat3::identity(),
-    }
+    CaptureGeometry::exact(
+        Vec3::new(60.0 * bearing.cos(), 60.0 * bearing.sin() + drift, -4.0),
+        EulerAngles::new(0.3, 0.05, 0.4),
+        FollowerPose::at_origin(EulerAngles::new(roll, 0.02, 0.0)),
+    )
 }
 
 #[test]

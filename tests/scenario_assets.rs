@@ -172,7 +172,9 @@ fn mesh_loading_grows_nearly_linearly() {
     )
     .expect("valid scenario");
     let started = Instant::now();
-    let mesh = wingman::sensing::camera::load_target_mesh(&scenario).expect("mesh loads");
+    let mesh =
+        wingman::sensing::camera::load_target_mesh(&wingman::sensing::CameraConfig::of(&scenario))
+            .expect("mesh loads");
     let elapsed = started.elapsed();
     assert_eq!(mesh.vertices_ft.len(), 120_000);
     // Scaled to the target's 8 ft: the sphere's diameter.

@@ -2,8 +2,8 @@
 //! the measurement (centroid cross, maximal-length segment, status line).
 
 use crate::render::image::{CameraImage, ImageSaveError};
-use crate::sensing::CameraSensor;
 use crate::sensing::gimbal::GimbalAngles;
+use crate::sensing::{CameraConfig, CameraSensor};
 use crate::sim::GimbalReading;
 use crate::vision::overlay::{draw_caption, draw_measurement_overlay};
 use crate::vision::{BlobMeasurement, ImageSizeError};
@@ -152,7 +152,7 @@ pub fn render_frame_at(
             _ => break,
         }
     }
-    let mut camera = CameraSensor::new(scenario)?;
+    let mut camera = CameraSensor::new(&CameraConfig::of(scenario))?;
     let geometry = sim.capture_geometry();
     camera.capture_now(sim.time_s(), &geometry)?;
     let Some((frame, record, blob)) = camera.last_frame() else {

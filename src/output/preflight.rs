@@ -3,6 +3,7 @@
 //! frames), each refused above a documented limit with the estimate and the key to change.
 
 use crate::scenario::{Scenario, ScenarioError, ScenarioSource, SensorMode};
+use crate::sensing::CameraConfig;
 use crate::sensing::camera::load_target_mesh;
 use crate::sim::Snapshot;
 
@@ -22,7 +23,8 @@ pub fn check(scenario: &Scenario, source: &ScenarioSource) -> Result<(), Scenari
     check_telemetry(scenario, source)?;
     if scenario.sensor.mode == SensorMode::Camera {
         check_frames(scenario, source)?;
-        load_target_mesh(scenario).map_err(|e| source.reject("camera.mesh", e.to_string()))?;
+        load_target_mesh(&CameraConfig::of(scenario))
+            .map_err(|e| source.reject("camera.mesh", e.to_string()))?;
     }
     Ok(())
 }

@@ -1,7 +1,8 @@
-//! The camera's pan/tilt gimbal (seed 8.2 "Field of View", SPEC §10).
+//! The camera's pan/tilt gimbal (seed 8.2 "Field of View"; `docs/equations.md`, Frames and
+//! angles).
 //!
 //! Camera frame C: pan ψ_g about the body z axis (positive right), then tilt θ_g about the
-//! panned y axis (positive up, like pitch): L_CB is the §0 DCM at (0, θ_g, ψ_g); with both zero
+//! panned y axis (positive up, like pitch): L_CB is the DCM L(0, θ_g, ψ_g) of `docs/equations.md`, Frames and angles; with both zero
 //! the camera looks along the body x axis. The angles are measured (encoders), so the sensing
 //! transform uses L_CB L_BE of the frame's capture.
 //!
@@ -164,7 +165,7 @@ mod tests {
     }
 
     proptest! {
-        /// SPEC §1's round trip through a gimbal: a point projected with L_CB L_BE and read
+        /// The sensing transform's round trip (3.1)-(3.12) through a gimbal: a point projected with L_CB L_BE and read
         /// back with the same rotation gives R/b, for any attitude and gimbal angles that keep
         /// the point in front of the camera.
         #[test]

@@ -1,4 +1,4 @@
-//! The sensor stage (DESIGN §1, `[sensor] mode`): what the follower measures of the target.
+//! The sensor stage (`docs/design.md`, One tick; `[sensor] mode`): what the follower measures of the target.
 //!
 //! - `perfect`: r = R/b exactly, at every instant (seed Chapters 4-5).
 //! - `noisy`: r* = r + noise, or noise on (yI, zI, bI), drawn every sample period and held
@@ -9,15 +9,24 @@
 //! All three go through the sensing transform (3.3)-(3.12) of [`transform`] (the perfect and
 //! noisy sensors in its exact form). The perfect and noisy sensors are continuous: the
 //! simulation evaluates them at every integration stage. The camera delivers frames.
+//!
+//! Each sensor is built from its own configuration ([`config`]), derived from the scenario in
+//! one place. What the sensors are given at an instant is a [`CaptureGeometry`]: the truth the
+//! camera images and the follower's navigation solution ([`FollowerPose`]) that measurements
+//! are turned with ([`geometry`]).
 
 pub mod binning;
 pub mod camera;
+pub mod config;
+pub mod geometry;
 pub mod gimbal;
 pub mod losses;
 pub mod noisy;
 pub mod transform;
 
-pub use camera::{CameraSensor, CaptureGeometry, FrameRecord, SensorError};
+pub use camera::{CameraSensor, FrameRecord, SensorError};
+pub use config::{CameraConfig, NoisyConfig, SensorConfig};
+pub use geometry::{CaptureGeometry, FollowerPose};
 pub use noisy::NoisySensor;
 pub use transform::{
     bearing_elevation_rad, image_from_relative_position, line_of_sight_body,
@@ -26,7 +35,7 @@ pub use transform::{
 
 use crate::frames::{Mat3, Vec3};
 use crate::render::GpuContext;
-use crate::scenario::{Scenario, SensorMode};
+use crate::scenario::SensorMode;
 
 /// The sensor of a run.
 #[derive(Debug)]
@@ -43,22 +52,17 @@ pub enum Sensor {
 }
 
 impl Sensor {
-    /// The sensor a scenario's `[sensor]` describes; `command_norm_ft` is the length of the
-    /// formation command a noisy sensor may refer its SNR to. A camera renders on `gpu` when
-    /// given, on a device of its own otherwise.
-    pub fn new(
-        scenario: &Scenario,
-        command_norm_ft: f64,
-        gpu: Option<&GpuContext>,
-    ) -> Result<Self, SensorError> {
-        Ok(match scenario.sensor.mode {
+    /// The sensor `config` describes. A camera renders on `gpu` when given, on a device of
+    /// its own otherwise.
+    pub fn new(config: &SensorConfig, gpu: Option<&GpuContext>) -> Result<Self, SensorError> {
+        Ok(match config.mode {
             SensorMode::Perfect => Self::Perfect {
-                size_ft: scenario.target.size_ft,
+                size_ft: config.target_size_ft,
             },
-            SensorMode::Noisy => Self::Noisy(Box::new(NoisySensor::new(scenario, command_norm_ft))),
+            SensorMode::Noisy => Self::Noisy(Box::new(NoisySensor::new(&config.noisy))),
             SensorMode::Camera => Self::Camera(Box::new(match gpu {
-                Some(gpu) => CameraSensor::on_gpu(scenario, gpu)?,
-                None => CameraSensor::new(scenario)?,
+                Some(gpu) => CameraSensor::on_gpu(&config.camera, gpu)?,
+                None => CameraSensor::new(&config.camera)?,
             })),
         })
     }
@@ -68,8 +72,8 @@ impl Sensor {
         !matches!(self, Self::Camera(_))
     }
 
-    /// r at an instant with relative position R (NED, ft) and the follower's L_BE, for the
-    /// continuous sensors (the noisy one with its held noise); `None` when the noisy sensor's
+    /// r at an instant with relative position R (NED, ft) and the camera's L_CB L_BE as the
+    /// follower's navigation knows it, for the continuous sensors (the noisy one with its held noise); `None` when the noisy sensor's
     /// target is not in front of the camera, and always for the camera, which measures at
     /// frames only.
     pub fn continuous_measurement(

@@ -1,4 +1,4 @@
-//! The `noisy` sensor of the seed's Chapter 6 (SPEC §6): the perfect measurement with white
+//! The `noisy` sensor of the seed's Chapter 6 (`docs/equations.md`, Noisy measurements): the perfect measurement with white
 //! noise, r* = r + n_r (6.8), or noise on the image measurements (yI, zI, bI) propagated
 //! through the sensing transform (6.1)-(6.3).
 //!
@@ -14,11 +14,12 @@
 //! commanded ‖R_c‖²/(3 b²) (`command`: one level for the run). Either way
 //! SNR = 10 log10(E‖r‖² / E‖n_r‖²) in dB; the run reports the SNR it realised.
 
+use super::config::NoisyConfig;
 use super::transform::{
     image_from_relative_position, scaled_position_jacobian, scaled_relative_position,
 };
 use crate::frames::{Mat3, Vec3};
-use crate::scenario::{NoiseOn, Scenario, SnrReference};
+use crate::scenario::{NoiseOn, SnrReference};
 use crate::vision::ImageMeasurement;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -55,23 +56,22 @@ pub struct NoisySensor {
 }
 
 impl NoisySensor {
-    /// The sensor a scenario's `[sensor]` describes (seeded from `[run] seed`), measuring a
-    /// target of size `size_ft` through a camera of focal length `focal_px` (pixel noise) and
-    /// referring the SNR to a command of length `command_norm_ft` (`snr_reference =
-    /// "command"`).
-    pub fn new(scenario: &Scenario, command_norm_ft: f64) -> Self {
-        let sensor = &scenario.sensor;
-        let size_ft = scenario.target.size_ft;
+    /// The sensor `config` describes (seeded from the run's seed), measuring a target of the
+    /// true size through a camera of the configured focal length (pixel noise) and referring
+    /// the SNR to the configured command length (`snr_reference = "command"`).
+    pub fn new(config: &NoisyConfig) -> Self {
+        let sensor = config.sensor;
+        let size_ft = config.target_size_ft;
         Self {
             noise_on: sensor.noise_on,
             snr_reference: sensor.snr_reference,
             snr_ratio: 10f64.powf(sensor.snr_db / 10.0),
-            command_power: (command_norm_ft / size_ft).powi(2) / 3.0,
+            command_power: (config.command_norm_ft / size_ft).powi(2) / 3.0,
             pixel_sigma_px: sensor.pixel_noise_px,
-            focal_px: scenario.camera.focal_length_px(),
+            focal_px: config.focal_px,
             size_ft,
-            period_ticks: sensor.sample_period_ticks(scenario.run.dt_s),
-            rng: ChaCha8Rng::seed_from_u64(scenario.run.seed),
+            period_ticks: sensor.sample_period_ticks(config.dt_s),
+            rng: ChaCha8Rng::seed_from_u64(config.seed),
             held: match sensor.noise_on {
                 NoiseOn::ScaledPosition => HeldNoise::Scaled(Vec3::zeros()),
                 NoiseOn::Pixels => HeldNoise::Pixels(ImageMeasurement::default()),
@@ -186,10 +186,14 @@ impl NoisySensor {
 mod tests {
     use super::*;
     use crate::frames::EulerAngles;
-    use crate::scenario::SensorMode;
+    use crate::scenario::{Scenario, SensorMode};
 
     /// ‖[32, 8, 0]‖ ft, the seed's formation command.
     const SEED_COMMAND_FT: f64 = 32.984845004941285;
+
+    fn sensor(scenario: &Scenario) -> NoisySensor {
+        NoisySensor::new(&NoisyConfig::of(scenario, SEED_COMMAND_FT))
+    }
 
     fn scenario(noise_on: NoiseOn, reference: SnrReference) -> Scenario {
         let mut s = Scenario::default();
@@ -205,10 +209,7 @@ mod tests {
     #[test]
     fn realised_snr_is_the_stated_one() {
         for reference in [SnrReference::Signal, SnrReference::Command] {
-            let mut sensor = NoisySensor::new(
-                &scenario(NoiseOn::ScaledPosition, reference),
-                SEED_COMMAND_FT,
-            );
+            let mut sensor = sensor(&scenario(NoiseOn::ScaledPosition, reference));
             let relative = Vec3::new(32.0, 8.0, 0.0);
             for _ in 0..20_000 {
                 sensor.draw(&relative, &Mat3::identity());
@@ -221,14 +222,8 @@ mod tests {
     /// Signal reference: σ scales with ‖r‖; command reference: it does not.
     #[test]
     fn sigma_follows_its_reference() {
-        let signal = NoisySensor::new(
-            &scenario(NoiseOn::ScaledPosition, SnrReference::Signal),
-            SEED_COMMAND_FT,
-        );
-        let command = NoisySensor::new(
-            &scenario(NoiseOn::ScaledPosition, SnrReference::Command),
-            SEED_COMMAND_FT,
-        );
+        let signal = sensor(&scenario(NoiseOn::ScaledPosition, SnrReference::Signal));
+        let command = sensor(&scenario(NoiseOn::ScaledPosition, SnrReference::Command));
         let r_c = Vec3::new(4.0, 1.0, 0.0);
         let expected = (r_c.norm_squared() / 3.0 / 10f64.powf(2.5)).sqrt();
         assert!((signal.scaled_sigma(&r_c) - expected).abs() < 1e-15);
@@ -246,7 +241,7 @@ mod tests {
         let draws = |seed: u64| {
             let mut s = scenario(NoiseOn::ScaledPosition, SnrReference::Signal);
             s.run.seed = seed;
-            let mut sensor = NoisySensor::new(&s, SEED_COMMAND_FT);
+            let mut sensor = sensor(&s);
             (0..5)
                 .map(|_| {
                     sensor.draw(&Vec3::new(200.0, 50.0, 30.0), &Mat3::identity());
@@ -263,10 +258,7 @@ mod tests {
     /// error moves it sideways by aI δ/l (at the image centre, level attitude).
     #[test]
     fn pixel_noise_propagates_through_the_sensing_transform() {
-        let mut sensor = NoisySensor::new(
-            &scenario(NoiseOn::Pixels, SnrReference::Signal),
-            SEED_COMMAND_FT,
-        );
+        let mut sensor = sensor(&scenario(NoiseOn::Pixels, SnrReference::Signal));
         let attitude = EulerAngles::new(0.1, -0.05, 0.3);
         let l_be = attitude.body_from_ned();
         let relative = l_be.transpose() * Vec3::new(100.0, 0.0, 0.0);

@@ -1,5 +1,5 @@
 //! The sensing transform: from image measurements to the scaled relative position r (seed
-//! Chapter 3, SPEC §1), and back.
+//! Chapter 3, (3.1)-(3.12); `docs/equations.md`, What the camera measures), and back.
 //!
 //! The camera frame is the follower's body frame (x along the optical axis). A point at body
 //! coordinates (X, Y, Z), X > 0, appears at yI = l Y / X (right), zI = -l Z / X (up), with l the
@@ -37,7 +37,7 @@ pub fn scaled_relative_position(
 /// J = ∂r/∂(yI, zI, bI) of [`scaled_relative_position`] at a measurement, columns yI, zI, bI,
 /// `ned_from_camera` the camera's L_BEᵀ: since aI T_IB = [l, yI, -zI]ᵀ / bI exactly,
 /// r = L_BEᵀ [l, yI, -zI]ᵀ / bI and J = L_BEᵀ [[0, 0, -l/bI²], [1/bI, 0, -yI/bI²],
-/// [0, -1/bI, zI/bI²]]. It maps pixel noise to the noise of r (SPEC §9).
+/// [0, -1/bI, zI/bI²]]. It maps pixel noise to the noise of r (`docs/equations.md`, Noisy measurements).
 pub fn scaled_position_jacobian(
     measurement: &ImageMeasurement,
     focal_px: f64,

@@ -38,7 +38,8 @@ use crate::scenario::{
 use crate::sensing::gimbal::{GIMBAL_STATE_NAMES, Gimbal, GimbalAngles};
 use crate::sensing::losses::{LossEpisode, LossLog};
 use crate::sensing::{
-    CameraSensor, CaptureGeometry, FrameRecord, NoisySensor, Sensor, SensorError,
+    CameraSensor, CaptureGeometry, FollowerPose, FrameRecord, NoisySensor, Sensor, SensorConfig,
+    SensorError,
 };
 use crate::world::target::{TargetModel, TargetMotionModel, TargetState};
 use layout::StateLayout;
@@ -243,7 +244,7 @@ impl Simulation {
         })?;
         let compensate = scenario.follower.model == FollowerModel::Aircraft;
         let (guidance, notes) = guidance_law(scenario, compensate)?;
-        let mut sensor = Sensor::new(scenario, g.command_length_ft(), gpu)
+        let mut sensor = Sensor::new(&SensorConfig::of(scenario, g.command_length_ft()), gpu)
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let estimator = estimator_of(scenario, sensor.is_continuous());
         let target = target_of(scenario);
@@ -277,7 +278,7 @@ impl Simulation {
         );
         let mut state = follower_x;
         state.extend(gimbal_x);
-        state.extend(FormationCommand::initial_state(&geometry.follower_attitude));
+        state.extend(FormationCommand::initial_state(&geometry.follower.attitude));
         state.extend(guidance.initial_state(&r_first));
         let mut sim = Self {
             rk4: Rk4::new(state.len()),
@@ -444,8 +445,7 @@ impl Simulation {
                     source: Box::new(e),
                 })?;
         let started = Instant::now();
-        let follower_x = self.layout.split(&self.state).follower;
-        let velocity = self.follower.track_ned_fps(follower_x);
+        let velocity = geometry.navigation.velocity_ned_fps;
         let first = match delivered {
             Some(record) => {
                 self.losses.record(record.t_s, record.r_measured.is_some());
@@ -482,7 +482,7 @@ impl Simulation {
                 self.time_s(),
                 &r_star,
                 variance,
-                &geometry.follower_position_ned_ft,
+                &geometry.navigation.position_ned_ft,
                 follower_velocity_ned_fps,
             );
         }
@@ -866,14 +866,17 @@ fn capture_geometry(
     t_s: f64,
     camera_from_body: &Mat3,
 ) -> CaptureGeometry {
-    let follower_position_ned_ft = follower.position_ned_ft(follower_x);
-    CaptureGeometry {
-        relative_ned_ft: target.position_ned_ft(t_s) - follower_position_ned_ft,
-        follower_position_ned_ft,
-        follower_attitude: follower.attitude(follower_x),
+    let pose = FollowerPose {
+        position_ned_ft: follower.position_ned_ft(follower_x),
+        velocity_ned_fps: follower.track_ned_fps(follower_x),
+        attitude: follower.attitude(follower_x),
         camera_from_body: *camera_from_body,
-        target_attitude: target.state(t_s).attitude,
-    }
+    };
+    CaptureGeometry::exact(
+        target.position_ned_ft(t_s) - pose.position_ned_ft,
+        target.state(t_s).attitude,
+        pose,
+    )
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ use super::view::{FourPoints, View};
 use crate::output::frame_images::{Overlay, write_frame};
 use crate::render::GpuContext;
 use crate::scenario::Scenario;
+use crate::sensing::CameraConfig;
 use crate::sensing::camera::{CameraSensor, load_target_mesh};
 use crate::vision::{BlobStatus, ImageMeasurement};
 use serde_json::Value;
@@ -29,10 +30,11 @@ impl ViewCamera {
         scenario: Scenario,
         gpu: &GpuContext,
     ) -> Result<Self, String> {
-        let mesh = load_target_mesh(&scenario).map_err(|e| e.to_string())?;
+        let mesh = load_target_mesh(&CameraConfig::of(&scenario)).map_err(|e| e.to_string())?;
         let four_points = FourPoints::of_mesh(&mesh.vertices_ft)
             .ok_or_else(|| "camera.mesh: the mesh has no vertices".to_string())?;
-        let sensor = CameraSensor::on_gpu(&scenario, gpu).map_err(|e| e.to_string())?;
+        let sensor =
+            CameraSensor::on_gpu(&CameraConfig::of(&scenario), gpu).map_err(|e| e.to_string())?;
         Ok(Self {
             overrides,
             scenario,

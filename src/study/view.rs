@@ -3,9 +3,9 @@
 //! of its apparent size (8.1)-(8.2).
 
 use super::setting::Setting;
-use crate::frames::{EulerAngles, Mat3, Vec3};
+use crate::frames::{EulerAngles, Vec3};
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use crate::sensing::CaptureGeometry;
+use crate::sensing::{CaptureGeometry, FollowerPose};
 
 /// The study-file section of the view keys (`view.yaw_deg`, ...).
 pub const VIEW_SECTION: &str = "view";
@@ -84,13 +84,11 @@ impl View {
     /// The capture geometry of this view: a level camera at the origin looking north, the
     /// target `range_ft` north of it.
     pub fn geometry(&self) -> CaptureGeometry {
-        CaptureGeometry {
-            relative_ned_ft: Vec3::new(self.range_ft, 0.0, 0.0),
-            follower_position_ned_ft: Vec3::zeros(),
-            follower_attitude: EulerAngles::new(0.0, 0.0, 0.0),
-            camera_from_body: Mat3::identity(),
-            target_attitude: self.attitude(),
-        }
+        CaptureGeometry::exact(
+            Vec3::new(self.range_ft, 0.0, 0.0),
+            self.attitude(),
+            FollowerPose::at_origin(EulerAngles::new(0.0, 0.0, 0.0)),
+        )
     }
 }
 

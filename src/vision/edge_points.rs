@@ -19,12 +19,8 @@
 //!    straight edges through that corner (tangents of curves, thin parts where a pixel sees
 //!    both sides).
 //!
-//! Measured on area-coverage test images (16 x 16 supersampling, with and without σ = 3 noise):
-//! rectangles 40 x 12 and 20 x 20 at all angles within +0.16 / −0.01 px, thin bars (60 x 1.5)
-//! −0.26..+0.06, discs −0.01..+0.19, triangles with 60-90° corners −0.7..+0.2. Limits: sides
-//! shorter than ~5 px (no straight runs: up to 0.55 px short), tips sharper than ~40° (their
-//! last pixels are covered less than the noise cut: a 20° tip up to 2 px short); on curves of
-//! radius ≲ 25 px, tangent crossings that pass the coverage check sit up to ~0.01 R outside.
+//! Its accuracy on test images is in `docs/findings.md`, The image pipeline's accuracy and
+//! cost.
 
 use super::feret::PixelPoint;
 use super::subpixel_edge::{EdgeLine, pixel_area_inside};

@@ -1,8 +1,8 @@
-//! The three numbers the image pipeline delivers per frame (SPEC §1), in the seed's image
+//! The three numbers the image pipeline delivers per frame (3.1)-(3.7), in the seed's image
 //! coordinates: what the sensing transform turns into r.
 
 /// What the image pipeline (or a model of it) says about the target in one frame, in pixels
-/// relative to the principal point (SPEC §1).
+/// relative to the principal point (3.1).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ImageMeasurement {
     /// Centroid, horizontal, positive right, px.

@@ -1,5 +1,5 @@
 //! The CPU image pipeline: from an RGBA8 frame to the target's centroid and maximal length in
-//! pixels (SPEC §1), with a status saying whether to trust them; plus the geometric ground
+//! pixels (3.1)-(3.7), with a status saying whether to trust them; plus the geometric ground
 //! truth to compare with, and an overlay to look at.
 //!
 //! One frame, in order:
@@ -20,7 +20,7 @@
 //!
 //! Pixel conventions are those of [`crate::render::camera`]: pixel (i, j) covers
 //! [i, i+1) x [j, j+1), u right, v down; [`BlobMeasurement::image_measurement`] converts to the
-//! SPEC's (yI, zI, bI).
+//! seed's (yI, zI, bI) (3.1).
 
 mod background;
 mod components;

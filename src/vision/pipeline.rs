@@ -97,7 +97,7 @@ impl BlobMeasurement {
         }
     }
 
-    /// Centroid and maximal length in the SPEC's image coordinates (yI right, zI up, relative to
+    /// Centroid and maximal length in the seed's image coordinates (3.1) (yI right, zI up, relative to
     /// the principal point), whatever the status except `NotFound` (then `None`): check
     /// `status` before trusting a `Truncated` or `TooSmall` measurement.
     pub fn image_measurement(&self, camera: &CameraIntrinsics) -> Option<ImageMeasurement> {

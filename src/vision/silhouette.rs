@@ -11,9 +11,8 @@
 //! across them: between lines the union's width is linear but at corners, and a silhouette
 //! H px tall with n lines errs by about H / (6 n²) px (a triangle's exact bound): 0.003 px
 //! for the height of a 1080-line image, 1/(384 H) px below the cap. The cap keeps the cost
-//! the same at any resolution once the silhouette is 32 px tall (issue 13: with 16 lines a
-//! pixel and up to 4096 lines it cost 0.43 ms a frame at 1920x1080, more than the image
-//! pipeline's segmentation, and 0.16 ms at 640x480).
+//! the same at any resolution once the silhouette is 32 px tall (why: `docs/findings.md`,
+//! The image pipeline's accuracy and cost).
 
 use crate::frames::Vec3;
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};

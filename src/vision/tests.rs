@@ -331,7 +331,7 @@ fn explicit_threshold_configuration() {
     check_shape(&m, &disc, 0.05, 0.5);
 }
 
-/// The measurement converts to the SPEC's image coordinates through the camera: yI = u − cx,
+/// The measurement converts to the seed's image coordinates (3.1) through the camera: yI = u − cx,
 /// zI = cy − v, bI unchanged.
 #[test]
 fn converts_to_image_measurement() {

@@ -24,10 +24,9 @@ use crate::vision::{BlobMeasurement, BlobStatus};
 /// rotation explains, in maximal lengths per second. The relative velocity across the line of
 /// sight moves the silhouette by V/S of its own size per second (S its size, ft), and the
 /// target's own roll swings its wing tips: 1.5 covers 12 ft/s across the line of sight of an
-/// 8 ft target. `formation.toml` needs at most 0.4 (measured: the silhouette's box moves at
-/// most 0.027 lengths beyond the carried box in the two frames between a measurement and the
-/// frame it places, at 640x480 and 1920x1080); a target that moves faster is measured whole
-/// in that frame, and costs its time.
+/// 8 ft target (what `formation.toml` needs: `docs/findings.md`, The image pipeline's
+/// accuracy and cost); a target that moves faster is measured whole in that frame, and costs
+/// its time.
 pub const MOTION_LENGTHS_PER_S: f64 = 1.5;
 /// Pixels added to every side besides the clearance the image pipeline needs: the partly
 /// covered pixels outside the measured blob's mask (one ring) and the background border the

@@ -1,0 +1,317 @@
+//! How a frame is exposed: which part of the image is drawn (the tracking window, binned or
+//! not, or the whole image), by which renderer, into which of the two pixel buffers, and how
+//! the frames were drawn over the run ([`WindowCounts`]).
+
+use super::CameraTimings;
+use super::schedule::Exposure;
+use super::setup::SensorError;
+use crate::frames::Mat3;
+use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use crate::render::gpu::GpuContext;
+use crate::render::image::CameraImage;
+use crate::render::mesh::TargetMesh;
+use crate::render::region::ImageRegion;
+use crate::render::renderer::{PendingFrame, Renderer};
+use crate::render::settings::RenderSettings;
+use crate::scenario::CameraPipeline;
+use crate::sensing::binning::{Binning, binned_intrinsics, binned_region};
+use crate::vision::{BlobMeasurement, TrackingWindow};
+
+/// How the frames were drawn and measured (`camera.pipeline = "window"`), counted over the
+/// run; every frame is in exactly one of the first three. Frames are measured in their
+/// tracking window when there is one, those drawn whole to be saved included.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub struct WindowCounts {
+    /// Drawn in the tracking window (measured there, or redrawn whole).
+    pub windowed: u64,
+    /// Drawn whole: no track (acquisition, after a lost frame) or the `whole` pipeline.
+    pub whole_untracked: u64,
+    /// Drawn whole to be saved.
+    pub whole_saved: u64,
+    /// Of the `windowed`, drawn again whole: the window's measurement was not a clean `Ok`
+    /// or reached its edge.
+    pub redrawn_whole: u64,
+    /// Of the `windowed`, drawn and measured binned (`camera.measure_max_length_px`).
+    pub binned: u64,
+}
+
+/// A frame in flight: drawn on the GPU, not read back yet, and its number.
+pub(super) type InFlight = Option<(PendingFrame, u64)>;
+
+/// Which of the two pixel buffers holds frame `index`.
+pub(super) fn buffer_of(index: u64) -> usize {
+    (index % 2) as usize
+}
+
+/// A read-back frame as it is to be measured.
+pub(super) struct DrawnFrame<'a> {
+    /// Its pixels.
+    pub pixels: &'a CameraImage,
+    /// The part of the image they hold.
+    pub drawn: ImageRegion,
+    /// The tracking window to measure it in (None: the whole image).
+    pub window: Option<ImageRegion>,
+    /// The binning it was drawn at (1: none); `drawn` and `window` are in its pixels.
+    pub factor: u32,
+    /// The intrinsics of the camera binned by `factor`.
+    pub intrinsics: CameraIntrinsics,
+    /// Whether it was drawn whole at the image's resolution.
+    pub whole: bool,
+}
+
+/// The renderers, the pixel buffers and the tracking window that decides what to draw.
+pub(super) struct FrameDrawing {
+    intrinsics: CameraIntrinsics,
+    renderer: Renderer,
+    /// The device, for the binned cameras' renderers (made when first needed).
+    gpu: GpuContext,
+    mesh: TargetMesh,
+    binning: Binning,
+    /// The renderers of the binned cameras, by binning factor.
+    binned_renderers: Vec<(u32, Renderer)>,
+    /// Frames taken in [start, end) s show no target (`camera.occlusion_s`).
+    occlusion_s: [f64; 2],
+    pipeline: CameraPipeline,
+    tracker: TrackingWindow,
+    /// Frames whose index is a multiple of this are saved, so drawn whole.
+    saved_every: Option<u64>,
+    window_counts: WindowCounts,
+    /// Pixels of the even and the odd frames: one is measured while the other is drawn.
+    pixels: [CameraImage; 2],
+    /// The part of the image each of `pixels` holds.
+    regions: [ImageRegion; 2],
+    /// The tracking window each of `pixels` is measured in (None: the whole image).
+    windows: [Option<ImageRegion>; 2],
+    /// The binning each of `pixels` was drawn at (1: none); `regions` and `windows` are in its
+    /// pixels.
+    factors: [u32; 2],
+}
+
+/// What [`FrameDrawing`] is made of, besides its device and mesh.
+pub(super) struct DrawingSetup {
+    /// The image's renderer settings.
+    pub settings: RenderSettings,
+    /// `camera.measure_max_length_px`.
+    pub measure_max_length_px: f64,
+    /// `camera.occlusion_s`.
+    pub occlusion_s: [f64; 2],
+    /// `camera.pipeline`.
+    pub pipeline: CameraPipeline,
+    /// The tracking window.
+    pub tracker: TrackingWindow,
+    /// `output.frames_every` (0: none saved).
+    pub frames_every: u32,
+}
+
+impl FrameDrawing {
+    /// The image's renderer on `gpu` for `mesh`, and the rest of `setup`.
+    pub fn new(
+        gpu: &GpuContext,
+        mesh: TargetMesh,
+        setup: DrawingSetup,
+    ) -> Result<Self, SensorError> {
+        let intrinsics = setup.settings.intrinsics;
+        let whole = ImageRegion::whole(&intrinsics);
+        let saved_every = setup.frames_every;
+        Ok(Self {
+            intrinsics,
+            renderer: Renderer::new(gpu, setup.settings, &mesh)?,
+            gpu: gpu.clone(),
+            mesh,
+            binning: Binning::new(&intrinsics, setup.measure_max_length_px),
+            binned_renderers: Vec::new(),
+            occlusion_s: setup.occlusion_s,
+            pipeline: setup.pipeline,
+            tracker: setup.tracker,
+            saved_every: (saved_every > 0).then_some(u64::from(saved_every)),
+            window_counts: WindowCounts::default(),
+            pixels: [CameraImage::default(), CameraImage::default()],
+            regions: [whole, whole],
+            windows: [None, None],
+            factors: [1, 1],
+        })
+    }
+
+    /// The image's intrinsics.
+    pub fn intrinsics(&self) -> &CameraIntrinsics {
+        &self.intrinsics
+    }
+
+    /// The target mesh.
+    pub fn mesh(&self) -> &TargetMesh {
+        &self.mesh
+    }
+
+    /// How the frames were drawn so far.
+    pub fn window_counts(&self) -> WindowCounts {
+        self.window_counts
+    }
+
+    /// The part of the image to draw for frame `index`, whose camera the follower believes
+    /// turned by `camera_from_ned`, the tracking window to measure it in (see the
+    /// `sensing::camera` documentation), both in the pixels of the binning factor returned
+    /// with them (1: the image's), counted in [`WindowCounts`]. A frame to be saved is drawn
+    /// whole and measured in its window all the same.
+    pub fn plan(
+        &mut self,
+        index: u64,
+        camera_from_ned: &Mat3,
+    ) -> (ImageRegion, Option<ImageRegion>, u32) {
+        let whole = ImageRegion::whole(&self.intrinsics);
+        let window = match self.pipeline {
+            CameraPipeline::Window => self.tracker.predict(index, camera_from_ned),
+            CameraPipeline::Whole => None,
+        };
+        if self.saved_every.is_some_and(|n| index.is_multiple_of(n)) {
+            self.window_counts.whole_saved += 1;
+            return (whole, window, 1);
+        }
+        let Some(region) = window else {
+            self.window_counts.whole_untracked += 1;
+            return (whole, None, 1);
+        };
+        self.window_counts.windowed += 1;
+        let factor = self
+            .tracker
+            .predicted_length_px()
+            .map_or(1, |length| self.binning.factor_for(length));
+        if factor == 1 {
+            return (region, window, 1);
+        }
+        self.window_counts.binned += 1;
+        let binned = binned_region(&region, factor);
+        (binned, Some(binned), factor)
+    }
+
+    /// Starts drawing `region` of a frame (in the pixels of binning `factor`), to be
+    /// measured in `window`.
+    pub fn begin(
+        &mut self,
+        exposure: &Exposure,
+        region: &ImageRegion,
+        window: Option<ImageRegion>,
+        factor: u32,
+    ) -> Result<PendingFrame, SensorError> {
+        let buffer = buffer_of(exposure.index);
+        self.factors[buffer] = factor;
+        let pose = self.drawn_pose(exposure);
+        let pending = self.renderer_for(factor)?.begin_frame_in(&pose, region)?;
+        self.windows[buffer] = window;
+        Ok(pending)
+    }
+
+    /// Draws a frame again, whole, to be measured whole (the frame in flight is read back
+    /// first, as the renderer draws one frame at a time).
+    pub fn redraw_whole(
+        &mut self,
+        exposure: &Exposure,
+        in_flight: &mut InFlight,
+        timings: &mut CameraTimings,
+    ) -> Result<(), SensorError> {
+        self.finish(in_flight, timings)?;
+        self.window_counts.redrawn_whole += 1;
+        let whole = ImageRegion::whole(&self.intrinsics);
+        let pose = self.drawn_pose(exposure);
+        let buffer = buffer_of(exposure.index);
+        self.factors[buffer] = 1;
+        let redrawn = self.renderer.begin_frame_in(&pose, &whole)?;
+        self.finish(&mut Some((redrawn, exposure.index)), timings)?;
+        self.windows[buffer] = None;
+        Ok(())
+    }
+
+    /// Reads the frame in flight, if any, back into its buffer.
+    pub fn finish(
+        &mut self,
+        in_flight: &mut InFlight,
+        timings: &mut CameraTimings,
+    ) -> Result<(), SensorError> {
+        let Some((pending, index)) = in_flight.take() else {
+            return Ok(());
+        };
+        let buffer = buffer_of(index);
+        self.regions[buffer] = pending.region();
+        let mut pixels = std::mem::take(&mut self.pixels[buffer]);
+        let renderer = self.renderer_for(self.factors[buffer])?;
+        let finished = renderer.finish_frame(pending, index, &mut pixels);
+        let render_timings = renderer.last_timings();
+        self.pixels[buffer] = pixels;
+        finished?;
+        timings.add_render(render_timings);
+        Ok(())
+    }
+
+    /// The read-back frame `index`, as it is to be measured.
+    pub fn frame(&self, index: u64) -> Result<DrawnFrame<'_>, SensorError> {
+        let buffer = buffer_of(index);
+        let factor = self.factors[buffer];
+        Ok(DrawnFrame {
+            pixels: &self.pixels[buffer],
+            drawn: self.regions[buffer],
+            window: self.windows[buffer],
+            factor,
+            intrinsics: self.intrinsics_of(factor)?,
+            whole: self.is_whole(index),
+        })
+    }
+
+    /// The pixels of frame `index` when it was drawn whole at the image's resolution.
+    pub fn whole_image(&self, index: u64) -> Option<&CameraImage> {
+        self.is_whole(index).then(|| &self.pixels[buffer_of(index)])
+    }
+
+    /// Tells the tracking window where frame `index` measured the target, its camera believed
+    /// turned by `camera_from_ned`.
+    pub fn observe(&mut self, index: u64, blob: &BlobMeasurement, camera_from_ned: &Mat3) {
+        self.tracker.observe(index, blob, camera_from_ned);
+    }
+
+    fn is_whole(&self, index: u64) -> bool {
+        let buffer = buffer_of(index);
+        self.factors[buffer] == 1 && self.regions[buffer].is_whole(&self.intrinsics)
+    }
+
+    /// The renderer of binning `factor` (the image's for 1), made when first asked for.
+    fn renderer_for(&mut self, factor: u32) -> Result<&mut Renderer, SensorError> {
+        if factor == 1 {
+            return Ok(&mut self.renderer);
+        }
+        let found = self.binned_renderers.iter().position(|(k, _)| *k == factor);
+        let slot = match found {
+            Some(slot) => slot,
+            None => {
+                let renderer = self.binned_renderer(factor)?;
+                self.binned_renderers.push((factor, renderer));
+                self.binned_renderers.len() - 1
+            }
+        };
+        Ok(&mut self.binned_renderers[slot].1)
+    }
+
+    /// The renderer of the camera of 1/`factor` the resolution on the same optics: pixel
+    /// noise σ/k, the mean of k² independent draws (`sensing::binning`).
+    fn binned_renderer(&self, factor: u32) -> Result<Renderer, SensorError> {
+        let mut settings = *self.renderer.settings();
+        settings.intrinsics = self.intrinsics_of(factor)?;
+        if let Some(noise) = settings.background.noise.as_mut() {
+            noise.std_grey_levels /= f64::from(factor);
+        }
+        Ok(Renderer::new(&self.gpu, settings, &self.mesh)?)
+    }
+
+    /// The intrinsics of the camera binned by `factor` (the image's for 1).
+    fn intrinsics_of(&self, factor: u32) -> Result<CameraIntrinsics, SensorError> {
+        binned_intrinsics(&self.intrinsics, factor).ok_or(SensorError::Binning(factor))
+    }
+
+    /// The target's pose as a frame draws it: where it truly is, or nowhere while the
+    /// occlusion hides it.
+    fn drawn_pose(&self, exposure: &Exposure) -> TargetPoseInCamera {
+        let [hide_s, show_s] = self.occlusion_s;
+        if (hide_s..show_s).contains(&exposure.t_s) {
+            TargetPoseInCamera::hidden()
+        } else {
+            exposure.geometry.pose()
+        }
+    }
+}

@@ -1,0 +1,162 @@
+//! How a read-back frame is measured: the image pipeline in the frame's tracking window
+//! (binned or not, its measurement carried back to the image's pixels) or over the whole
+//! image, which blob it follows, and the image measurement (yI, zI, bI) it gives.
+
+use super::CameraTimings;
+use super::drawing::DrawnFrame;
+use super::setup::SensorError;
+use crate::render::camera::CameraIntrinsics;
+use crate::render::region::ImageRegion;
+use crate::scenario::{BearingPoint, BlobChoice, CameraSection};
+use crate::sensing::binning::{binned_selection, unbinned_measurement};
+use crate::vision::{
+    BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, VisionConfig, VisionPipeline,
+};
+use std::time::Instant;
+
+/// A frame taken in a region: whether its measurement stands or the frame must be measured
+/// whole.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum RegionOutcome {
+    /// The measurement (of the whole image, or of a region, in image coordinates).
+    Measured(BlobMeasurement),
+    /// The region's measurement cannot stand for the whole image's.
+    NeedsWholeImage,
+}
+
+/// The image pipeline and what it remembers between frames.
+pub(super) struct Metering {
+    vision: VisionPipeline,
+    selection: BlobChoice,
+    bearing_point: BearingPoint,
+    /// The last `Ok` frame's centroid, px (the blob `nearest` follows).
+    previous_centroid_px: Option<(f64, f64)>,
+    /// A window's pixels cut from a whole frame (a frame drawn whole to be saved).
+    window_pixels: Vec<u8>,
+}
+
+/// Copies the pixels of `window` out of `rgba`, the pixels of `drawn` (which contains it),
+/// into `out`.
+fn cut_window(rgba: &[u8], drawn: &ImageRegion, window: &ImageRegion, out: &mut Vec<u8>) {
+    out.clear();
+    let stride = 4 * drawn.width_px as usize;
+    let first = 4 * (window.u0_px - drawn.u0_px) as usize;
+    let row_bytes = 4 * window.width_px as usize;
+    for v in window.v0_px..window.v_end_px() {
+        let start = (v - drawn.v0_px) as usize * stride + first;
+        out.extend_from_slice(&rgba[start..start + row_bytes]);
+    }
+}
+
+impl Metering {
+    /// The image pipeline a `[camera]` section describes.
+    pub fn new(camera: &CameraSection) -> Result<Self, SensorError> {
+        let mut vision_config = VisionConfig {
+            min_pixel_count: camera.min_pixel_count as usize,
+            ..VisionConfig::default()
+        };
+        vision_config.segmentation.mask_coverage = camera.mask_coverage;
+        vision_config.link_radius_px = camera.link_radius_px as usize;
+        Ok(Self {
+            vision: VisionPipeline::new(vision_config)?,
+            selection: camera.selection,
+            bearing_point: camera.bearing_point,
+            previous_centroid_px: None,
+            window_pixels: Vec::new(),
+        })
+    }
+
+    /// The clearance the pipeline needs around the target in a window, px.
+    pub fn region_clearance_px(&self) -> u32 {
+        self.vision.region_clearance_px()
+    }
+
+    /// The blob to measure in the next frame: the largest, or the one nearest the last
+    /// measured centroid (`camera.selection = "nearest"`).
+    pub fn selection(&self) -> BlobSelection {
+        match (self.selection, self.previous_centroid_px) {
+            (BlobChoice::Nearest, Some((u_px, v_px))) => BlobSelection::NearestTo { u_px, v_px },
+            _ => BlobSelection::Largest,
+        }
+    }
+
+    /// Measures a read-back frame: in its tracking window (binned or not), or the whole image;
+    /// the measurement is in the image's pixels (`intrinsics`). A window's measurement that
+    /// cannot stand is replaced by the whole image's when the frame was drawn whole, and asks
+    /// for the frame to be drawn whole otherwise.
+    pub fn measure(
+        &mut self,
+        frame: &DrawnFrame,
+        selection: BlobSelection,
+        timings: &mut CameraTimings,
+    ) -> Result<RegionOutcome, SensorError> {
+        let Some(window) = frame.window else {
+            return Ok(RegionOutcome::Measured(
+                self.measure_whole(frame, selection, timings)?,
+            ));
+        };
+        let vision_started = Instant::now();
+        let pixels = if frame.drawn == window {
+            &frame.pixels.rgba
+        } else {
+            cut_window(
+                &frame.pixels.rgba,
+                &frame.drawn,
+                &window,
+                &mut self.window_pixels,
+            );
+            &self.window_pixels
+        };
+        let measured = self.vision.measure_region(
+            pixels,
+            &window,
+            &frame.intrinsics,
+            binned_selection(selection, frame.factor),
+        )?;
+        timings.vision += vision_started.elapsed();
+        if !measured.reaches_inner_edge && measured.blob.status == BlobStatus::Ok {
+            Ok(RegionOutcome::Measured(unbinned_measurement(
+                &measured.blob,
+                frame.factor,
+            )))
+        } else if frame.whole {
+            Ok(RegionOutcome::Measured(
+                self.measure_whole(frame, selection, timings)?,
+            ))
+        } else {
+            Ok(RegionOutcome::NeedsWholeImage)
+        }
+    }
+
+    /// Measures the pixels of a frame, a whole image.
+    pub fn measure_whole(
+        &mut self,
+        frame: &DrawnFrame,
+        selection: BlobSelection,
+        timings: &mut CameraTimings,
+    ) -> Result<BlobMeasurement, SensorError> {
+        let vision_started = Instant::now();
+        let image = frame.pixels;
+        let blob = self
+            .vision
+            .measure(&image.rgba, image.width_px, image.height_px, selection)?;
+        timings.vision += vision_started.elapsed();
+        Ok(blob)
+    }
+
+    /// The image measurement of a blob at the camera's bearing point (None when nothing was
+    /// found).
+    pub fn image_measurement(
+        &self,
+        blob: &BlobMeasurement,
+        intrinsics: &CameraIntrinsics,
+    ) -> Option<ImageMeasurement> {
+        blob.image_measurement_at(intrinsics, self.bearing_point)
+    }
+
+    /// Remembers a measured frame's blob for the next frame's selection.
+    pub fn remember(&mut self, blob: &BlobMeasurement) {
+        let ok = blob.status == BlobStatus::Ok;
+        self.previous_centroid_px = ok.then_some((blob.centroid_u_px, blob.centroid_v_px));
+    }
+}

@@ -1,0 +1,89 @@
+//! What the sensing stage is given at an instant: the true geometry the camera images, and the
+//! follower's own navigation solution that sensing turns the measurement with.
+//!
+//! [`FollowerPose`] is the one type through which the follower's pose and its camera's
+//! pointing enter sensing. A [`CaptureGeometry`] carries it twice: `follower`, the truth, which
+//! the renderer draws and the measurement audit projects from; and `navigation`, what the
+//! follower believes about itself, which the sensing transform (3.3)-(3.12), the tracking
+//! window and the frame records use. Today `navigation` is the truth ([`CaptureGeometry::exact`]);
+//! a navigation error model (INS/GPS, air data, gimbal encoders, mount misalignment) supplies
+//! its own solution here without touching the sensors.
+
+use crate::frames::{EulerAngles, Mat3, Vec3};
+use crate::render::camera::TargetPoseInCamera;
+
+/// The follower's pose and its camera's pointing, true or as its navigation knows them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FollowerPose {
+    /// R_F, NED, ft.
+    pub position_ned_ft: Vec3,
+    /// The velocity the follower's track follows, NED, ft/s.
+    pub velocity_ned_fps: Vec3,
+    /// The follower's attitude (L_BE).
+    pub attitude: EulerAngles,
+    /// The camera's orientation on the body, L_CB: the gimbal's angles over the fixed mount
+    /// (identity: camera = body).
+    pub camera_from_body: Mat3,
+}
+
+impl FollowerPose {
+    /// A follower at rest at the origin with its camera along the body x axis, turned by
+    /// `attitude` (for views and benches that place only the camera).
+    pub fn at_origin(attitude: EulerAngles) -> Self {
+        Self {
+            position_ned_ft: Vec3::zeros(),
+            velocity_ned_fps: Vec3::zeros(),
+            attitude,
+            camera_from_body: Mat3::identity(),
+        }
+    }
+
+    /// L_CB L_BE: NED to camera axes.
+    pub fn camera_from_ned(&self) -> Mat3 {
+        self.camera_from_body * self.attitude.body_from_ned()
+    }
+}
+
+/// Where the follower and target are when the sensors act.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CaptureGeometry {
+    /// R_T - R_F, NED, ft (true).
+    pub relative_ned_ft: Vec3,
+    /// Target attitude (true).
+    pub target_attitude: EulerAngles,
+    /// The follower as it is: what the camera images.
+    pub follower: FollowerPose,
+    /// The follower as its navigation knows itself: what sensing turns measurements with.
+    pub navigation: FollowerPose,
+}
+
+impl CaptureGeometry {
+    /// The geometry of a follower whose navigation is exact (its solution is the truth).
+    pub fn exact(
+        relative_ned_ft: Vec3,
+        target_attitude: EulerAngles,
+        follower: FollowerPose,
+    ) -> Self {
+        Self {
+            relative_ned_ft,
+            target_attitude,
+            follower,
+            navigation: follower,
+        }
+    }
+
+    /// L_CB L_BE, NED to camera axes, as the follower's navigation knows it: the rotation
+    /// sensing turns measurements with.
+    pub fn camera_from_ned(&self) -> Mat3 {
+        self.navigation.camera_from_ned()
+    }
+
+    /// The target's true pose in the true camera axes (what a frame draws).
+    pub fn pose(&self) -> TargetPoseInCamera {
+        let camera_from_ned = self.follower.camera_from_ned();
+        TargetPoseInCamera {
+            position_body_ft: camera_from_ned * self.relative_ned_ft,
+            body_from_target: camera_from_ned * self.target_attitude.body_from_ned().transpose(),
+        }
+    }
+}
