@@ -27,10 +27,12 @@
 //! reads and writes its slice through a typed block ([`state_block`]).
 //!
 //! Modules, in the order data flows (each imports only those before it): [`frames`],
-//! [`state_block`], [`linalg`], [`integrate`], [`projection`] (the projection operator the
-//! adaptive laws of [`guidance`] and [`control`] share), [`scenario`], [`world`], [`render`],
-//! [`vision`], [`sensing`], [`estimation`], [`guidance`], [`control`], [`follower`], [`sim`],
-//! [`output`], [`study`] (sweeps of many runs, `wingman sweep`).
+//! [`state_block`], [`linalg`], [`integrate`], [`projection`], [`scenario`], [`world`],
+//! [`render`], [`vision`], [`sensing`], [`estimation`], [`guidance`], [`control`],
+//! [`follower`], [`sim`], [`output`], [`study`].
+//!
+//! [`projection`] is the seed's projection operator, which the adaptive laws of the guidance
+//! and of the flight controller share; [`study`] runs sweeps of many runs (`wingman sweep`).
 #![warn(missing_docs)]
 
 pub mod control;

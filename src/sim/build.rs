@@ -1,0 +1,140 @@
+//! How each stage is built from its own section, and the pairings across stages that only
+//! the simulation makes: the estimator with the guidance law that flies on it, the target
+//! model, the excitation's cap from the camera's field of view, the camera's mount.
+
+use crate::estimation::{Estimator, KalmanTracker, MeasurementHold, TargetTracker};
+use crate::follower::aircraft::DRYDEN_SEED_SALT;
+use crate::follower::{AircraftSetupError, Follower, FollowerConfig};
+use crate::frames::{Mat3, Vec3};
+use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
+use crate::guidance::signals::CommandKind;
+use crate::scenario::{
+    EstimatorKind, ExcitationUnits, GimbalKind, GuidanceLawKind, Scenario, SensorMode, TargetMotion,
+};
+use crate::sensing::gimbal::{Gimbal, GimbalAngles};
+use crate::sensing::{CaptureGeometry, FollowerPose};
+use crate::world::target::{TargetModel, TargetMotionModel};
+
+/// The cap the field of view puts on the excitation's amplitude with a camera
+/// (`excitation.fov_fraction` of the half field of view along the excitation's direction at
+/// the commanded range), in the excitation's units.
+pub(super) fn excitation_cap(scenario: &Scenario) -> Option<f64> {
+    let e = &scenario.excitation;
+    if scenario.sensor.mode != SensorMode::Camera || e.fov_fraction <= 0.0 {
+        return None;
+    }
+    let camera = &scenario.camera;
+    let focal_px = camera.focal_length_px();
+    let direction = Vec3::from(e.direction).normalize();
+    // The tangent of the half field of view the direction moves the target across: vertical
+    // for its down part, horizontal for its level part (whatever the heading), the tighter.
+    let tan_half_vertical = f64::from(camera.height_px) * 0.5 / focal_px;
+    let tan_half_horizontal = f64::from(camera.width_px) * 0.5 / focal_px;
+    let vertical = direction.z.abs();
+    let level = direction.x.hypot(direction.y);
+    let tan_allowed = [(vertical, tan_half_vertical), (level, tan_half_horizontal)]
+        .iter()
+        .filter(|(part, _)| *part > 1e-9)
+        .map(|(part, tan_half)| tan_half / part)
+        .fold(f64::INFINITY, f64::min);
+    let cap_ft = e.fov_fraction * scenario.guidance.command_length_ft() * tan_allowed;
+    Some(match e.units {
+        ExcitationUnits::Ft => cap_ft,
+        ExcitationUnits::Scaled => cap_ft / scenario.guidance.b0_ft,
+    })
+}
+
+/// The follower `[follower]` describes, flying in `[atmosphere]` with `[autopilot]` (its own
+/// turbulence stream), realising the command of `[guidance]`'s law; and its initial state.
+pub(super) fn follower_of(scenario: &Scenario) -> Result<(Follower, Vec<f64>), AircraftSetupError> {
+    Follower::new(&FollowerConfig {
+        follower: &scenario.follower,
+        autopilot: &scenario.autopilot,
+        atmosphere: &scenario.atmosphere,
+        turbulence_seed: scenario.run.seed ^ DRYDEN_SEED_SALT,
+        command_kind: match scenario.guidance.law {
+            GuidanceLawKind::Velocity => CommandKind::Velocity,
+            GuidanceLawKind::Acceleration => CommandKind::Acceleration,
+        },
+    })
+}
+
+/// The camera's pan/tilt gimbal, when the camera rides one.
+pub(super) fn gimbal_of(scenario: &Scenario) -> Option<Gimbal> {
+    (scenario.sensor.mode == SensorMode::Camera
+        && scenario.camera.gimbal.kind == GimbalKind::PanTilt)
+        .then(|| Gimbal::new(&scenario.camera.gimbal))
+}
+
+/// The estimator `[estimator] kind` asks for, fed by a continuous sensor or a camera, with
+/// the guidance law that flies on it (the seed's adaptive laws on the measurement hold, with
+/// the Kalman filter beside them when it is logged; or the velocity law on a filter's
+/// estimate), compensating for a follower that does not realise the command when
+/// `compensate`; and the notes the law's design leaves for the run's log. A new estimator is
+/// one module implementing [`TargetTracker`] and its arm here.
+pub(super) fn estimation_stage(
+    scenario: &Scenario,
+    compensate: bool,
+    continuous_sensor: bool,
+) -> Result<(Estimator, GuidanceLaw, Vec<String>), GuidanceSetupError> {
+    let e = &scenario.estimator;
+    let g = &scenario.guidance;
+    let kalman = || -> Box<dyn TargetTracker> {
+        Box::new(KalmanTracker::new(
+            e,
+            scenario.camera.focal_length_px(),
+            g.b0_ft,
+            (g.b_min_ft, g.b_max_ft),
+        ))
+    };
+    Ok(match e.kind {
+        EstimatorKind::Adaptive => {
+            let (law, notes) = GuidanceLaw::adaptive(g, &scenario.acceleration, compensate)?;
+            let hold = MeasurementHold::new(continuous_sensor, scenario.camera.compensate_delay);
+            let beside = e.log_kalman.then(kalman);
+            (Estimator::Adaptive { hold, beside }, law, notes)
+        }
+        EstimatorKind::Kalman => {
+            let law = GuidanceLaw::on_estimate(g, compensate);
+            (Estimator::OnFilter(kalman()), law, Vec::new())
+        }
+    })
+}
+
+/// The target `[target]` describes.
+pub(super) fn target_of(scenario: &Scenario) -> Box<dyn TargetModel> {
+    match scenario.target.motion {
+        TargetMotion::SeedProfile | TargetMotion::Straight => {
+            Box::new(TargetMotionModel::from_section(&scenario.target))
+        }
+    }
+}
+
+/// L_CB of a camera on its fixed mount, or on a gimbal (its angles in `gimbal_x`) over it.
+pub(super) fn mounted_camera(mount: &Mat3, gimbal: Option<&Gimbal>, gimbal_x: &[f64]) -> Mat3 {
+    match gimbal {
+        Some(_) => GimbalAngles::of(gimbal_x).camera_from_body() * mount,
+        None => *mount,
+    }
+}
+
+/// Where follower and target are at `t_s` for a follower slice.
+pub(super) fn capture_geometry(
+    target: &dyn TargetModel,
+    follower: &Follower,
+    follower_x: &[f64],
+    t_s: f64,
+    camera_from_body: &Mat3,
+) -> CaptureGeometry {
+    let pose = FollowerPose {
+        position_ned_ft: follower.position_ned_ft(follower_x),
+        velocity_ned_fps: follower.track_ned_fps(follower_x),
+        attitude: follower.attitude(follower_x),
+        camera_from_body: *camera_from_body,
+    };
+    CaptureGeometry::exact(
+        target.position_ned_ft(t_s) - pose.position_ned_ft,
+        target.state(t_s).attitude,
+        pose,
+    )
+}

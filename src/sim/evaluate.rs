@@ -1,0 +1,187 @@
+//! The loop's continuous part at (t, x), as RK4 evaluates it: the measurement the estimator
+//! gives the guidance, the command frames' input, the guidance law, the gimbal's pointing,
+//! the flight control and the plant, each stage timed apart.
+
+use super::Simulation;
+use super::build::mounted_camera;
+use crate::estimation::{GuidanceMeasurement, LawEstimates, TargetEstimate, TargetMotionEstimate};
+use crate::follower::Actuation;
+use crate::frames::{Mat3, Vec3};
+use crate::guidance::command::CommandInput;
+use crate::guidance::signals::{GuidanceInput, GuidanceOutput};
+use crate::sensing::gimbal::{Gimbal, GimbalAngles};
+use std::time::Instant;
+
+/// One evaluation of the loop's continuous part at (t, x).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Evaluation {
+    pub(super) guidance: GuidanceOutput,
+    pub(super) actuation: Actuation,
+}
+
+impl Simulation {
+    /// L_CB for a gimbal slice: the gimbal's angles over the fixed mount.
+    pub(super) fn camera_from_body(&self, gimbal_x: &[f64]) -> Mat3 {
+        mounted_camera(&self.camera_mount, self.gimbal.as_ref(), gimbal_x)
+    }
+
+    /// The gimbal's command at (t, x): toward where the estimator predicts the target is, and
+    /// searching about it once the target has been missing (see [`Gimbal::command`]).
+    pub(super) fn gimbal_command(&self, gimbal: &Gimbal, t_s: f64, x: &[f64]) -> GimbalAngles {
+        let slices = self.layout.split(x);
+        let position = self.follower.position_ned_ft(slices.follower);
+        let law = self.guidance.estimates(slices.guidance);
+        let line_of_sight = self.estimator.predicted_r(t_s, &position, law);
+        let base_from_ned =
+            self.camera_mount * self.follower.attitude(slices.follower).body_from_ned();
+        let missing_s = self.estimator.last_measured_s().map_or(0.0, |m| t_s - m);
+        gimbal.command(slices.gimbal, line_of_sight, &base_from_ned, missing_s, t_s)
+    }
+
+    /// The measurement the estimator stage gives the guidance at (t, x).
+    pub(super) fn guidance_measurement(&self, t_s: f64, x: &[f64]) -> GuidanceMeasurement {
+        let slices = self.layout.split(x);
+        let position = self.follower.position_ned_ft(slices.follower);
+        self.estimator.guidance_measurement(
+            t_s,
+            &position,
+            self.guidance.estimates(slices.guidance),
+            || {
+                let relative = self.target.position_ned_ft(t_s) - position;
+                let camera_from_ned = self.camera_from_body(slices.gimbal)
+                    * self.follower.attitude(slices.follower).body_from_ned();
+                self.sensor
+                    .continuous_measurement(&relative, &camera_from_ned)
+            },
+        )
+    }
+
+    /// The estimates b̂ and d̂ the guidance flies on at (t, x): the adaptive law's own, or the
+    /// Kalman filter's (`None` before its first measurement).
+    pub(super) fn estimates(
+        &self,
+        x: &[f64],
+        measurement: &GuidanceMeasurement,
+    ) -> Option<LawEstimates> {
+        let guidance_x = self.layout.split(x).guidance;
+        self.guidance.estimates(guidance_x).or(match measurement {
+            GuidanceMeasurement::Now {
+                estimate: Some(e), ..
+            } => Some(LawEstimates {
+                b_hat_ft: e.b_hat_ft,
+                target_motion: TargetMotionEstimate::ScaledVelocity(e.d_per_s),
+            }),
+            _ => None,
+        })
+    }
+
+    /// What the command frames follow at (t, x): the follower's attitude and rates, and the
+    /// track of the target frame: the target's estimated velocity once it is trusted (the
+    /// Kalman filter knows its heading; or the adaptive velocity law's d̂), none before (the
+    /// frame holds). With the Kalman estimate the track leads by the frame's lag, d̂ + â τ, so that
+    /// the frame does not trail a steadily turning target by its turn rate times τ.
+    pub(super) fn command_input(
+        &self,
+        x: &[f64],
+        measurement: &GuidanceMeasurement,
+    ) -> CommandInput {
+        let follower_x = self.layout.split(x).follower;
+        let g = &self.scenario.guidance;
+        let heading_gate_rad = g.command_target_heading_sigma_deg.to_radians();
+        let track_ned = match (measurement, self.estimator.filter()) {
+            (
+                GuidanceMeasurement::Now {
+                    estimate: Some(e), ..
+                },
+                Some(tracker),
+            ) if tracker.heading_sigma_rad() < heading_gate_rad => {
+                Some(e.d_per_s + e.a_per_s2 * g.command_target_lead_s)
+            }
+            (_, None) => match self.estimates(x, measurement) {
+                Some(LawEstimates {
+                    target_motion: TargetMotionEstimate::ScaledVelocity(d),
+                    ..
+                }) => Some(d),
+                _ => None,
+            },
+            _ => None,
+        };
+        CommandInput {
+            attitude: self.follower.attitude(follower_x),
+            body_rates_rps: self.follower.body_rates(follower_x),
+            track_ned,
+        }
+    }
+
+    /// The guidance input at (t, x) for a measurement: command, its rate, the excitation, the
+    /// follower's navigation and the Kalman estimate.
+    pub(super) fn guidance_input(
+        &self,
+        t_s: f64,
+        x: &[f64],
+        command: &CommandInput,
+        r_measured: Option<Vec3>,
+        estimate: Option<TargetEstimate>,
+    ) -> GuidanceInput {
+        let slices = self.layout.split(x);
+        let (follower_x, command_x) = (slices.follower, slices.command);
+        let (command_ned_ft, command_rate_ned_fps) = self.command.command(command_x, command);
+        GuidanceInput {
+            r_measured,
+            command_ned_ft,
+            command_rate_ned_fps,
+            command_frame_rate_rps: self.command.shaping_frame_rate_rps(command_x, command),
+            excitation: self.excitation.command_offset(t_s),
+            follower: self.follower.feedback(follower_x),
+            estimate,
+        }
+    }
+
+    /// ẋ of the whole state at (t, x), with what guidance and control decided there. The
+    /// three stages are timed apart (see [`StageTimes`]).
+    pub(super) fn derivative(&self, t_s: f64, x: &[f64], dx: &mut [f64]) -> Evaluation {
+        let started = Instant::now();
+        let x_of = self.layout.split(x);
+        let dx_of = self.layout.split_mut(dx);
+        let measurement = self.guidance_measurement(t_s, x);
+        let command = self.command_input(x, &measurement);
+        self.command
+            .derivative(x_of.command, &command, dx_of.command);
+        if let Some(gimbal) = &self.gimbal {
+            let pointing = self.gimbal_command(gimbal, t_s, x);
+            gimbal.derivative(x_of.gimbal, &pointing, dx_of.gimbal);
+        }
+        let out = match measurement {
+            GuidanceMeasurement::NotYet => self.guidance.idle(x_of.guidance, dx_of.guidance),
+            GuidanceMeasurement::Now { r, estimate } => {
+                let input = self.guidance_input(t_s, x, &command, r, estimate);
+                self.guidance
+                    .derivative(x_of.guidance, &input, dx_of.guidance)
+            }
+        };
+        let guided = Instant::now();
+        let actuation = self
+            .follower
+            .control(x_of.follower, &out.command, dx_of.follower);
+        let controlled = Instant::now();
+        self.follower
+            .plant(x_of.follower, &actuation, dx_of.follower);
+        let mut times = self.stage_times.get();
+        times.guidance += guided - started;
+        times.control += controlled - guided;
+        times.plant += controlled.elapsed();
+        self.stage_times.set(times);
+        Evaluation {
+            guidance: out,
+            actuation,
+        }
+    }
+
+    /// Guidance and control at the current state.
+    pub(super) fn evaluate(&mut self) -> Evaluation {
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let out = self.derivative(self.time_s(), &self.state, &mut scratch);
+        self.scratch = scratch;
+        out
+    }
+}

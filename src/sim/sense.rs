@@ -1,0 +1,71 @@
+//! The sensors acting at a tick: a camera frame delivered to the estimator (the first one
+//! starts the law's filters), or a continuous sensor's sample for the filter.
+
+use super::{SimError, Simulation};
+use crate::estimation::GuidanceMeasurement;
+use crate::frames::Vec3;
+use crate::sensing::CaptureGeometry;
+use std::time::Instant;
+
+impl Simulation {
+    /// The sensors act at the current tick: a camera frame that reaches the guidance goes to
+    /// the estimator (the first starts the law's filters), a continuous sensor's new sample
+    /// to the Kalman filter when there is one.
+    pub(super) fn sense(&mut self) -> Result<(), SimError> {
+        let t_s = self.time_s();
+        let geometry = self.capture_geometry();
+        let delivered =
+            self.sensor
+                .sample(self.tick, t_s, &geometry)
+                .map_err(|e| SimError::Camera {
+                    t_s,
+                    source: Box::new(e),
+                })?;
+        let started = Instant::now();
+        let velocity = geometry.navigation.velocity_ned_fps;
+        let first = match delivered {
+            Some(record) => {
+                self.losses.record(record.t_s, record.r_measured.is_some());
+                self.estimator.deliver(&record, &velocity)
+            }
+            None => {
+                self.sample_continuous(&geometry, &velocity);
+                false
+            }
+        };
+        if first
+            && let GuidanceMeasurement::Now { r: Some(r0), .. } =
+                self.guidance_measurement(t_s, &self.state)
+        {
+            let guidance_x = self.layout.split_mut(&mut self.state).guidance;
+            self.guidance.start_at(guidance_x, &r0);
+        }
+        let mut times = self.stage_times.get();
+        times.estimator += started.elapsed();
+        self.stage_times.set(times);
+        Ok(())
+    }
+
+    /// A continuous sensor's sample for the Kalman filter, when this tick draws one.
+    pub(super) fn sample_continuous(
+        &mut self,
+        geometry: &CaptureGeometry,
+        follower_velocity_ned_fps: &Vec3,
+    ) {
+        if self.estimator.filter().is_none() || !self.sensor.is_sample_tick(self.tick) {
+            return;
+        }
+        let body_from_ned = geometry.camera_from_ned();
+        let relative = &geometry.relative_ned_ft;
+        if let Some(r_star) = self.sensor.continuous_measurement(relative, &body_from_ned) {
+            let variance = self.sensor.continuous_variance(relative, &body_from_ned);
+            self.estimator.sample(
+                self.time_s(),
+                &r_star,
+                variance,
+                &geometry.navigation.position_ned_ft,
+                follower_velocity_ned_fps,
+            );
+        }
+    }
+}
