@@ -99,11 +99,12 @@ impl Sensor {
         }
     }
 
-    /// The per-axis variance of a continuous sensor's r* in this geometry (scaled units²):
-    /// zero for the perfect sensor, the noisy sensor's own.
-    pub fn continuous_variance(&self, relative_ned_ft: &Vec3, body_from_ned: &Mat3) -> f64 {
+    /// The per-axis variance of a continuous sensor's measurement r* (scaled units²), from
+    /// the measurement itself and the follower's attitude, not from the truth: zero for the
+    /// perfect sensor, the noisy sensor's own.
+    pub fn continuous_variance(&self, r_star: &Vec3, body_from_ned: &Mat3) -> f64 {
         match self {
-            Self::Noisy(sensor) => sensor.variance(relative_ned_ft, body_from_ned),
+            Self::Noisy(sensor) => sensor.variance(r_star, body_from_ned),
             Self::Perfect { .. } | Self::Camera(_) => 0.0,
         }
     }

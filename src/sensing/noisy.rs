@@ -151,20 +151,20 @@ impl NoisySensor {
         }
     }
 
-    /// The per-axis variance of r* in this geometry, scaled units²: σ² of the noise on r, or
-    /// the mean diagonal of J Σ Jᵀ for noise on the pixels (J the sensing transform's
-    /// Jacobian at the noise-free image).
-    pub fn variance(&self, relative_ned_ft: &Vec3, body_from_ned: &Mat3) -> f64 {
-        let r = relative_ned_ft / self.size_ft;
+    /// The per-axis variance of a measurement r* taken with the follower at `body_from_ned`,
+    /// scaled units²: σ² of the noise on r (its power from r* where the SNR refers to the
+    /// signal), or the mean diagonal of J Σ Jᵀ for noise on the pixels (J the sensing
+    /// transform's Jacobian at the image r* implies). A filter knows r*, not R and b, so the
+    /// variance is computed from what it knows.
+    pub fn variance(&self, r_star: &Vec3, body_from_ned: &Mat3) -> f64 {
         match self.noise_on {
-            NoiseOn::ScaledPosition => self.scaled_sigma(&r).powi(2),
+            NoiseOn::ScaledPosition => self.scaled_sigma(r_star).powi(2),
             NoiseOn::Pixels => {
-                let Some(image) = image_from_relative_position(
-                    relative_ned_ft,
-                    body_from_ned,
-                    self.size_ft,
-                    self.focal_px,
-                ) else {
+                // The image of r* seen as a target of size 1 at R = r*: b cancels in (3.12),
+                // so the variance needs neither the true range nor the true size.
+                let Some(image) =
+                    image_from_relative_position(r_star, body_from_ned, 1.0, self.focal_px)
+                else {
                     return f64::INFINITY;
                 };
                 let j = scaled_position_jacobian(&image, self.focal_px, &body_from_ned.transpose());
@@ -232,6 +232,37 @@ mod tests {
         assert_eq!(
             command.scaled_sigma(&(r_c * 5.0)),
             command.scaled_sigma(&r_c)
+        );
+    }
+
+    /// The variance a filter is given depends on the measurement r* and the attitude only:
+    /// targets of 4 and 8 ft give the same variance for the same r*, and for noise on the
+    /// pixels it is the pixel noise mapped through the Jacobian at the image r* implies (the
+    /// image of an 8 ft target at R = 8 r*).
+    #[test]
+    fn variance_is_computed_from_the_measurement_not_the_truth() {
+        let r_star = Vec3::new(4.0, 1.0, -0.5);
+        let attitude = EulerAngles::new(0.1, -0.05, 0.2).body_from_ned();
+        for noise_on in [NoiseOn::ScaledPosition, NoiseOn::Pixels] {
+            let mut small = scenario(noise_on, SnrReference::Signal);
+            small.target.size_ft = 4.0;
+            let large = scenario(noise_on, SnrReference::Signal);
+            let (small, large) = (sensor(&small), sensor(&large));
+            let v = large.variance(&r_star, &attitude);
+            assert!(v.is_finite() && v > 0.0, "{noise_on:?}: {v}");
+            assert_eq!(small.variance(&r_star, &attitude), v, "{noise_on:?}");
+        }
+        let pixels = sensor(&scenario(NoiseOn::Pixels, SnrReference::Signal));
+        let image = image_from_relative_position(&(r_star * 8.0), &attitude, 8.0, pixels.focal_px)
+            .expect("in front");
+        let j = scaled_position_jacobian(&image, pixels.focal_px, &attitude.transpose());
+        let [sy, sz, sb] = pixels.pixel_sigma_px;
+        let sigma = Mat3::from_diagonal(&Vec3::new(sy * sy, sz * sz, sb * sb));
+        let expected = (j * sigma * j.transpose()).trace() / 3.0;
+        let v = pixels.variance(&r_star, &attitude);
+        assert!(
+            (v - expected).abs() <= 1e-12 * expected,
+            "{v} vs {expected}"
         );
     }
 

@@ -6,13 +6,14 @@ use crate::estimation::{Estimator, KalmanTracker, MeasurementHold, TargetTracker
 use crate::follower::aircraft::DRYDEN_SEED_SALT;
 use crate::follower::{AircraftSetupError, Follower, FollowerConfig};
 use crate::frames::{Mat3, Vec3};
+use crate::guidance::command::{CommandInput, FormationCommand};
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
 use crate::guidance::signals::CommandKind;
 use crate::scenario::{
     EstimatorKind, ExcitationUnits, GimbalKind, GuidanceLawKind, Scenario, SensorMode, TargetMotion,
 };
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
-use crate::sensing::{CaptureGeometry, FollowerPose};
+use crate::sensing::{CaptureGeometry, FollowerPose, Sensor};
 use crate::world::target::{TargetModel, TargetMotionModel};
 
 /// The cap the field of view puts on the excitation's amplitude with a camera
@@ -57,6 +58,32 @@ pub(super) fn follower_of(scenario: &Scenario) -> Result<(Follower, Vec<f64>), A
             GuidanceLawKind::Acceleration => CommandKind::Acceleration,
         },
     })
+}
+
+/// Where the guidance law's filters start (the seed starts them at the first measurement): a
+/// continuous sensor's r*(0); with a camera, whose first frame restarts them, the slot the
+/// guidance is to hold, R_c(0)/b̂(0) (the follower's `body_rates_rps` for a command in its
+/// body frame), so that no truth enters the guidance.
+pub(super) fn first_r(
+    sensor: &Sensor,
+    geometry: &CaptureGeometry,
+    command: &FormationCommand,
+    body_rates_rps: Vec3,
+    b0_ft: f64,
+) -> Vec3 {
+    let relative = &geometry.relative_ned_ft;
+    sensor
+        .continuous_measurement(relative, &geometry.camera_from_ned())
+        .unwrap_or_else(|| {
+            let attitude = geometry.navigation.attitude;
+            let input = CommandInput {
+                attitude,
+                body_rates_rps,
+                track_ned: None,
+            };
+            let command_x = FormationCommand::initial_state(&attitude);
+            command.command(&command_x, &input).0 / b0_ft
+        })
 }
 
 /// The camera's pan/tilt gimbal, when the camera rides one.

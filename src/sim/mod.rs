@@ -25,8 +25,8 @@ mod sense;
 pub use record::{GimbalReading, Snapshot, StageTimes};
 
 use build::{
-    capture_geometry, estimation_stage, excitation_cap, follower_of, gimbal_of, mounted_camera,
-    target_of,
+    capture_geometry, estimation_stage, excitation_cap, first_r, follower_of, gimbal_of,
+    mounted_camera, target_of,
 };
 use evaluate::Evaluation;
 
@@ -171,13 +171,10 @@ impl Simulation {
             0.0,
             &camera_from_body,
         );
-        // The filters start at the first measurement: r*(0) with a noisy sensor, the true
-        // r(0) otherwise (a camera restarts them at its first frame).
         sensor.draw_initial_noise(&geometry);
-        let r0 = geometry.relative_ned_ft / scenario.target.size_ft;
-        let r_first = sensor
-            .continuous_measurement(&geometry.relative_ned_ft, &geometry.camera_from_ned())
-            .unwrap_or(r0);
+        let command = FormationCommand::new(g);
+        let body_rates_rps = follower.body_rates(&follower_x);
+        let r_first = first_r(&sensor, &geometry, &command, body_rates_rps, g.b0_ft);
         let layout = StateLayout::new(
             follower_x.len(),
             gimbal_x.len(),
@@ -195,7 +192,7 @@ impl Simulation {
             target,
             envelope: follower.aircraft().map(|_| FlightEnvelope::default()),
             follower,
-            command: FormationCommand::new(g),
+            command,
             guidance,
             excitation: Excitation::new(
                 &scenario.excitation,
@@ -213,7 +210,7 @@ impl Simulation {
             state,
             tick: 0,
             total_ticks: scenario.run.total_ticks(),
-            min_range_ft: r0.norm() * scenario.target.size_ft,
+            min_range_ft: geometry.relative_ned_ft.norm(),
             intercept_time_s: None,
         };
         let first = sim.evaluate().guidance.command;
@@ -363,7 +360,7 @@ impl Simulation {
             target_motion: estimates.target_motion,
             filter: self.estimator.filter_reading(t_s, &follower),
             guidance: out,
-            frame: self.camera().and_then(CameraSensor::last_record),
+            frame: self.camera().and_then(CameraSensor::held_record),
             gimbal: self.gimbal_reading(),
             aircraft: actuation.aircraft().copied(),
         }

@@ -42,7 +42,7 @@ pub struct Snapshot {
     pub filter: FilterReading,
     /// Guidance output.
     pub guidance: GuidanceOutput,
-    /// The last camera frame's measurement and truth (camera runs).
+    /// The measurement and truth of the frame the guidance holds (camera runs).
     pub frame: Option<FrameRecord>,
     /// The gimbal's angles and command now (gimballed cameras).
     pub gimbal: Option<GimbalReading>,

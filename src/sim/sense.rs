@@ -58,7 +58,7 @@ impl Simulation {
         let body_from_ned = geometry.camera_from_ned();
         let relative = &geometry.relative_ned_ft;
         if let Some(r_star) = self.sensor.continuous_measurement(relative, &body_from_ned) {
-            let variance = self.sensor.continuous_variance(relative, &body_from_ned);
+            let variance = self.sensor.continuous_variance(&r_star, &body_from_ned);
             self.estimator.sample(
                 self.time_s(),
                 &r_star,

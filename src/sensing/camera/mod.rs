@@ -300,9 +300,16 @@ impl CameraSensor {
         self.audit.last_truth()
     }
 
-    /// The record of the last frame taken.
+    /// The record of the last frame measured (the newest: with a latency of two frames or
+    /// more, not yet the guidance's).
     pub fn last_record(&self) -> Option<FrameRecord> {
         self.last.map(|(record, _)| record)
+    }
+
+    /// The record the guidance holds now: the latest frame at least `latency_frames` frames
+    /// old.
+    pub fn held_record(&self) -> Option<FrameRecord> {
+        self.schedule.held()
     }
 
     /// The intrinsics of this camera.

@@ -95,6 +95,11 @@ impl FrameSchedule {
         self.held
     }
 
+    /// The record the guidance holds now.
+    pub fn held(&self) -> Option<FrameRecord> {
+        self.held
+    }
+
     /// Frames taken.
     pub fn frames(&self) -> u64 {
         self.frames
