@@ -283,6 +283,22 @@ mod tests {
         assert!(err.allowed.contains("[10, 1000]"), "{err}");
     }
 
+    /// Waypoints and the random envelope are written into the resolved scenario, which
+    /// reads back the same.
+    #[test]
+    fn resolved_waypoints_round_trip() {
+        let text = "[target]\nmotion = \"waypoints\"\ntrack = \"t.csv\"\n\
+                    [[target.waypoints]]\nposition_ft = [500.0, 10.0, -5.0]\nspeed_fps = 45.0\n\
+                    [[target.waypoints]]\nposition_ft = [0.0, 900.0, 0.0]\nspeed_fps = 55.0\n\
+                    [target.random]\nbank_max_deg = 20.0\n";
+        let path = std::path::Path::new("w.toml");
+        let s = super::super::Scenario::from_toml_str(text, path, &[]).expect("valid");
+        assert_eq!(s.target.waypoints.len(), 2);
+        assert_eq!(s.target.random.bank_max_deg, 20.0);
+        let again = super::super::Scenario::from_toml_str(&s.to_toml_string(), path, &[]);
+        assert_eq!(again.expect("resolved is valid"), s);
+    }
+
     #[test]
     fn random_envelope_is_ordered() {
         let mut s = TargetSection::default();
