@@ -81,7 +81,7 @@ fn waypoint_track_passes_every_waypoint_in_order() {
     for (t, s) in &states {
         let v = s.velocity_ned_fps;
         assert!(
-            s.attitude.phi_rad.abs() <= bank_limit + 1e-4,
+            s.attitude.phi_rad.abs() <= bank_limit + 1e-3, // drawn from the interpolated acceleration
             "bank at {t}: {s:?}"
         );
         assert!(
