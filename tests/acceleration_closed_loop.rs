@@ -65,7 +65,7 @@ impl ClosedLoop {
     ) -> Self {
         Self {
             law: AccelerationGuidance::new(section, guidance, None),
-            target: TargetMotionModel::from_section(target),
+            target: TargetMotionModel::from_section(target).expect("closed form"),
             command_ned_ft,
             excitation: Excitation::Off,
             noise: Cell::new(Vec3::zeros()),

@@ -228,7 +228,7 @@ fn stats(flight: &Flight, from_s: f64) -> Stats {
 }
 
 fn seed_target() -> TargetMotionModel {
-    TargetMotionModel::from_section(&TargetSection::default())
+    TargetMotionModel::from_section(&TargetSection::default()).expect("closed form")
 }
 
 /// RMS of the vertical velocity error over the samples (t ≥ `from_s`) where no flight-path

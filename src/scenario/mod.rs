@@ -11,6 +11,7 @@ mod gimbal;
 pub mod origin;
 mod sections;
 mod sensor;
+mod target;
 
 pub use acceleration::*;
 pub use atmosphere::*;
@@ -21,6 +22,7 @@ pub use gimbal::*;
 pub use origin::{Origin, ScenarioSource};
 pub use sections::*;
 pub use sensor::*;
+pub use target::*;
 
 use std::path::{Path, PathBuf};
 
@@ -129,6 +131,11 @@ impl Scenario {
         scenario.camera.mesh = resolve_asset_path(&scenario.camera.mesh, DEFAULT_MESH, dir);
         scenario.follower.aircraft =
             resolve_asset_path(&scenario.follower.aircraft, DEFAULT_AIRCRAFT, dir);
+        if !scenario.target.track.is_empty() {
+            // Any track may be one of the shipped ones (assets/tracks/).
+            let track = &scenario.target.track;
+            scenario.target.track = resolve_asset_path(track, track, dir);
+        }
         Ok((scenario, source))
     }
 

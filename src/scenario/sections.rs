@@ -57,49 +57,6 @@ impl RunSection {
     }
 }
 
-/// How the target moves.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum TargetMotion {
-    /// The seed's piecewise velocity profile (Section 4.4).
-    SeedProfile,
-    /// Constant velocity `straight_velocity_fps`.
-    Straight,
-}
-
-/// `[target]`: the unknown aircraft being tracked.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct TargetSection {
-    /// Motion model.
-    pub motion: TargetMotion,
-    /// R_T(0) in NED, ft.
-    pub initial_position_ft: [f64; 3],
-    /// Velocity for `motion = "straight"`, NED, ft/s.
-    pub straight_velocity_fps: [f64; 3],
-    /// The target's true maximal size b, ft (its wingspan): unknown to the guidance.
-    pub size_ft: f64,
-}
-
-impl Default for TargetSection {
-    fn default() -> Self {
-        Self {
-            motion: TargetMotion::SeedProfile,
-            initial_position_ft: [200.0, 50.0, 30.0],
-            straight_velocity_fps: [50.0, 0.0, 0.0],
-            size_ft: 8.0,
-        }
-    }
-}
-
-impl TargetSection {
-    fn validate(&self) -> Check {
-        check::finite_vec("target.initial_position_ft", &self.initial_position_ft)?;
-        check::finite_vec("target.straight_velocity_fps", &self.straight_velocity_fps)?;
-        check::in_closed("target.size_ft", self.size_ft, 0.01, 1000.0)
-    }
-}
-
 /// The follower's dynamics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -635,7 +592,7 @@ pub struct Scenario {
     /// Time base.
     pub run: RunSection,
     /// Target.
-    pub target: TargetSection,
+    pub target: super::TargetSection,
     /// Follower.
     pub follower: FollowerSection,
     /// Sensor.

@@ -15,6 +15,10 @@ use crate::scenario::{
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
 use crate::sensing::{CaptureGeometry, FollowerPose, Sensor};
 use crate::world::target::{TargetModel, TargetMotionModel};
+use crate::world::trajectory::{
+    RANDOM_TRACK_SEED_SALT, TrackError, random_track, read_track, waypoint_track,
+};
+use std::path::Path;
 
 /// The cap the field of view puts on the excitation's amplitude with a camera
 /// (`excitation.fov_fraction` of the half field of view along the excitation's direction at
@@ -128,13 +132,25 @@ pub(super) fn estimation_stage(
     })
 }
 
-/// The target `[target]` describes.
-pub(super) fn target_of(scenario: &Scenario) -> Box<dyn TargetModel> {
-    match scenario.target.motion {
-        TargetMotion::SeedProfile | TargetMotion::Straight => {
-            Box::new(TargetMotionModel::from_section(&scenario.target))
+/// The target `[target]` describes, flying at least the run's duration: a closed-form
+/// motion, or a trajectory source (the random one on its own stream of `run.seed`).
+pub(super) fn target_of(scenario: &Scenario) -> Result<Box<dyn TargetModel>, TrackError> {
+    let target = &scenario.target;
+    let start = Vec3::from(target.initial_position_ft);
+    let duration_s = scenario.run.duration_s;
+    Ok(match target.motion {
+        TargetMotion::SeedProfile => Box::new(TargetMotionModel::seed_profile(start)),
+        TargetMotion::Straight => {
+            let velocity = Vec3::from(target.straight_velocity_fps);
+            Box::new(TargetMotionModel::straight(start, velocity))
         }
-    }
+        TargetMotion::Waypoints => Box::new(waypoint_track(target, duration_s)),
+        TargetMotion::Random => {
+            let seed = scenario.run.seed ^ RANDOM_TRACK_SEED_SALT;
+            Box::new(random_track(target, seed, duration_s))
+        }
+        TargetMotion::Csv => Box::new(read_track(Path::new(&target.track), start, duration_s)?),
+    })
 }
 
 /// L_CB of a camera on its fixed mount, or on a gimbal (its angles in `gimbal_x`) over it.

@@ -46,6 +46,7 @@ use crate::sensing::{
     CameraSensor, CaptureGeometry, NoisySensor, Sensor, SensorConfig, SensorError,
 };
 use crate::world::target::TargetModel;
+use crate::world::trajectory::TrackError;
 use layout::StateLayout;
 use std::cell::Cell;
 use std::time::Instant;
@@ -67,6 +68,9 @@ pub enum SimError {
     /// The follower could not be built from the scenario.
     #[error("cannot set up the simulation: {0}")]
     Follower(#[from] AircraftSetupError),
+    /// The target's track could not be read.
+    #[error("cannot set up the simulation: target.track: {0}")]
+    Target(#[from] TrackError),
     /// The sensor could not be built from the scenario.
     #[error("cannot set up the simulation: {0}")]
     Sensor(#[source] Box<SensorError>),
@@ -157,7 +161,7 @@ impl Simulation {
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let (estimator, guidance, notes) =
             estimation_stage(scenario, compensate, sensor.is_continuous())?;
-        let target = target_of(scenario);
+        let target = target_of(scenario)?;
         let gimbal = gimbal_of(scenario);
         let gimbal_x = gimbal
             .as_ref()

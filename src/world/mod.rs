@@ -3,3 +3,4 @@
 pub mod aircraft;
 pub mod atmosphere;
 pub mod target;
+pub mod trajectory;

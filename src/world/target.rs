@@ -196,17 +196,33 @@ enum MotionKind {
 }
 
 impl TargetMotionModel {
-    /// The motion a scenario's `[target]` section describes.
-    pub fn from_section(section: &TargetSection) -> Self {
-        let kind = match section.motion {
-            TargetMotion::SeedProfile => MotionKind::Profile(Box::new(seed_profile())),
-            TargetMotion::Straight => {
-                MotionKind::Straight(Vec3::from(section.straight_velocity_fps))
-            }
-        };
+    /// The seed's profile (Section 4.4) from R_T(0) = `initial_position_ned_ft`.
+    pub fn seed_profile(initial_position_ned_ft: Vec3) -> Self {
         Self {
-            initial_position_ned_ft: Vec3::from(section.initial_position_ft),
-            kind,
+            initial_position_ned_ft,
+            kind: MotionKind::Profile(Box::new(seed_profile())),
+        }
+    }
+
+    /// Straight flight at `velocity_ned_fps` from R_T(0) = `initial_position_ned_ft`.
+    pub fn straight(initial_position_ned_ft: Vec3, velocity_ned_fps: Vec3) -> Self {
+        Self {
+            initial_position_ned_ft,
+            kind: MotionKind::Straight(velocity_ned_fps),
+        }
+    }
+
+    /// The motion a scenario's `[target]` section describes, when it is one of the closed
+    /// forms (the seed's profile or straight flight; the others are `world::trajectory`'s).
+    pub fn from_section(section: &TargetSection) -> Option<Self> {
+        let start = Vec3::from(section.initial_position_ft);
+        match section.motion {
+            TargetMotion::SeedProfile => Some(Self::seed_profile(start)),
+            TargetMotion::Straight => Some(Self::straight(
+                start,
+                Vec3::from(section.straight_velocity_fps),
+            )),
+            TargetMotion::Waypoints | TargetMotion::Random | TargetMotion::Csv => None,
         }
     }
 
@@ -272,7 +288,7 @@ mod tests {
     use super::*;
 
     fn seed() -> TargetMotionModel {
-        TargetMotionModel::from_section(&TargetSection::default())
+        TargetMotionModel::from_section(&TargetSection::default()).expect("closed form")
     }
 
     /// Each piece joins the next continuously.
