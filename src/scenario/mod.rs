@@ -129,6 +129,8 @@ impl Scenario {
         scenario.camera.mesh = resolve_asset_path(&scenario.camera.mesh, DEFAULT_MESH, dir);
         scenario.follower.aircraft =
             resolve_asset_path(&scenario.follower.aircraft, DEFAULT_AIRCRAFT, dir);
+        scenario.target.aircraft =
+            resolve_asset_path(&scenario.target.aircraft, DEFAULT_AIRCRAFT, dir);
         Ok((scenario, source))
     }
 

@@ -67,6 +67,19 @@ pub enum TargetMotion {
     Straight,
 }
 
+/// What moves the target along its motion (`target.model`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TargetModelKind {
+    /// The motion itself: position, velocity and acceleration in closed form, the attitude
+    /// along the velocity with the coordinated-turn bank (the seed's target).
+    Kinematic,
+    /// A second 6-DOF aircraft (`target.aircraft`) flown by its own Chapter 7 flight
+    /// controller (`[target.autopilot]`) along the motion, which is then its reference
+    /// (docs/equations.md, The target as an aircraft).
+    Aircraft,
+}
+
 /// `[target]`: the unknown aircraft being tracked.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -79,6 +92,24 @@ pub struct TargetSection {
     pub straight_velocity_fps: [f64; 3],
     /// The target's true maximal size b, ft (its wingspan): unknown to the guidance.
     pub size_ft: f64,
+    /// What moves the target: `"kinematic"` (default, the seed's) or `"aircraft"`. The
+    /// aircraft starts trimmed in straight and level flight at the motion's horizontal speed
+    /// at t = 0 (35-100 ft/s) on its course; a motion that starts climbing is joined by the
+    /// track feedback.
+    pub model: TargetModelKind,
+    /// The target aircraft's data file (`model = "aircraft"`), in the schema of
+    /// `follower.aircraft` and looked up like it; default the shipped
+    /// `assets/aircraft/follower.toml` (the seed's airframe).
+    pub aircraft: String,
+    /// k of the target aircraft's command V_c = V_ref + k (R_ref - R), 1/s, in [0, 2]
+    /// (0: the motion's velocity alone, which lets the track drift). Choice: 0.3. The
+    /// aircraft's velocity follows V_c with a lag τ of 1-2 s, so the track error obeys
+    /// τ ë + ė + k e = 0 about, with damping 1/(2√(kτ)): 0.3 gives 0.75-1.05, and a 5 ft
+    /// error is taken out at 1.5 ft/s.
+    pub track_gain_per_s: f64,
+    /// The target aircraft's flight controller (`model = "aircraft"`): the keys of
+    /// `[autopilot]`, with their defaults (not the follower's choices in a scenario).
+    pub autopilot: super::AutopilotSection,
 }
 
 impl Default for TargetSection {
@@ -88,6 +119,10 @@ impl Default for TargetSection {
             initial_position_ft: [200.0, 50.0, 30.0],
             straight_velocity_fps: [50.0, 0.0, 0.0],
             size_ft: 8.0,
+            model: TargetModelKind::Kinematic,
+            aircraft: DEFAULT_AIRCRAFT.to_string(),
+            track_gain_per_s: 0.3,
+            autopilot: super::AutopilotSection::default(),
         }
     }
 }
@@ -96,7 +131,18 @@ impl TargetSection {
     fn validate(&self) -> Check {
         check::finite_vec("target.initial_position_ft", &self.initial_position_ft)?;
         check::finite_vec("target.straight_velocity_fps", &self.straight_velocity_fps)?;
-        check::in_closed("target.size_ft", self.size_ft, 0.01, 1000.0)
+        check::in_closed("target.size_ft", self.size_ft, 0.01, 1000.0)?;
+        check::require(
+            !self.aircraft.is_empty(),
+            "target.aircraft",
+            "\"\"".to_string(),
+            "the path of an aircraft data file".to_string(),
+        )?;
+        check::in_closed("target.track_gain_per_s", self.track_gain_per_s, 0.0, 2.0)?;
+        self.autopilot.validate().map_err(|mut invalid| {
+            invalid.key = format!("target.{}", invalid.key);
+            invalid
+        })
     }
 }
 
@@ -710,6 +756,21 @@ impl Scenario {
         }
         self.atmosphere.validate()?;
         self.autopilot.validate()?;
+        if self.target.model == TargetModelKind::Aircraft {
+            // As the follower's below: trimmed level through the air, and its fast modes.
+            check::require(
+                self.atmosphere.wind_ned_fps[2] == 0.0,
+                "atmosphere.wind_ned_fps",
+                format!("{:?}", self.atmosphere.wind_ned_fps),
+                "[n, e, 0] with target.model = \"aircraft\" (no level trim in rising air)",
+            )?;
+            check::require(
+                self.run.dt_s <= AIRCRAFT_MAX_DT_S,
+                "run.dt_s",
+                self.run.dt_s,
+                format!("<= {AIRCRAFT_MAX_DT_S} s with target.model = \"aircraft\""),
+            )?;
+        }
         if self.follower.model == FollowerModel::Aircraft {
             // The aircraft starts trimmed in straight and level flight through the air: an
             // air mass that rises or sinks has no such trim.

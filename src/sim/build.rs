@@ -9,10 +9,12 @@ use crate::frames::{Mat3, Vec3};
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
 use crate::guidance::signals::CommandKind;
 use crate::scenario::{
-    EstimatorKind, ExcitationUnits, GimbalKind, GuidanceLawKind, Scenario, SensorMode, TargetMotion,
+    EstimatorKind, ExcitationUnits, GimbalKind, GuidanceLawKind, Scenario, SensorMode,
+    TargetModelKind, TargetMotion,
 };
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
 use crate::sensing::{CaptureGeometry, FollowerPose};
+use crate::target_aircraft::{TARGET_DRYDEN_SEED_SALT, TargetAircraft, TargetAircraftError};
 use crate::world::target::{TargetModel, TargetMotionModel};
 
 /// The cap the field of view puts on the excitation's amplitude with a camera
@@ -101,13 +103,23 @@ pub(super) fn estimation_stage(
     })
 }
 
-/// The target `[target]` describes.
-pub(super) fn target_of(scenario: &Scenario) -> Box<dyn TargetModel> {
-    match scenario.target.motion {
+/// The target `[target]` describes: its motion, or an aircraft flying it in `[atmosphere]`
+/// (its own turbulence stream).
+pub(super) fn target_of(scenario: &Scenario) -> Result<Box<dyn TargetModel>, TargetAircraftError> {
+    let motion: Box<dyn TargetModel> = match scenario.target.motion {
         TargetMotion::SeedProfile | TargetMotion::Straight => {
             Box::new(TargetMotionModel::from_section(&scenario.target))
         }
-    }
+    };
+    Ok(match scenario.target.model {
+        TargetModelKind::Kinematic => motion,
+        TargetModelKind::Aircraft => Box::new(TargetAircraft::new(
+            &scenario.target,
+            &scenario.atmosphere,
+            scenario.run.seed ^ TARGET_DRYDEN_SEED_SALT,
+            motion,
+        )?),
+    })
 }
 
 /// L_CB of a camera on its fixed mount, or on a gimbal (its angles in `gimbal_x`) over it.

@@ -45,6 +45,7 @@ use crate::sensing::losses::{LossEpisode, LossLog};
 use crate::sensing::{
     CameraSensor, CaptureGeometry, NoisySensor, Sensor, SensorConfig, SensorError,
 };
+use crate::target_aircraft::TargetAircraftError;
 use crate::world::target::TargetModel;
 use layout::StateLayout;
 use std::cell::Cell;
@@ -67,6 +68,9 @@ pub enum SimError {
     /// The follower could not be built from the scenario.
     #[error("cannot set up the simulation: {0}")]
     Follower(#[from] AircraftSetupError),
+    /// The target aircraft could not be built from the scenario.
+    #[error("cannot set up the simulation: {0}")]
+    Target(#[from] TargetAircraftError),
     /// The sensor could not be built from the scenario.
     #[error("cannot set up the simulation: {0}")]
     Sensor(#[source] Box<SensorError>),
@@ -157,7 +161,7 @@ impl Simulation {
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let (estimator, guidance, notes) =
             estimation_stage(scenario, compensate, sensor.is_continuous())?;
-        let target = target_of(scenario);
+        let target = target_of(scenario)?;
         let gimbal = gimbal_of(scenario);
         let gimbal_x = gimbal
             .as_ref()
@@ -348,6 +352,7 @@ impl Simulation {
         Snapshot {
             t_s,
             target,
+            target_flight: self.target.flight(t_s),
             follower_position_ned_ft: follower,
             follower_velocity_ned_fps: self.follower.velocity_ned_fps(follower_x, &out.command),
             follower_attitude: self.follower.attitude(follower_x),
@@ -379,7 +384,12 @@ impl Simulation {
         let dt_s = self.scenario.run.dt_s;
         let follower_x = self.layout.split(&self.state).follower;
         self.follower.begin_step(follower_x, dt_s);
-        self.target.advance(t_s, dt_s);
+        self.target
+            .advance(t_s, dt_s)
+            .map_err(|diverged| SimError::Diverged {
+                t_s: t_s + dt_s,
+                what: diverged.what,
+            })?;
         let mut state = std::mem::take(&mut self.state);
         let mut rk4 = std::mem::replace(&mut self.rk4, Rk4::new(0));
         rk4.step(t_s, dt_s, &mut state, |t, x, dx| {
