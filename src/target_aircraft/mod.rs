@@ -38,6 +38,15 @@ use interpolate::StepEnd;
 /// not the follower's ("target" in ASCII).
 pub const TARGET_DRYDEN_SEED_SALT: u64 = 0x0000_7461_7267_6574;
 
+/// Farthest the target aircraft may be from its reference, ft: beyond it its state has run
+/// away (finite, but far past any flight), and the run ends `diverged` naming it. The bound
+/// the run puts on the range (docs/design.md, How a run ends).
+pub const MAX_OFF_TRACK_FT: f64 = 1e6;
+/// Fastest the target aircraft may fly, ft/s: nearly ten times the speed of sound, beyond
+/// any airframe's data this simulator flies (35-100 ft/s trims); a state past it has run away
+/// within a step, before its position shows it.
+pub const MAX_SPEED_FPS: f64 = 1e4;
+
 /// Why the target aircraft could not be set up.
 #[derive(Debug, thiserror::Error)]
 pub enum TargetAircraftError {
@@ -143,7 +152,40 @@ impl TargetAircraft {
         })
     }
 
-    /// Names the state's element `i` for a message ("target aircraft: body velocity, ft/s w").
+    /// The step's end at `t_end_s`, once the state is known to be flying: finite, with a
+    /// usable attitude, within [`MAX_OFF_TRACK_FT`] of the reference and below
+    /// [`MAX_SPEED_FPS`].
+    fn checked_end(&mut self, t_end_s: f64) -> Result<FlownEnd, TargetDiverged> {
+        let diverged = |what: String| TargetDiverged { what };
+        if let Some(i) = self.x.iter().position(|v| !v.is_finite()) {
+            return Err(diverged(format!(
+                "{} is {}",
+                Self::state_name(i),
+                self.x[i]
+            )));
+        }
+        let (flyer, reference) = (&self.flyer, self.reference.as_ref());
+        let k = self.track_gain_per_s;
+        let end = flown_end(flyer, reference, k, t_end_s, &self.x, &mut self.dx)
+            .ok_or_else(|| diverged("target aircraft: its attitude quaternion is zero".into()))?;
+        let off_track_ft =
+            (end.end.state.position_ned_ft - reference.position_ned_ft(t_end_s)).norm();
+        if !(off_track_ft <= MAX_OFF_TRACK_FT) {
+            return Err(diverged(format!(
+                "target aircraft: {off_track_ft:.3e} ft from its reference, beyond \
+                 {MAX_OFF_TRACK_FT:e} ft"
+            )));
+        }
+        let speed_fps = end.end.state.velocity_ned_fps.norm();
+        if !(speed_fps <= MAX_SPEED_FPS) {
+            return Err(diverged(format!(
+                "target aircraft: speed {speed_fps:.3e} ft/s, beyond {MAX_SPEED_FPS:e} ft/s"
+            )));
+        }
+        Ok(end)
+    }
+
+    /// Names the state's element `i` for a message ("target aircraft: body velocity, ft/s (w)").
     fn state_name(i: usize) -> String {
         let mut names = crate::world::aircraft::state::state_names();
         names.extend(crate::control::autopilot_state_names());
@@ -212,18 +254,7 @@ impl TargetModel for TargetAircraft {
             flight_derivative(flyer, reference, k, t, x, dx);
         });
         self.flyer.normalize(&mut self.x);
-        if let Some(i) = self.x.iter().position(|v| !v.is_finite()) {
-            return Err(TargetDiverged {
-                what: format!("{} is {}", Self::state_name(i), self.x[i]),
-            });
-        }
-        let (flyer, reference) = (&self.flyer, self.reference.as_ref());
-        let end =
-            flown_end(flyer, reference, k, t_s + dt_s, &self.x, &mut self.dx).ok_or_else(|| {
-                TargetDiverged {
-                    what: "target aircraft: its attitude quaternion is zero".to_string(),
-                }
-            })?;
+        let end = self.checked_end(t_s + dt_s)?;
         self.start = std::mem::replace(&mut self.end, end);
         Ok(())
     }
@@ -242,5 +273,83 @@ impl TargetModel for TargetAircraft {
             beta_rad: air.beta_rad,
             reference_ned_ft: self.reference.position_ned_ft(t_s),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::world::target::TargetMotionModel;
+
+    const DT_S: f64 = 0.002;
+
+    fn seed_target(section: &TargetSection) -> Result<TargetAircraft, TargetAircraftError> {
+        TargetAircraft::new(
+            section,
+            &AtmosphereConfig::default(),
+            1,
+            Box::new(TargetMotionModel::from_section(section)),
+        )
+    }
+
+    /// It starts where its reference does, trimmed level at its speed: velocity along the
+    /// reference's, nose above it by α.
+    #[test]
+    fn starts_trimmed_on_the_reference() {
+        let target = seed_target(&TargetSection::default()).expect("set-up");
+        let s = target.state(0.0);
+        assert_eq!(s.position_ned_ft, Vec3::new(200.0, 50.0, 30.0));
+        assert!((s.velocity_ned_fps - Vec3::new(50.0, 0.0, 0.0)).norm() < 1e-6);
+        let alpha_rad = target.flight(0.0).expect("flies").alpha_rad;
+        assert!(alpha_rad > 2f64.to_radians(), "α = {alpha_rad}");
+        assert!((s.attitude.theta_rad - alpha_rad).abs() < 1e-6);
+        assert!(s.accel_ned_fps2.norm() < 1e-3, "{:?}", s.accel_ned_fps2);
+    }
+
+    /// The acceleration reported at a step's end is the rate of the velocity (central
+    /// differences over the neighbouring steps), in the seed profile's first turn.
+    #[test]
+    fn acceleration_is_the_rate_of_velocity() {
+        let mut target = seed_target(&TargetSection::default()).expect("set-up");
+        let mut velocities = Vec::new();
+        for i in 0..5000 {
+            target.advance(i as f64 * DT_S, DT_S).expect("finite");
+            velocities.push(target.state((i + 1) as f64 * DT_S).velocity_ned_fps);
+        }
+        let (mid, t_s) = (velocities.len() - 2, (velocities.len() - 1) as f64 * DT_S);
+        let difference = (velocities[mid + 1] - velocities[mid - 1]) / (2.0 * DT_S);
+        let reported =
+            interpolate::between(&target.start.end, &target.end.end, t_s - DT_S).accel_ned_fps2;
+        assert!(difference.norm() > 0.5, "not manoeuvring: {difference:?}");
+        assert!(
+            (reported - difference).norm() < 1e-3 * difference.norm().max(1.0),
+            "{reported:?} vs {difference:?}"
+        );
+    }
+
+    /// A state that turns NaN ends the step with an error naming the target aircraft.
+    #[test]
+    fn divergence_names_the_target_aircraft() {
+        let mut target = seed_target(&TargetSection::default()).expect("set-up");
+        target.x[VELOCITY_BODY_FPS + 2] = f64::NAN;
+        let what = target.advance(0.0, DT_S).expect_err("diverged").what;
+        assert!(what.starts_with("target aircraft: "), "{what}");
+        assert!(what.ends_with(" is NaN"), "{what}");
+        assert_eq!(
+            TargetAircraft::state_name(VELOCITY_BODY_FPS + 2),
+            "target aircraft: body velocity, ft/s (w)"
+        );
+    }
+
+    /// A reference too slow to trim at is refused, naming its speed.
+    #[test]
+    fn a_reference_too_slow_is_refused() {
+        let section = TargetSection {
+            motion: crate::scenario::TargetMotion::Straight,
+            straight_velocity_fps: [20.0, 0.0, -3.0],
+            ..TargetSection::default()
+        };
+        let message = seed_target(&section).expect_err("refused").to_string();
+        assert!(message.contains("20.00 ft/s"), "{message}");
     }
 }

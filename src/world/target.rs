@@ -179,7 +179,7 @@ pub struct TargetFlight {
 }
 
 /// A target whose own state turned non-finite in a step; `what` names the state
-/// ("target aircraft: body velocity, ft/s w is NaN").
+/// ("target aircraft: body velocity, ft/s (w) is NaN").
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{what}")]
 pub struct TargetDiverged {
