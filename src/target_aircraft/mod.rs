@@ -170,14 +170,14 @@ impl TargetAircraft {
             .ok_or_else(|| diverged("target aircraft: its attitude quaternion is zero".into()))?;
         let off_track_ft =
             (end.end.state.position_ned_ft - reference.position_ned_ft(t_end_s)).norm();
-        if !(off_track_ft <= MAX_OFF_TRACK_FT) {
+        if off_track_ft > MAX_OFF_TRACK_FT {
             return Err(diverged(format!(
                 "target aircraft: {off_track_ft:.3e} ft from its reference, beyond \
                  {MAX_OFF_TRACK_FT:e} ft"
             )));
         }
         let speed_fps = end.end.state.velocity_ned_fps.norm();
-        if !(speed_fps <= MAX_SPEED_FPS) {
+        if speed_fps > MAX_SPEED_FPS {
             return Err(diverged(format!(
                 "target aircraft: speed {speed_fps:.3e} ft/s, beyond {MAX_SPEED_FPS:e} ft/s"
             )));
