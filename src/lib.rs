@@ -29,7 +29,7 @@
 //! Modules, in the order data flows (each imports only those before it): [`frames`],
 //! [`state_block`], [`linalg`], [`integrate`], [`projection`], [`scenario`], [`world`],
 //! [`render`], [`vision`], [`sensing`], [`estimation`], [`guidance`], [`control`],
-//! [`follower`], [`sim`], [`output`], [`study`].
+//! [`follower`], [`target_aircraft`], [`sim`], [`output`], [`study`].
 //!
 //! [`projection`] is the seed's projection operator, which the adaptive laws of the guidance
 //! and of the flight controller share; [`study`] runs sweeps of many runs (`wingman sweep`).
@@ -50,6 +50,7 @@ pub mod sensing;
 pub mod sim;
 pub mod state_block;
 pub mod study;
+pub mod target_aircraft;
 
 pub mod vision;
 pub mod world;

@@ -10,6 +10,7 @@ use crate::guidance::signals::AccelerationGuidanceOutput;
 use crate::guidance::signals::FollowerCommand;
 use crate::sim::{GimbalReading, Snapshot};
 use crate::vision::{BlobStatus, ImageMeasurement};
+use crate::world::target::TargetFlight;
 
 /// Which runs have a column.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,6 +29,8 @@ pub enum Runs {
     Filter,
     /// Runs with a gimballed camera.
     Gimbal,
+    /// Runs whose target is an aircraft (`target.model = "aircraft"`).
+    TargetAircraft,
 }
 
 impl Runs {
@@ -48,6 +51,7 @@ impl Runs {
             Self::Aircraft => s.aircraft.is_some(),
             Self::Filter => s.filter.is_present(),
             Self::Gimbal => s.gimbal.is_some(),
+            Self::TargetAircraft => s.target_flight.is_some(),
         }
     }
 
@@ -60,6 +64,7 @@ impl Runs {
             Self::Aircraft => "6-DOF follower",
             Self::Filter => "Kalman filter",
             Self::Gimbal => "gimballed camera",
+            Self::TargetAircraft => "aircraft target",
         }
     }
 }
@@ -159,6 +164,10 @@ fn aircraft3(s: &Snapshot, f: fn(&AircraftActuation) -> Vec3) -> Vec3 {
     s.aircraft.as_ref().map_or(NAN3, f)
 }
 
+fn target_flight(s: &Snapshot, f: fn(&TargetFlight) -> f64) -> f64 {
+    s.target_flight.as_ref().map_or(f64::NAN, f)
+}
+
 fn filter(s: &Snapshot, f: fn(&TargetEstimate) -> f64) -> f64 {
     s.filter.estimate().as_ref().map_or(f64::NAN, f)
 }
@@ -183,6 +192,7 @@ pub fn status_code(status: BlobStatus) -> f64 {
 
 use Runs::{
     AccelerationBound, AccelerationCommand, Aircraft, Every, Filter, Gimbal, ScaledVelocity,
+    TargetAircraft,
 };
 
 /// Every telemetry column, in the order a row holds them (a run writes those its runs have).
@@ -193,6 +203,10 @@ pub static COLUMNS: &[Column] = &[
     three(["tgt_vn_fps", "tgt_ve_fps", "tgt_vd_fps"], "ft/s", Every, "target velocity V_T (NED)", |s| s.target.velocity_ned_fps),
     three(["tgt_an_fps2", "tgt_ae_fps2", "tgt_ad_fps2"], "ft/s²", Every, "target acceleration a_T (NED)", |s| s.target.accel_ned_fps2),
     three(["tgt_phi_rad", "tgt_theta_rad", "tgt_psi_rad"], "rad", Every, "target attitude φ, θ, ψ", |s| attitude(&s.target.attitude)),
+    one("tgt_airspeed_fps", "ft/s", TargetAircraft, "the target's airspeed", |s| target_flight(s, |f| f.airspeed_fps)),
+    one("tgt_alpha_rad", "rad", TargetAircraft, "the target's angle of attack α", |s| target_flight(s, |f| f.alpha_rad)),
+    one("tgt_beta_rad", "rad", TargetAircraft, "the target's sideslip β", |s| target_flight(s, |f| f.beta_rad)),
+    three(["tgt_ref_n_ft", "tgt_ref_e_ft", "tgt_ref_d_ft"], "ft", TargetAircraft, "where the target's reference motion is, R_ref (NED); the target is at R_F + R", |s| s.target_flight.map_or(NAN3, |f| f.reference_ned_ft)),
     three(["fol_n_ft", "fol_e_ft", "fol_d_ft"], "ft", Every, "follower position R_F (NED)", |s| s.follower_position_ned_ft),
     three(["fol_vn_fps", "fol_ve_fps", "fol_vd_fps"], "ft/s", Every, "follower velocity V_F (NED)", |s| s.follower_velocity_ned_fps),
     three(["phi_rad", "theta_rad", "psi_rad"], "rad", Every, "follower attitude φ, θ, ψ", |s| attitude(&s.follower_attitude)),

@@ -136,6 +136,8 @@ impl Scenario {
             let track = &scenario.target.track;
             scenario.target.track = resolve_asset_path(track, track, dir);
         }
+        scenario.target.aircraft =
+            resolve_asset_path(&scenario.target.aircraft, DEFAULT_AIRCRAFT, dir);
         Ok((scenario, source))
     }
 

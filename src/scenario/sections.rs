@@ -667,6 +667,21 @@ impl Scenario {
         }
         self.atmosphere.validate()?;
         self.autopilot.validate()?;
+        if self.target.model == super::TargetModelKind::Aircraft {
+            // As the follower's below: trimmed level through the air, and its fast modes.
+            check::require(
+                self.atmosphere.wind_ned_fps[2] == 0.0,
+                "atmosphere.wind_ned_fps",
+                format!("{:?}", self.atmosphere.wind_ned_fps),
+                "[n, e, 0] with target.model = \"aircraft\" (no level trim in rising air)",
+            )?;
+            check::require(
+                self.run.dt_s <= AIRCRAFT_MAX_DT_S,
+                "run.dt_s",
+                self.run.dt_s,
+                format!("<= {AIRCRAFT_MAX_DT_S} s with target.model = \"aircraft\""),
+            )?;
+        }
         if self.follower.model == FollowerModel::Aircraft {
             // The aircraft starts trimmed in straight and level flight through the air: an
             // air mass that rises or sinks has no such trim.

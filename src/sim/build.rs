@@ -2,6 +2,7 @@
 //! the simulation makes: the estimator with the guidance law that flies on it, the target
 //! model, the excitation's cap from the camera's field of view, the camera's mount.
 
+use super::SimError;
 use crate::estimation::{Estimator, KalmanTracker, MeasurementHold, TargetTracker};
 use crate::follower::aircraft::DRYDEN_SEED_SALT;
 use crate::follower::{AircraftSetupError, Follower, FollowerConfig};
@@ -10,10 +11,12 @@ use crate::guidance::command::{CommandInput, FormationCommand};
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
 use crate::guidance::signals::CommandKind;
 use crate::scenario::{
-    EstimatorKind, ExcitationUnits, GimbalKind, GuidanceLawKind, Scenario, SensorMode, TargetMotion,
+    EstimatorKind, ExcitationUnits, GimbalKind, GuidanceLawKind, Scenario, SensorMode,
+    TargetModelKind, TargetMotion,
 };
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
 use crate::sensing::{CaptureGeometry, FollowerPose, Sensor};
+use crate::target_aircraft::{TARGET_DRYDEN_SEED_SALT, TargetAircraft};
 use crate::world::target::{TargetModel, TargetMotionModel};
 use crate::world::trajectory::{
     RANDOM_TRACK_SEED_SALT, TrackError, random_track, read_track, waypoint_track,
@@ -132,9 +135,24 @@ pub(super) fn estimation_stage(
     })
 }
 
-/// The target `[target]` describes, flying at least the run's duration: a closed-form
-/// motion, or a trajectory source (the random one on its own stream of `run.seed`).
-pub(super) fn target_of(scenario: &Scenario) -> Result<Box<dyn TargetModel>, TrackError> {
+/// The target `[target]` describes, flying at least the run's duration: its motion (a
+/// closed-form one, or a trajectory source, the random one on its own stream of `run.seed`),
+/// or an aircraft flying that motion in `[atmosphere]` (its own turbulence stream).
+pub(super) fn target_of(scenario: &Scenario) -> Result<Box<dyn TargetModel>, SimError> {
+    let motion = motion_of(scenario)?;
+    Ok(match scenario.target.model {
+        TargetModelKind::Kinematic => motion,
+        TargetModelKind::Aircraft => Box::new(TargetAircraft::new(
+            &scenario.target,
+            &scenario.atmosphere,
+            scenario.run.seed ^ TARGET_DRYDEN_SEED_SALT,
+            motion,
+        )?),
+    })
+}
+
+/// The path `[target]` describes.
+fn motion_of(scenario: &Scenario) -> Result<Box<dyn TargetModel>, TrackError> {
     let target = &scenario.target;
     let start = Vec3::from(target.initial_position_ft);
     let duration_s = scenario.run.duration_s;

@@ -45,6 +45,7 @@ use crate::sensing::losses::{LossEpisode, LossLog};
 use crate::sensing::{
     CameraSensor, CaptureGeometry, NoisySensor, Sensor, SensorConfig, SensorError,
 };
+use crate::target_aircraft::TargetAircraftError;
 use crate::world::target::TargetModel;
 use crate::world::trajectory::TrackError;
 use layout::StateLayout;
@@ -70,7 +71,10 @@ pub enum SimError {
     Follower(#[from] AircraftSetupError),
     /// The target's track could not be read.
     #[error("cannot set up the simulation: target.track: {0}")]
-    Target(#[from] TrackError),
+    Track(#[from] TrackError),
+    /// The target aircraft could not be built from the scenario.
+    #[error("cannot set up the simulation: {0}")]
+    Target(#[from] TargetAircraftError),
     /// The sensor could not be built from the scenario.
     #[error("cannot set up the simulation: {0}")]
     Sensor(#[source] Box<SensorError>),
@@ -349,6 +353,7 @@ impl Simulation {
         Snapshot {
             t_s,
             target,
+            target_flight: self.target.flight(t_s),
             follower_position_ned_ft: follower,
             follower_velocity_ned_fps: self.follower.velocity_ned_fps(follower_x, &out.command),
             follower_attitude: self.follower.attitude(follower_x),
@@ -380,7 +385,12 @@ impl Simulation {
         let dt_s = self.scenario.run.dt_s;
         let follower_x = self.layout.split(&self.state).follower;
         self.follower.begin_step(follower_x, dt_s);
-        self.target.advance(t_s, dt_s);
+        self.target
+            .advance(t_s, dt_s)
+            .map_err(|diverged| SimError::Diverged {
+                t_s: t_s + dt_s,
+                what: diverged.what,
+            })?;
         let mut state = std::mem::take(&mut self.state);
         let mut rk4 = std::mem::replace(&mut self.rk4, Rk4::new(0));
         rk4.step(t_s, dt_s, &mut state, |t, x, dx| {

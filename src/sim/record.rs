@@ -7,7 +7,7 @@ use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::signals::{FollowerCommand, GuidanceOutput};
 use crate::sensing::FrameRecord;
 use crate::sensing::gimbal::GimbalAngles;
-use crate::world::target::TargetState;
+use crate::world::target::{TargetFlight, TargetState};
 use std::time::Duration;
 
 /// Everything about one instant, for telemetry and statistics.
@@ -17,6 +17,8 @@ pub struct Snapshot {
     pub t_s: f64,
     /// Target state.
     pub target: TargetState,
+    /// The target aircraft's air data and reference (`target.model = "aircraft"`).
+    pub target_flight: Option<TargetFlight>,
     /// R_F, NED, ft.
     pub follower_position_ned_ft: Vec3,
     /// V_F, NED, ft/s.

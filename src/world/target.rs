@@ -164,17 +164,49 @@ pub struct TargetState {
     pub attitude: EulerAngles,
 }
 
+/// What a target with flight dynamics of its own reports beside its [`TargetState`] (for
+/// telemetry): its air data and the reference it flies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TargetFlight {
+    /// Airspeed V, ft/s.
+    pub airspeed_fps: f64,
+    /// Angle of attack α, rad.
+    pub alpha_rad: f64,
+    /// Sideslip β, rad.
+    pub beta_rad: f64,
+    /// Where its reference motion is, R_ref, NED, ft.
+    pub reference_ned_ft: Vec3,
+}
+
+/// A target whose own state turned non-finite in a step; `what` names the state
+/// ("target aircraft: body velocity, ft/s (w) is NaN").
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{what}")]
+pub struct TargetDiverged {
+    /// The element and its value.
+    pub what: String,
+}
+
 /// The target as the simulation sees it: where it is and how it is oriented at any instant
 /// of the step being integrated. A kinematic profile ([`TargetMotionModel`]) and a target with
 /// dynamics of its own both implement it; a new one is one module implementing it plus its
 /// arm in `Simulation::new`'s match on the `[target]` section.
 pub trait TargetModel: std::fmt::Debug + Send {
-    /// Advances the target's own dynamics over [t_s, t_s + dt_s], before the follower's step
-    /// (a closed-form motion has nothing to do).
-    fn advance(&mut self, t_s: f64, dt_s: f64);
+    /// Advances the target's own dynamics over [t_s, t_s + dt_s], before the follower's step;
+    /// an error when its state turns non-finite. A closed-form motion has nothing to do
+    /// (the default).
+    fn advance(&mut self, _t_s: f64, _dt_s: f64) -> Result<(), TargetDiverged> {
+        Ok(())
+    }
 
     /// The state at `t_s`, anywhere up to the end of the last step advanced.
     fn state(&self, t_s: f64) -> TargetState;
+
+    /// Air data and reference of a target flown as an aircraft at `t_s`; `None` (the default)
+    /// for a target without flight dynamics.
+    fn flight(&self, _t_s: f64) -> Option<TargetFlight> {
+        None
+    }
 
     /// R_T(t), NED, ft.
     fn position_ned_ft(&self, t_s: f64) -> Vec3 {
@@ -272,8 +304,6 @@ impl TargetMotionModel {
 }
 
 impl TargetModel for TargetMotionModel {
-    fn advance(&mut self, _t_s: f64, _dt_s: f64) {}
-
     fn state(&self, t_s: f64) -> TargetState {
         TargetMotionModel::state(self, t_s)
     }

@@ -125,8 +125,6 @@ fn quintic_hermite(k0: &Knot, k1: &Knot, t_s: f64) -> Knot {
 }
 
 impl TargetModel for SampledTrack {
-    fn advance(&mut self, _t_s: f64, _dt_s: f64) {}
-
     fn state(&self, t_s: f64) -> TargetState {
         let m = self.motion(t_s);
         let attitude = match &self.attitudes {
