@@ -19,6 +19,7 @@
 mod build;
 mod evaluate;
 mod layout;
+mod navigate;
 mod record;
 mod sense;
 
@@ -29,6 +30,7 @@ use build::{
     target_of,
 };
 use evaluate::Evaluation;
+use navigate::{encoder_reading, navigated};
 
 use crate::estimation::{Estimator, GuidanceMeasurement, LawEstimates, TargetMotionEstimate};
 use crate::follower::AircraftSetupError;
@@ -38,6 +40,7 @@ use crate::guidance::command::{self, FormationCommand};
 use crate::guidance::excitation::Excitation;
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
 use crate::integrate::Rk4;
+use crate::navigation::OwnSensors;
 use crate::render::GpuContext;
 use crate::scenario::{FollowerModel, Mission, Scenario};
 use crate::sensing::gimbal::{GIMBAL_STATE_NAMES, Gimbal, GimbalAngles};
@@ -115,8 +118,12 @@ pub struct Simulation {
     guidance: GuidanceLaw,
     excitation: Excitation,
     sensor: Sensor,
-    /// The camera's fixed mount on the body (or on the gimbal's base), L_CB.
+    /// The camera's fixed mount on the body (or on the gimbal's base), L_CB: the true one.
     camera_mount: Mat3,
+    /// The mount as the follower believes it is (`camera_mount` without misalignment).
+    nominal_camera_mount: Mat3,
+    /// What the follower's own sensors read of its state (`[navigation]`).
+    own_sensors: OwnSensors,
     /// The camera's pan/tilt gimbal, when it rides one.
     gimbal: Option<Gimbal>,
     estimator: Estimator,
@@ -162,21 +169,34 @@ impl Simulation {
         let gimbal_x = gimbal
             .as_ref()
             .map_or(vec![], |g| g.initial_state().to_vec());
-        let camera_mount = scenario.camera.camera_from_body();
+        let own_sensors = OwnSensors::new(scenario, &follower.attitude(&follower_x));
+        let nominal_camera_mount = scenario.camera.camera_from_body();
+        let camera_mount = own_sensors.camera().map_or(nominal_camera_mount, |c| {
+            c.true_mount(&nominal_camera_mount)
+        });
         let camera_from_body = mounted_camera(&camera_mount, gimbal.as_ref(), &gimbal_x);
-        let geometry = capture_geometry(
-            target.as_ref(),
-            &follower,
-            &follower_x,
-            0.0,
-            &camera_from_body,
+        let geometry = navigated(
+            capture_geometry(
+                target.as_ref(),
+                &follower,
+                &follower_x,
+                0.0,
+                &camera_from_body,
+            ),
+            &own_sensors,
+            &nominal_camera_mount,
+            gimbal.as_ref(),
+            &gimbal_x,
         );
         // The filters start at the first measurement: r*(0) with a noisy sensor, the true
         // r(0) otherwise (a camera restarts them at its first frame).
         sensor.draw_initial_noise(&geometry);
         let r0 = geometry.relative_ned_ft / scenario.target.size_ft;
         let r_first = sensor
-            .continuous_measurement(&geometry.relative_ned_ft, &geometry.camera_from_ned())
+            .continuous_measurement(
+                &geometry.sensed_relative_ned_ft(),
+                &geometry.camera_from_ned(),
+            )
             .unwrap_or(r0);
         let layout = StateLayout::new(
             follower_x.len(),
@@ -204,6 +224,8 @@ impl Simulation {
             ),
             sensor,
             camera_mount,
+            nominal_camera_mount,
+            own_sensors,
             gimbal,
             estimator,
             losses: LossLog::default(),
@@ -216,6 +238,8 @@ impl Simulation {
             min_range_ft: r0.norm() * scenario.target.size_ft,
             intercept_time_s: None,
         };
+        sim.follower
+            .hold_own_state_errors(sim.own_sensors.own_state_errors());
         let first = sim.evaluate().guidance.command;
         let follower_x = sim.layout.split_mut(&mut sim.state).follower;
         sim.follower.align_with_first_command(follower_x, &first);
@@ -302,21 +326,17 @@ impl Simulation {
 
     /// Where follower and target are now, as a camera frame would see them.
     pub fn capture_geometry(&self) -> CaptureGeometry {
-        let slices = self.layout.split(&self.state);
-        capture_geometry(
-            self.target.as_ref(),
-            &self.follower,
-            slices.follower,
-            self.time_s(),
-            &self.camera_from_body(slices.gimbal),
-        )
+        self.geometry_at(self.time_s(), &self.state)
     }
 
     /// The gimbal's angles and command now (gimballed cameras).
     pub fn gimbal_reading(&self) -> Option<GimbalReading> {
         let gimbal = self.gimbal.as_ref()?;
         Some(GimbalReading {
-            angles: GimbalAngles::of(self.layout.split(&self.state).gimbal),
+            angles: GimbalAngles::of(&encoder_reading(
+                &self.own_sensors,
+                self.layout.split(&self.state).gimbal,
+            )),
             command: self.gimbal_command(gimbal, self.time_s(), &self.state),
         })
     }
@@ -361,7 +381,10 @@ impl Simulation {
             },
             b_hat_ft: estimates.b_hat_ft,
             target_motion: estimates.target_motion,
-            filter: self.estimator.filter_reading(t_s, &follower),
+            filter: self
+                .estimator
+                .filter_reading(t_s, &self.navigated_position_ned_ft(follower_x)),
+            navigation: self.navigation_reading(),
             guidance: out,
             frame: self.camera().and_then(CameraSensor::last_record),
             gimbal: self.gimbal_reading(),
@@ -379,6 +402,7 @@ impl Simulation {
         let dt_s = self.scenario.run.dt_s;
         let follower_x = self.layout.split(&self.state).follower;
         self.follower.begin_step(follower_x, dt_s);
+        self.advance_own_sensors(dt_s);
         self.target.advance(t_s, dt_s);
         let mut state = std::mem::take(&mut self.state);
         let mut rk4 = std::mem::replace(&mut self.rk4, Rk4::new(0));
