@@ -23,7 +23,7 @@ pub(super) struct Evaluation {
 impl Simulation {
     /// L_CB for a gimbal slice: the gimbal's angles over the fixed mount.
     pub(super) fn camera_from_body(&self, gimbal_x: &[f64]) -> Mat3 {
-        mounted_camera(&self.camera_mount, self.gimbal.as_ref(), gimbal_x)
+        mounted_camera(&self.own.mount, self.gimbal.as_ref(), gimbal_x)
     }
 
     /// The gimbal's command at (t, x): toward where the estimator predicts the target is, and
@@ -35,7 +35,7 @@ impl Simulation {
         let line_of_sight = self.estimator.predicted_r(t_s, &position, law);
         let base_from_ned = self.navigated_base_from_ned(slices.follower);
         let missing_s = self.estimator.last_measured_s().map_or(0.0, |m| t_s - m);
-        let angles = encoder_reading(&self.own_sensors, slices.gimbal);
+        let angles = encoder_reading(&self.own.sensors, slices.gimbal);
         gimbal.command(&angles, line_of_sight, &base_from_ned, missing_s, t_s)
     }
 
@@ -151,7 +151,7 @@ impl Simulation {
         if let Some(gimbal) = &self.gimbal {
             // The servo closes its loop on the encoders.
             let pointing = self.gimbal_command(gimbal, t_s, x);
-            let angles = encoder_reading(&self.own_sensors, x_of.gimbal);
+            let angles = encoder_reading(&self.own.sensors, x_of.gimbal);
             gimbal.derivative(&angles, &pointing, dx_of.gimbal);
         }
         let out = match measurement {

@@ -30,17 +30,16 @@ use build::{
     target_of,
 };
 use evaluate::Evaluation;
-use navigate::{encoder_reading, navigated};
+use navigate::{OwnSensing, encoder_reading};
 
 use crate::estimation::{Estimator, GuidanceMeasurement, LawEstimates, TargetMotionEstimate};
 use crate::follower::AircraftSetupError;
 use crate::follower::{FlightEnvelope, Follower};
-use crate::frames::{Mat3, Vec3};
+use crate::frames::Vec3;
 use crate::guidance::command::{self, FormationCommand};
 use crate::guidance::excitation::Excitation;
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
 use crate::integrate::Rk4;
-use crate::navigation::OwnSensors;
 use crate::render::GpuContext;
 use crate::scenario::{FollowerModel, Mission, Scenario};
 use crate::sensing::gimbal::{GIMBAL_STATE_NAMES, Gimbal, GimbalAngles};
@@ -118,12 +117,9 @@ pub struct Simulation {
     guidance: GuidanceLaw,
     excitation: Excitation,
     sensor: Sensor,
-    /// The camera's fixed mount on the body (or on the gimbal's base), L_CB: the true one.
-    camera_mount: Mat3,
-    /// The mount as the follower believes it is (`camera_mount` without misalignment).
-    nominal_camera_mount: Mat3,
-    /// What the follower's own sensors read of its state (`[navigation]`).
-    own_sensors: OwnSensors,
+    /// What the follower's own sensors read of its state (`[navigation]`), and its camera's
+    /// true and nominal mounts.
+    own: OwnSensing,
     /// The camera's pan/tilt gimbal, when it rides one.
     gimbal: Option<Gimbal>,
     estimator: Estimator,
@@ -169,25 +165,16 @@ impl Simulation {
         let gimbal_x = gimbal
             .as_ref()
             .map_or(vec![], |g| g.initial_state().to_vec());
-        let own_sensors = OwnSensors::new(scenario, &follower.attitude(&follower_x));
-        let nominal_camera_mount = scenario.camera.camera_from_body();
-        let camera_mount = own_sensors.camera().map_or(nominal_camera_mount, |c| {
-            c.true_mount(&nominal_camera_mount)
-        });
-        let camera_from_body = mounted_camera(&camera_mount, gimbal.as_ref(), &gimbal_x);
-        let geometry = navigated(
-            capture_geometry(
-                target.as_ref(),
-                &follower,
-                &follower_x,
-                0.0,
-                &camera_from_body,
-            ),
-            &own_sensors,
-            &nominal_camera_mount,
-            gimbal.as_ref(),
-            &gimbal_x,
+        let own = OwnSensing::new(scenario, &follower.attitude(&follower_x));
+        let camera_from_body = mounted_camera(&own.mount, gimbal.as_ref(), &gimbal_x);
+        let truth = capture_geometry(
+            target.as_ref(),
+            &follower,
+            &follower_x,
+            0.0,
+            &camera_from_body,
         );
+        let geometry = own.navigated(truth, gimbal.as_ref(), &gimbal_x);
         // The filters start at the first measurement: r*(0) with a noisy sensor, the true
         // r(0) otherwise (a camera restarts them at its first frame).
         sensor.draw_initial_noise(&geometry);
@@ -223,9 +210,7 @@ impl Simulation {
                 excitation_cap(scenario),
             ),
             sensor,
-            camera_mount,
-            nominal_camera_mount,
-            own_sensors,
+            own,
             gimbal,
             estimator,
             losses: LossLog::default(),
@@ -239,7 +224,7 @@ impl Simulation {
             intercept_time_s: None,
         };
         sim.follower
-            .hold_own_state_errors(sim.own_sensors.own_state_errors());
+            .hold_own_state_errors(sim.own.sensors.own_state_errors());
         let first = sim.evaluate().guidance.command;
         let follower_x = sim.layout.split_mut(&mut sim.state).follower;
         sim.follower.align_with_first_command(follower_x, &first);
@@ -334,7 +319,7 @@ impl Simulation {
         let gimbal = self.gimbal.as_ref()?;
         Some(GimbalReading {
             angles: GimbalAngles::of(&encoder_reading(
-                &self.own_sensors,
+                &self.own.sensors,
                 self.layout.split(&self.state).gimbal,
             )),
             command: self.gimbal_command(gimbal, self.time_s(), &self.state),
