@@ -1,7 +1,9 @@
 //! The first-order process every error of the follower's navigation is built from
 //! (docs/equations.md, The follower's own navigation and sensors):
 //!
-//!     ẋ = (m - x) / τ + w,   E[w(t) w(s)] = (2 σ² / τ) δ(t - s)
+//! ```text
+//! ẋ = (m - x) / τ + w,   E[w(t) w(s)] = (2 σ² / τ) δ(t - s)
+//! ```
 //!
 //! with m held over a step: x relaxes toward m with time constant τ and, about it, is a
 //! Gauss-Markov process of stationary standard deviation σ. It is stepped exactly (not by

@@ -147,3 +147,56 @@ impl OwnSensors {
         self.camera.as_mut()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sensed air data carries the air data's errors on V, α, β and the navigation's on
+    /// attitude and inertial velocity, and the truth in everything else.
+    #[test]
+    fn the_sensed_air_data_carries_every_error() {
+        let truth = AirData {
+            airspeed_fps: 50.0,
+            alpha_rad: 0.2,
+            beta_rad: 0.01,
+            euler: EulerAngles::new(0.1, 0.05, 1.0),
+            body_rates_rps: Vec3::new(0.1, 0.2, 0.3),
+            flight_path_rad: 0.0,
+            course_rad: 1.0,
+            velocity_ned_fps: Vec3::new(30.0, 40.0, 0.0),
+            drag_lbf: 1.0,
+            lift_lbf: 2.0,
+            side_force_lbf: 3.0,
+            thrust_lbf: 4.0,
+            dynamic_pressure_lbf_ft2: 5.0,
+            moment_body_lbf_ft: Vec3::new(6.0, 7.0, 8.0),
+        };
+        let errors = OwnStateErrors {
+            navigation: NavigationErrors {
+                position_ned_ft: Vec3::new(9.0, 9.0, 9.0),
+                velocity_ned_fps: Vec3::new(0.5, -0.5, 0.25),
+                attitude_rad: Vec3::new(0.01, 0.02, 0.03),
+            },
+            air_data: AirDataErrors {
+                airspeed_fps: 1.5,
+                alpha_rad: -0.02,
+                beta_rad: 0.03,
+            },
+        };
+        let sensed = errors.sensed_air_data(&truth);
+        assert_eq!(sensed.airspeed_fps, 51.5);
+        assert_eq!(sensed.alpha_rad, 0.2 - 0.02);
+        assert_eq!(sensed.beta_rad, 0.01 + 0.03);
+        let e = &sensed.euler;
+        let attitude_error = Vec3::new(e.phi_rad - 0.1, e.theta_rad - 0.05, e.psi_rad - 1.0);
+        assert!((attitude_error - Vec3::new(0.01, 0.02, 0.03)).norm() < 1e-15);
+        assert_eq!(sensed.velocity_ned_fps, Vec3::new(30.5, 39.5, 0.25));
+        assert_eq!(sensed.body_rates_rps, truth.body_rates_rps);
+        assert_eq!(sensed.moment_body_lbf_ft, truth.moment_body_lbf_ft);
+        assert_eq!(
+            sensed.dynamic_pressure_lbf_ft2,
+            truth.dynamic_pressure_lbf_ft2
+        );
+    }
+}
