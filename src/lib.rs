@@ -28,8 +28,8 @@
 //!
 //! Modules, in the order data flows (each imports only those before it): [`frames`],
 //! [`state_block`], [`linalg`], [`integrate`], [`projection`], [`scenario`], [`world`],
-//! [`render`], [`vision`], [`sensing`], [`estimation`], [`guidance`], [`control`],
-//! [`follower`], [`target_aircraft`], [`sim`], [`output`], [`study`].
+//! [`navigation`], [`render`], [`vision`], [`sensing`], [`estimation`], [`guidance`],
+//! [`control`], [`follower`], [`target_aircraft`], [`sim`], [`output`], [`study`].
 //!
 //! [`projection`] is the seed's projection operator, which the adaptive laws of the guidance
 //! and of the flight controller share; [`study`] runs sweeps of many runs (`wingman sweep`).
@@ -42,6 +42,7 @@ pub mod frames;
 pub mod guidance;
 pub mod integrate;
 pub mod linalg;
+pub mod navigation;
 pub mod output;
 pub mod projection;
 pub mod render;

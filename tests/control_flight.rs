@@ -120,6 +120,7 @@ fn fly_in(
             let input = AutopilotInput {
                 velocity_cmd_ned_fps: command(t_s),
                 air_data: data,
+                sensed_air_data: data,
                 actuators: state.actuators,
                 weave_side: weave_side(t_s, section.weave_period_s),
             };
@@ -158,6 +159,7 @@ fn fly_in(
             let input = AutopilotInput {
                 velocity_cmd_ned_fps: command(t),
                 air_data: data,
+                sensed_air_data: data,
                 actuators: state.actuators,
                 weave_side: weave_side(t_s, section.weave_period_s),
             };

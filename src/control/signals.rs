@@ -9,8 +9,13 @@ use crate::world::aircraft::{AirData, Controls};
 pub struct AutopilotInput {
     /// The guidance command V_F, NED, ft/s.
     pub velocity_cmd_ned_fps: Vec3,
-    /// Air data of the follower (airspeed, α, β, attitude, rates, loads).
+    /// Air data of the follower (airspeed, α, β, attitude, rates, loads): the truth the
+    /// inner loops fly on.
     pub air_data: AirData,
+    /// The air data as the follower's sensors read it (airspeed, α, β with their errors,
+    /// attitude and inertial velocity from its navigation): what the wind estimate is built
+    /// from. `air_data` itself when they are perfect.
+    pub sensed_air_data: AirData,
     /// Actuator positions (the plant's actuator states): RBF inputs u of (7.18) and the
     /// elevator's lift in α_ref.
     pub actuators: Controls,

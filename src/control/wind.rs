@@ -20,7 +20,7 @@ impl ControlLaw {
         rates: &mut AutopilotState,
     ) -> Vec3 {
         let g = &self.gains;
-        let air = &input.air_data;
+        let air = &input.sensed_air_data;
         let wind_measured = measured_wind_ned_fps(air);
         let wind_estimate = state.wind_estimate_ned_fps;
         if wind_measured.iter().all(|w| w.is_finite()) {

@@ -17,6 +17,7 @@ use super::FollowerConfig;
 use crate::control::{AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, weave_side};
 use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::signals::{CommandKind, FollowerCommand, FollowerFeedback};
+use crate::navigation::OwnStateErrors;
 use crate::scenario::check::InvalidValue;
 use crate::world::aircraft::{
     AirData, Aircraft, AircraftFileError, AircraftParams, AircraftState, Controls, STATE_LEN,
@@ -87,6 +88,9 @@ pub struct AircraftFollower {
     flown_s: f64,
     /// S-turn period, s (0: none).
     weave_period_s: f64,
+    /// What the navigation and air data read above the truth over the current step (`None`:
+    /// perfect), for the wind estimate.
+    own_state_errors: Option<OwnStateErrors>,
 }
 
 impl AircraftFollower {
@@ -132,6 +136,7 @@ impl AircraftFollower {
                 integrates_acceleration,
                 flown_s: 0.0,
                 weave_period_s: config.autopilot.weave_period_s,
+                own_state_errors: None,
             },
             x,
         ))
@@ -184,6 +189,12 @@ impl AircraftFollower {
         self.flown_s += dt_s;
     }
 
+    /// Holds what the follower's navigation and air data read above the truth over the
+    /// coming step (`None`: perfect).
+    pub fn hold_own_state_errors(&mut self, errors: Option<OwnStateErrors>) {
+        self.own_state_errors = errors;
+    }
+
     /// The flight controller at (x, command): writes the autopilot's (and the V_F
     /// integrator's) ẋ and returns its decision; `None` (and zero rates) when the plant's
     /// state is not usable.
@@ -213,6 +224,9 @@ impl AircraftFollower {
         };
         let input = AutopilotInput {
             velocity_cmd_ned_fps,
+            sensed_air_data: self
+                .own_state_errors
+                .map_or(air_data, |e| e.sensed_air_data(&air_data)),
             air_data,
             actuators: state.actuators,
             weave_side: weave_side(self.flown_s, self.weave_period_s),

@@ -165,6 +165,14 @@ impl Follower {
         }
     }
 
+    /// What the navigation and air data read above the truth over the coming step, for the
+    /// aircraft's wind estimate (the kinematic follower has none).
+    pub fn hold_own_state_errors(&mut self, errors: Option<crate::navigation::OwnStateErrors>) {
+        if let Self::Aircraft(a) = self {
+            a.hold_own_state_errors(errors);
+        }
+    }
+
     /// The control step: the flight controller's ẋ and decision for the guidance `command`.
     pub fn control(&self, x: &[f64], command: &FollowerCommand, dx: &mut [f64]) -> Actuation {
         match self {

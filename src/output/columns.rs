@@ -8,6 +8,7 @@ use crate::follower::AircraftActuation;
 use crate::frames::{EulerAngles, Vec3, wrap_angle_rad};
 use crate::guidance::signals::AccelerationGuidanceOutput;
 use crate::guidance::signals::FollowerCommand;
+use crate::sensing::FollowerPose;
 use crate::sim::{GimbalReading, Snapshot};
 use crate::vision::{BlobStatus, ImageMeasurement};
 use crate::world::target::TargetFlight;
@@ -31,6 +32,8 @@ pub enum Runs {
     Gimbal,
     /// Runs whose target is an aircraft (`target.model = "aircraft"`).
     TargetAircraft,
+    /// Runs whose follower navigates with errors (`navigation.mode` other than `perfect`).
+    Navigation,
 }
 
 impl Runs {
@@ -52,6 +55,7 @@ impl Runs {
             Self::Filter => s.filter.is_present(),
             Self::Gimbal => s.gimbal.is_some(),
             Self::TargetAircraft => s.target_flight.is_some(),
+            Self::Navigation => s.navigation.is_some(),
         }
     }
 
@@ -65,6 +69,7 @@ impl Runs {
             Self::Filter => "Kalman filter",
             Self::Gimbal => "gimballed camera",
             Self::TargetAircraft => "aircraft target",
+            Self::Navigation => "navigation with errors",
         }
     }
 }
@@ -180,6 +185,10 @@ fn gimbal(s: &Snapshot, f: fn(&GimbalReading) -> f64) -> f64 {
     s.gimbal.as_ref().map_or(f64::NAN, f)
 }
 
+fn navigation(s: &Snapshot, f: fn(&FollowerPose) -> Vec3) -> Vec3 {
+    s.navigation.as_ref().map_or(NAN3, f)
+}
+
 /// `meas_status` codes: 0 ok, 1 not found, 2 truncated (touches the border), 3 too small.
 pub fn status_code(status: BlobStatus) -> f64 {
     match status {
@@ -191,8 +200,8 @@ pub fn status_code(status: BlobStatus) -> f64 {
 }
 
 use Runs::{
-    AccelerationBound, AccelerationCommand, Aircraft, Every, Filter, Gimbal, ScaledVelocity,
-    TargetAircraft,
+    AccelerationBound, AccelerationCommand, Aircraft, Every, Filter, Gimbal, Navigation,
+    ScaledVelocity, TargetAircraft,
 };
 
 /// Every telemetry column, in the order a row holds them (a run writes those its runs have).
@@ -254,8 +263,11 @@ pub static COLUMNS: &[Column] = &[
     three(["kf_r_x", "kf_r_y", "kf_r_z"], "", Filter, "the filter's r", |s| filter3(s, |f| f.r)),
     three(["kf_d_x_per_s", "kf_d_y_per_s", "kf_d_z_per_s"], "1/s", Filter, "the filter's d", |s| filter3(s, |f| f.d_per_s)),
     three(["kf_a_x_per_s2", "kf_a_y_per_s2", "kf_a_z_per_s2"], "1/s²", Filter, "the filter's a", |s| filter3(s, |f| f.a_per_s2)),
-    one("gimbal_pan_rad", "rad", Gimbal, "gimbal pan", |s| gimbal(s, |g| g.angles.pan_rad)),
-    one("gimbal_tilt_rad", "rad", Gimbal, "gimbal tilt", |s| gimbal(s, |g| g.angles.tilt_rad)),
+    one("gimbal_pan_rad", "rad", Gimbal, "gimbal pan, as its encoder reads it", |s| gimbal(s, |g| g.angles.pan_rad)),
+    one("gimbal_tilt_rad", "rad", Gimbal, "gimbal tilt, as its encoder reads it", |s| gimbal(s, |g| g.angles.tilt_rad)),
     one("gimbal_pan_cmd_rad", "rad", Gimbal, "gimbal pan command", |s| gimbal(s, |g| g.command.pan_rad)),
     one("gimbal_tilt_cmd_rad", "rad", Gimbal, "gimbal tilt command", |s| gimbal(s, |g| g.command.tilt_rad)),
+    three(["nav_n_ft", "nav_e_ft", "nav_d_ft"], "ft", Navigation, "the follower's position as its INS/GPS knows it (NED; fol_n_ft... are the truth)", |s| navigation(s, |n| n.position_ned_ft)),
+    three(["nav_vn_fps", "nav_ve_fps", "nav_vd_fps"], "ft/s", Navigation, "the follower's velocity as its INS/GPS knows it (NED; the track velocity)", |s| navigation(s, |n| n.velocity_ned_fps)),
+    three(["nav_phi_rad", "nav_theta_rad", "nav_psi_rad"], "rad", Navigation, "the follower's attitude φ, θ, ψ as its INS/GPS knows it", |s| navigation(s, |n| attitude(&n.attitude))),
 ];

@@ -611,6 +611,8 @@ pub struct Scenario {
     pub atmosphere: super::AtmosphereConfig,
     /// The 6-DOF follower's flight controller (`follower.model = "aircraft"`).
     pub autopilot: super::AutopilotSection,
+    /// What the follower knows of its own state: navigation, air data, camera geometry.
+    pub navigation: super::NavigationSection,
     /// Outputs.
     pub output: OutputSection,
 }
@@ -682,6 +684,7 @@ impl Scenario {
                 format!("<= {AIRCRAFT_MAX_DT_S} s with target.model = \"aircraft\""),
             )?;
         }
+        self.navigation.validate()?;
         if self.follower.model == FollowerModel::Aircraft {
             // The aircraft starts trimmed in straight and level flight through the air: an
             // air mass that rises or sinks has no such trim.

@@ -6,8 +6,8 @@
 //! the renderer draws and the measurement audit projects from; and `navigation`, what the
 //! follower believes about itself, which the sensing transform (3.3)-(3.12), the tracking
 //! window and the frame records use. Today `navigation` is the truth ([`CaptureGeometry::exact`]);
-//! a navigation error model (INS/GPS, air data, gimbal encoders, mount misalignment) supplies
-//! its own solution here without touching the sensors.
+//! with `[navigation]`'s error models (INS/GPS, gimbal encoders, mount misalignment) the
+//! simulation supplies the follower's own solution here without touching the sensors.
 
 use crate::frames::{EulerAngles, Mat3, Vec3};
 use crate::render::camera::TargetPoseInCamera;
@@ -76,6 +76,18 @@ impl CaptureGeometry {
     /// sensing turns measurements with.
     pub fn camera_from_ned(&self) -> Mat3 {
         self.navigation.camera_from_ned()
+    }
+
+    /// R as the follower reconstructs it from what its true camera sees, turned back with
+    /// the camera's orientation as its navigation knows it: (L_CB L_BE)_navᵀ (L_CB L_BE) R,
+    /// NED, ft (for the continuous sensors, which measure in the camera's axes). R itself when
+    /// the navigation is the truth.
+    pub fn sensed_relative_ned_ft(&self) -> Vec3 {
+        if self.navigation == self.follower {
+            return self.relative_ned_ft;
+        }
+        self.camera_from_ned().transpose()
+            * (self.follower.camera_from_ned() * self.relative_ned_ft)
     }
 
     /// The target's true pose in the true camera axes (what a frame draws).

@@ -78,9 +78,11 @@ pub(super) fn first_r(
     body_rates_rps: Vec3,
     b0_ft: f64,
 ) -> Vec3 {
-    let relative = &geometry.relative_ned_ft;
     sensor
-        .continuous_measurement(relative, &geometry.camera_from_ned())
+        .continuous_measurement(
+            &geometry.sensed_relative_ned_ft(),
+            &geometry.camera_from_ned(),
+        )
         .unwrap_or_else(|| {
             let attitude = geometry.navigation.attitude;
             let input = CommandInput {

@@ -4,6 +4,7 @@
 
 use super::Simulation;
 use super::build::mounted_camera;
+use super::navigate::encoder_reading;
 use crate::estimation::{GuidanceMeasurement, LawEstimates, TargetEstimate, TargetMotionEstimate};
 use crate::follower::Actuation;
 use crate::frames::{Mat3, Vec3};
@@ -22,36 +23,36 @@ pub(super) struct Evaluation {
 impl Simulation {
     /// L_CB for a gimbal slice: the gimbal's angles over the fixed mount.
     pub(super) fn camera_from_body(&self, gimbal_x: &[f64]) -> Mat3 {
-        mounted_camera(&self.camera_mount, self.gimbal.as_ref(), gimbal_x)
+        mounted_camera(&self.own.mount, self.gimbal.as_ref(), gimbal_x)
     }
 
     /// The gimbal's command at (t, x): toward where the estimator predicts the target is, and
     /// searching about it once the target has been missing (see [`Gimbal::command`]).
     pub(super) fn gimbal_command(&self, gimbal: &Gimbal, t_s: f64, x: &[f64]) -> GimbalAngles {
         let slices = self.layout.split(x);
-        let position = self.follower.position_ned_ft(slices.follower);
+        let position = self.navigated_position_ned_ft(slices.follower);
         let law = self.guidance.estimates(slices.guidance);
         let line_of_sight = self.estimator.predicted_r(t_s, &position, law);
-        let base_from_ned =
-            self.camera_mount * self.follower.attitude(slices.follower).body_from_ned();
+        let base_from_ned = self.navigated_base_from_ned(slices.follower);
         let missing_s = self.estimator.last_measured_s().map_or(0.0, |m| t_s - m);
-        gimbal.command(slices.gimbal, line_of_sight, &base_from_ned, missing_s, t_s)
+        let angles = encoder_reading(&self.own.sensors, slices.gimbal);
+        gimbal.command(&angles, line_of_sight, &base_from_ned, missing_s, t_s)
     }
 
     /// The measurement the estimator stage gives the guidance at (t, x).
     pub(super) fn guidance_measurement(&self, t_s: f64, x: &[f64]) -> GuidanceMeasurement {
         let slices = self.layout.split(x);
-        let position = self.follower.position_ned_ft(slices.follower);
+        let position = self.navigated_position_ned_ft(slices.follower);
         self.estimator.guidance_measurement(
             t_s,
             &position,
             self.guidance.estimates(slices.guidance),
             || {
-                let relative = self.target.position_ned_ft(t_s) - position;
-                let camera_from_ned = self.camera_from_body(slices.gimbal)
-                    * self.follower.attitude(slices.follower).body_from_ned();
-                self.sensor
-                    .continuous_measurement(&relative, &camera_from_ned)
+                let geometry = self.geometry_at(t_s, x);
+                self.sensor.continuous_measurement(
+                    &geometry.sensed_relative_ned_ft(),
+                    &geometry.camera_from_ned(),
+                )
             },
         )
     }
@@ -107,7 +108,7 @@ impl Simulation {
             _ => None,
         };
         CommandInput {
-            attitude: self.follower.attitude(follower_x),
+            attitude: self.navigated_attitude(follower_x),
             body_rates_rps: self.follower.body_rates(follower_x),
             track_ned,
         }
@@ -132,7 +133,7 @@ impl Simulation {
             command_rate_ned_fps,
             command_frame_rate_rps: self.command.shaping_frame_rate_rps(command_x, command),
             excitation: self.excitation.command_offset(t_s),
-            follower: self.follower.feedback(follower_x),
+            follower: self.navigated_feedback(follower_x),
             estimate,
         }
     }
@@ -148,8 +149,10 @@ impl Simulation {
         self.command
             .derivative(x_of.command, &command, dx_of.command);
         if let Some(gimbal) = &self.gimbal {
+            // The servo closes its loop on the encoders.
             let pointing = self.gimbal_command(gimbal, t_s, x);
-            gimbal.derivative(x_of.gimbal, &pointing, dx_of.gimbal);
+            let angles = encoder_reading(&self.own.sensors, x_of.gimbal);
+            gimbal.derivative(&angles, &pointing, dx_of.gimbal);
         }
         let out = match measurement {
             GuidanceMeasurement::NotYet => self.guidance.idle(x_of.guidance, dx_of.guidance),

@@ -19,6 +19,7 @@
 mod build;
 mod evaluate;
 mod layout;
+mod navigate;
 mod record;
 mod sense;
 
@@ -29,11 +30,12 @@ use build::{
     mounted_camera, target_of,
 };
 use evaluate::Evaluation;
+use navigate::{OwnSensing, encoder_reading};
 
 use crate::estimation::{Estimator, GuidanceMeasurement, LawEstimates, TargetMotionEstimate};
 use crate::follower::AircraftSetupError;
 use crate::follower::{FlightEnvelope, Follower};
-use crate::frames::{Mat3, Vec3};
+use crate::frames::Vec3;
 use crate::guidance::command::{self, FormationCommand};
 use crate::guidance::excitation::Excitation;
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
@@ -123,8 +125,9 @@ pub struct Simulation {
     guidance: GuidanceLaw,
     excitation: Excitation,
     sensor: Sensor,
-    /// The camera's fixed mount on the body (or on the gimbal's base), L_CB.
-    camera_mount: Mat3,
+    /// What the follower's own sensors read of its state (`[navigation]`), and its camera's
+    /// true and nominal mounts.
+    own: OwnSensing,
     /// The camera's pan/tilt gimbal, when it rides one.
     gimbal: Option<Gimbal>,
     estimator: Estimator,
@@ -170,15 +173,16 @@ impl Simulation {
         let gimbal_x = gimbal
             .as_ref()
             .map_or(vec![], |g| g.initial_state().to_vec());
-        let camera_mount = scenario.camera.camera_from_body();
-        let camera_from_body = mounted_camera(&camera_mount, gimbal.as_ref(), &gimbal_x);
-        let geometry = capture_geometry(
+        let own = OwnSensing::new(scenario, &follower.attitude(&follower_x));
+        let camera_from_body = mounted_camera(&own.mount, gimbal.as_ref(), &gimbal_x);
+        let truth = capture_geometry(
             target.as_ref(),
             &follower,
             &follower_x,
             0.0,
             &camera_from_body,
         );
+        let geometry = own.navigated(truth, gimbal.as_ref(), &gimbal_x);
         sensor.draw_initial_noise(&geometry);
         let command = FormationCommand::new(g);
         let body_rates_rps = follower.body_rates(&follower_x);
@@ -208,7 +212,7 @@ impl Simulation {
                 excitation_cap(scenario),
             ),
             sensor,
-            camera_mount,
+            own,
             gimbal,
             estimator,
             losses: LossLog::default(),
@@ -221,6 +225,8 @@ impl Simulation {
             min_range_ft: geometry.relative_ned_ft.norm(),
             intercept_time_s: None,
         };
+        sim.follower
+            .hold_own_state_errors(sim.own.sensors.own_state_errors());
         let first = sim.evaluate().guidance.command;
         let follower_x = sim.layout.split_mut(&mut sim.state).follower;
         sim.follower.align_with_first_command(follower_x, &first);
@@ -307,21 +313,17 @@ impl Simulation {
 
     /// Where follower and target are now, as a camera frame would see them.
     pub fn capture_geometry(&self) -> CaptureGeometry {
-        let slices = self.layout.split(&self.state);
-        capture_geometry(
-            self.target.as_ref(),
-            &self.follower,
-            slices.follower,
-            self.time_s(),
-            &self.camera_from_body(slices.gimbal),
-        )
+        self.geometry_at(self.time_s(), &self.state)
     }
 
     /// The gimbal's angles and command now (gimballed cameras).
     pub fn gimbal_reading(&self) -> Option<GimbalReading> {
         let gimbal = self.gimbal.as_ref()?;
         Some(GimbalReading {
-            angles: GimbalAngles::of(self.layout.split(&self.state).gimbal),
+            angles: GimbalAngles::of(&encoder_reading(
+                &self.own.sensors,
+                self.layout.split(&self.state).gimbal,
+            )),
             command: self.gimbal_command(gimbal, self.time_s(), &self.state),
         })
     }
@@ -367,7 +369,10 @@ impl Simulation {
             },
             b_hat_ft: estimates.b_hat_ft,
             target_motion: estimates.target_motion,
-            filter: self.estimator.filter_reading(t_s, &follower),
+            filter: self
+                .estimator
+                .filter_reading(t_s, &self.navigated_position_ned_ft(follower_x)),
+            navigation: self.navigation_reading(),
             guidance: out,
             frame: self.camera().and_then(CameraSensor::held_record),
             gimbal: self.gimbal_reading(),
@@ -385,6 +390,7 @@ impl Simulation {
         let dt_s = self.scenario.run.dt_s;
         let follower_x = self.layout.split(&self.state).follower;
         self.follower.begin_step(follower_x, dt_s);
+        self.advance_own_sensors(dt_s);
         self.target
             .advance(t_s, dt_s)
             .map_err(|diverged| SimError::Diverged {

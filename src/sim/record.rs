@@ -5,8 +5,8 @@ use crate::estimation::{FilterReading, TargetMotionEstimate};
 use crate::follower::AircraftActuation;
 use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::signals::{FollowerCommand, GuidanceOutput};
-use crate::sensing::FrameRecord;
 use crate::sensing::gimbal::GimbalAngles;
+use crate::sensing::{FollowerPose, FrameRecord};
 use crate::world::target::{TargetFlight, TargetState};
 use std::time::Duration;
 
@@ -50,6 +50,8 @@ pub struct Snapshot {
     pub gimbal: Option<GimbalReading>,
     /// The 6-DOF follower's air data, actuators and flight controller (aircraft runs).
     pub aircraft: Option<AircraftActuation>,
+    /// The follower as its navigation knows itself (`navigation.mode = "ins_gps"` runs).
+    pub navigation: Option<FollowerPose>,
 }
 
 impl Snapshot {

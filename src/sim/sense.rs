@@ -26,7 +26,8 @@ impl Simulation {
         let first = match delivered {
             Some(record) => {
                 self.losses.record(record.t_s, record.r_measured.is_some());
-                self.estimator.deliver(&record, &velocity)
+                let stamped = self.stamped(&record);
+                self.estimator.deliver(&stamped, &velocity)
             }
             None => {
                 self.sample_continuous(&geometry, &velocity);
@@ -56,7 +57,7 @@ impl Simulation {
             return;
         }
         let body_from_ned = geometry.camera_from_ned();
-        let relative = &geometry.relative_ned_ft;
+        let relative = &geometry.sensed_relative_ned_ft();
         if let Some(r_star) = self.sensor.continuous_measurement(relative, &body_from_ned) {
             let variance = self.sensor.continuous_variance(&r_star, &body_from_ned);
             self.estimator.sample(
