@@ -328,8 +328,8 @@ fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> 
             return ExitCode::from(2);
         }
     };
-    if let Err(e) = interrupt::install_sigint_handler() {
-        eprintln!("warning: Ctrl-C will not stop the run cleanly: {e}");
+    if let Err(e) = interrupt::install_stop_handlers() {
+        eprintln!("warning: Ctrl-C and SIGTERM will not stop the run cleanly: {e}");
     }
     let bar = progress_bar(&name, quiet);
     let duration_s = scenario.run.duration_s;
@@ -399,7 +399,10 @@ fn finish(report: &RunReport, out_dir: &Path, quiet: bool) -> ExitCode {
         }
         RunStatus::Interrupted => {
             eprintln!("interrupted: {line}");
-            ExitCode::from(130)
+            // 128 + the signal, as a shell reports a process the signal ended: 130 for
+            // Ctrl-C, 143 for SIGTERM.
+            let signal = interrupt::signal().unwrap_or(libc::SIGINT);
+            ExitCode::from(u8::try_from(128 + signal).unwrap_or(130))
         }
     }
 }

@@ -1,12 +1,22 @@
-//! Ctrl-C stops a run cleanly (issue 12): SIGINT stops it at the next tick, the telemetry is
-//! flushed in whole rows, the summary says `interrupted`, the plots are drawn, and the exit
-//! code is 130.
+//! A signal stops a run cleanly: SIGINT (Ctrl-C) or SIGTERM (a batch scheduler's
+//! pre-emption) stops it at the next tick, the telemetry is flushed in whole rows, the summary
+//! says `interrupted`, the plots are drawn, and the exit code is 128 + the signal (130, 143).
 
 use std::process::Command;
 use std::time::{Duration, Instant};
 
 #[test]
 fn sigint_writes_summary_and_plots_and_exits_130() {
+    stops_cleanly(libc::SIGINT, 130);
+}
+
+#[test]
+fn sigterm_writes_summary_and_plots_and_exits_143() {
+    stops_cleanly(libc::SIGTERM, 143);
+}
+
+/// Sends `signal` to a long run once it logs, and checks what it left and its exit code.
+fn stops_cleanly(signal: libc::c_int, exit_code: i32) {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("run");
     // 10 000 s of the seed's formation: far longer than the test waits.
@@ -29,10 +39,10 @@ fn sigint_writes_summary_and_plots_and_exits_130() {
         std::thread::sleep(Duration::from_millis(50));
     }
     let pid = libc::pid_t::try_from(child.id()).expect("pid");
-    // SAFETY: sends SIGINT to the child this test started.
-    assert_eq!(unsafe { libc::kill(pid, libc::SIGINT) }, 0);
+    // SAFETY: sends the signal to the child this test started.
+    assert_eq!(unsafe { libc::kill(pid, signal) }, 0);
     let status = child.wait().expect("child ends");
-    assert_eq!(status.code(), Some(130));
+    assert_eq!(status.code(), Some(exit_code));
     let summary: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(out.join("summary.json")).expect("summary written"),
     )
