@@ -73,3 +73,40 @@ fn a_second_run_clears_the_first_and_other_folders_are_refused() {
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("is a file, not a folder"), "{stderr}");
 }
+
+/// A run killed before it wrote its summary (SIGKILL: nothing of it runs any more) leaves a
+/// folder that the next run into the same `--out` recognises by its marker and replaces, as a
+/// scheduler's resubmission does.
+#[test]
+fn the_folder_of_a_killed_run_is_reused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("run");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_wingman"))
+        .args([
+            "run",
+            "scenarios/seed_ch4_formation.toml",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&out)
+        .args(["--set", "run.duration_s=10000"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("NODEVICE_SELECT", "1")
+        .spawn()
+        .expect("binary starts");
+    let telemetry = out.join("telemetry.csv");
+    let started = std::time::Instant::now();
+    while std::fs::metadata(&telemetry).map_or(0, |m| m.len()) == 0 {
+        assert!(started.elapsed().as_secs() < 60, "no telemetry");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    child.kill().expect("SIGKILL");
+    child.wait().expect("child ends");
+    assert!(
+        !out.join("summary.json").exists(),
+        "killed before its summary"
+    );
+    let (code, stderr) = run_seed_ch4_into(&out);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(out.join("summary.json").is_file() && out.join(".wingman-run").is_file());
+}

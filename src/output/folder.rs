@@ -1,12 +1,16 @@
 //! The output folder of a run: a new or empty folder, or the folder of an earlier run (known
-//! by its own `summary.json`), whose files are cleared first so that two runs never mix.
+//! by its marker, written before anything else, or by its own `summary.json`), whose files
+//! are cleared first so that two runs never mix. The marker makes the folder of a run that
+//! was killed (SIGKILL, a full disk) before it wrote its summary reusable too.
 //! Any other folder with files in it is refused: a run does not write among files it did not
 //! write.
 
 use std::path::{Path, PathBuf};
 
+/// The marker a run writes into its folder before anything else.
+pub const MARKER: &str = ".wingman-run";
 /// The files a run writes at the top of its folder.
-const RUN_FILES: [&str; 3] = ["scenario.toml", "telemetry.csv", "summary.json"];
+const RUN_FILES: [&str; 4] = [MARKER, "scenario.toml", "telemetry.csv", "summary.json"];
 /// The folders a run writes its images into.
 const RUN_FOLDERS: [&str; 2] = ["frames", "plots"];
 
@@ -87,8 +91,19 @@ pub fn prepare(dir: &Path) -> Result<(), FolderError> {
     Ok(())
 }
 
-/// Whether `dir` holds a run's `summary.json` (a JSON object with the keys every summary has).
+/// Marks `dir` (created if need be) as a run's folder, before the run writes anything else.
+pub fn mark(dir: &Path) -> Result<(), FolderError> {
+    std::fs::create_dir_all(dir).map_err(io_error(dir))?;
+    let marker = dir.join(MARKER);
+    std::fs::write(&marker, "a wingman run writes this folder\n").map_err(io_error(&marker))
+}
+
+/// Whether `dir` holds a run: its marker, or a `summary.json` (a JSON object with the keys
+/// every summary has) of a run from before the marker.
 fn holds_a_run(dir: &Path) -> bool {
+    if dir.join(MARKER).is_file() {
+        return true;
+    }
     let Ok(text) = std::fs::read_to_string(dir.join("summary.json")) else {
         return false;
     };
@@ -105,6 +120,20 @@ mod tests {
 
     const SUMMARY: &str =
         r#"{"scenario": "s", "status": "completed", "steps": 1, "duration_s": 1.0}"#;
+
+    /// The folder of a run killed before its summary (its marker and part of its telemetry)
+    /// is a run's: accepted and cleared.
+    #[test]
+    fn a_killed_runs_folder_is_a_runs() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let run = dir.path().join("run");
+        mark(&run).expect("marked");
+        std::fs::write(run.join("telemetry.csv"), "t_s\n0\n").expect("telemetry");
+        prepare(&run).expect("a killed run's folder is cleared");
+        assert!(!run.join("telemetry.csv").exists() && !run.join(MARKER).exists());
+        std::fs::write(run.join("notes.txt"), "mine").expect("notes");
+        assert!(matches!(check(&run), Err(FolderError::NotARun(_))));
+    }
 
     /// An earlier run's files go, a user's file stays; a folder of other files is refused.
     #[test]

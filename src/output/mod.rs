@@ -124,7 +124,7 @@ pub fn run_to_directory_on(
     let started = Instant::now();
     let mut sim = Simulation::on_gpu(scenario, gpu).map_err(|e| RunError::Setup(Box::new(e)))?;
     folder::prepare(out_dir)?;
-    std::fs::create_dir_all(out_dir).map_err(io_error(out_dir))?;
+    folder::mark(out_dir)?;
     let scenario_path = out_dir.join("scenario.toml");
     std::fs::write(&scenario_path, scenario.to_toml_string()).map_err(io_error(&scenario_path))?;
     let telemetry_path = out_dir.join("telemetry.csv");
