@@ -44,10 +44,20 @@ fn io_error(path: &Path) -> impl Fn(std::io::Error) -> FolderError + '_ {
     }
 }
 
-/// Whether `dir` may receive a run: it does not exist, is empty, or holds an earlier run.
+/// Whether `dir` may receive a run: it does not exist and can be made (its nearest existing
+/// ancestor is a folder we may write in), or it is a folder we may write in that is empty or
+/// holds an earlier run.
 pub fn check(dir: &Path) -> Result<(), FolderError> {
     if !dir.exists() {
-        return Ok(());
+        let ancestor = dir
+            .ancestors()
+            .skip(1)
+            .find(|a| a.exists())
+            .unwrap_or(Path::new("."));
+        if !ancestor.is_dir() {
+            return Err(FolderError::NotAFolder(ancestor.to_path_buf()));
+        }
+        return writable(ancestor);
     }
     if !dir.is_dir() {
         return Err(FolderError::NotAFolder(dir.to_path_buf()));
@@ -57,9 +67,28 @@ pub fn check(dir: &Path) -> Result<(), FolderError> {
         .next()
         .is_none();
     if empty || holds_a_run(dir) {
-        Ok(())
+        writable(dir)
     } else {
         Err(FolderError::NotARun(dir.to_path_buf()))
+    }
+}
+
+/// Whether this process may create files in the folder `dir` (a read-only file system or
+/// folder says no before the run, not in the middle of it).
+fn writable(dir: &Path) -> Result<(), FolderError> {
+    use std::os::unix::ffi::OsStrExt;
+    let path = std::ffi::CString::new(dir.as_os_str().as_bytes()).map_err(|e| FolderError::Io {
+        path: dir.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidInput, e),
+    })?;
+    // SAFETY: access(2) reads the NUL-terminated path and nothing else.
+    if unsafe { libc::access(path.as_ptr(), libc::W_OK | libc::X_OK) } == 0 {
+        Ok(())
+    } else {
+        Err(FolderError::Io {
+            path: dir.to_path_buf(),
+            source: std::io::Error::last_os_error(),
+        })
     }
 }
 
@@ -133,6 +162,21 @@ mod tests {
         assert!(!run.join("telemetry.csv").exists() && !run.join(MARKER).exists());
         std::fs::write(run.join("notes.txt"), "mine").expect("notes");
         assert!(matches!(check(&run), Err(FolderError::NotARun(_))));
+    }
+
+    /// A folder under a regular file cannot be made: refused before the run, naming the
+    /// file.
+    #[test]
+    fn a_folder_under_a_file_is_refused() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let file = dir.path().join("plain");
+        std::fs::write(&file, "x").expect("file");
+        let error = check(&file.join("run").join("deeper")).expect_err("refused");
+        assert!(
+            matches!(&error, FolderError::NotAFolder(p) if *p == file),
+            "{error}"
+        );
+        assert!(check(&dir.path().join("new").join("run")).is_ok());
     }
 
     /// An earlier run's files go, a user's file stays; a folder of other files is refused.
