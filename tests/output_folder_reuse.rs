@@ -81,25 +81,7 @@ fn a_second_run_clears_the_first_and_other_folders_are_refused() {
 fn the_folder_of_a_killed_run_is_reused() {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("run");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_wingman"))
-        .args([
-            "run",
-            "scenarios/seed_ch4_formation.toml",
-            "--quiet",
-            "--out",
-        ])
-        .arg(&out)
-        .args(["--set", "run.duration_s=10000"])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("NODEVICE_SELECT", "1")
-        .spawn()
-        .expect("binary starts");
-    let telemetry = out.join("telemetry.csv");
-    let started = std::time::Instant::now();
-    while std::fs::metadata(&telemetry).map_or(0, |m| m.len()) == 0 {
-        assert!(started.elapsed().as_secs() < 60, "no telemetry");
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
+    let mut child = common::spawn_long_run_logging(&out);
     child.kill().expect("SIGKILL");
     child.wait().expect("child ends");
     assert!(

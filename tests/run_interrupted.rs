@@ -2,8 +2,7 @@
 //! pre-emption) stops it at the next tick, the telemetry is flushed in whole rows, the summary
 //! says `interrupted`, the plots are drawn, and the exit code is 128 + the signal (130, 143).
 
-use std::process::Command;
-use std::time::{Duration, Instant};
+mod common;
 
 #[test]
 fn sigint_writes_summary_and_plots_and_exits_130() {
@@ -19,25 +18,8 @@ fn sigterm_writes_summary_and_plots_and_exits_143() {
 fn stops_cleanly(signal: libc::c_int, exit_code: i32) {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = dir.path().join("run");
-    // 10 000 s of the seed's formation: far longer than the test waits.
-    let mut child = Command::new(env!("CARGO_BIN_EXE_wingman"))
-        .args([
-            "run",
-            "scenarios/seed_ch4_formation.toml",
-            "--quiet",
-            "--out",
-        ])
-        .arg(&out)
-        .args(["--set", "run.duration_s=10000"])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .spawn()
-        .expect("binary starts");
+    let mut child = common::spawn_long_run_logging(&out);
     let telemetry = out.join("telemetry.csv");
-    let started = Instant::now();
-    while std::fs::metadata(&telemetry).map_or(0, |m| m.len()) == 0 {
-        assert!(started.elapsed() < Duration::from_secs(60), "no telemetry");
-        std::thread::sleep(Duration::from_millis(50));
-    }
     let pid = libc::pid_t::try_from(child.id()).expect("pid");
     // SAFETY: sends the signal to the child this test started.
     assert_eq!(unsafe { libc::kill(pid, signal) }, 0);

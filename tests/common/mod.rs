@@ -183,3 +183,28 @@ pub fn wingman_cli(args: &[&str]) -> (i32, String) {
         String::from_utf8_lossy(&output.stderr).into_owned(),
     )
 }
+
+/// Starts 10 000 s of the seed's formation into `out` (far longer than any test waits) and
+/// returns once its telemetry has a first row, for a test to signal or kill it mid-run.
+pub fn spawn_long_run_logging(out: &Path) -> std::process::Child {
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_wingman"))
+        .args([
+            "run",
+            "scenarios/seed_ch4_formation.toml",
+            "--quiet",
+            "--out",
+        ])
+        .arg(out)
+        .args(["--set", "run.duration_s=10000"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("NODEVICE_SELECT", "1")
+        .spawn()
+        .expect("binary starts");
+    let telemetry = out.join("telemetry.csv");
+    let started = std::time::Instant::now();
+    while std::fs::metadata(&telemetry).map_or(0, |m| m.len()) == 0 {
+        assert!(started.elapsed().as_secs() < 60, "no telemetry");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    child
+}
