@@ -4,24 +4,12 @@
 //! is a scenario error (exit 2, naming the file, the key and what is wrong) before anything
 //! is written; and loading a mesh grows nearly linearly with its vertex count.
 
+mod common;
+
 use std::path::Path;
-use std::process::Command;
 use std::time::{Duration, Instant};
 
 const CAMERA: &str = "[sensor]\nmode = \"camera\"\n[run]\nduration_s = 0.2\n[output]\nplots = false\n[camera]\nrate_hz = 25.0\n";
-
-fn wingman_in(cwd: &Path, args: &[&str]) -> (i32, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_wingman"))
-        .args(args)
-        .current_dir(cwd)
-        .env("NODEVICE_SELECT", "1")
-        .output()
-        .expect("binary runs");
-    (
-        output.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
 
 /// Runs a camera scenario whose mesh is `mesh` (written beside it when `contents` is given).
 fn run_with_mesh(mesh: &str, contents: Option<&str>) -> (i32, String, bool) {
@@ -32,7 +20,7 @@ fn run_with_mesh(mesh: &str, contents: Option<&str>) -> (i32, String, bool) {
     let scenario = dir.path().join("bad.toml");
     std::fs::write(&scenario, format!("{CAMERA}mesh = \"{mesh}\"\n")).expect("scenario");
     let out = dir.path().join("out");
-    let (code, stderr) = wingman_in(
+    let (code, stderr) = common::wingman_cli_in(
         dir.path(),
         &[
             "run",
@@ -86,7 +74,7 @@ fn scenarios_run_from_any_folder() {
     let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
     let copy = elsewhere.join("formation.toml");
     std::fs::copy(repo.join("scenarios/formation.toml"), &copy).expect("copy");
-    let (code, stderr) = wingman_in(
+    let (code, stderr) = common::wingman_cli_in(
         dir.path(),
         &[
             "run",
@@ -114,7 +102,7 @@ fn scenarios_run_from_any_folder() {
     );
     assert_ne!(own_mesh, formation, "formation.toml names its mesh");
     std::fs::write(&scenario, own_mesh).expect("scenario");
-    let (code, stderr) = wingman_in(
+    let (code, stderr) = common::wingman_cli_in(
         dir.path(),
         &[
             "run",

@@ -8,8 +8,9 @@
 //! reproduced; a bad CSV track is a scenario error (exit 2) naming the file and the line,
 //! before anything is written; the shipped CSV track covers its scenario.
 
+mod common;
+
 use std::path::Path;
-use std::process::Command;
 use wingman::frames::{GRAVITY_FPS2, Vec3};
 use wingman::scenario::{Scenario, TargetMotion, TargetSection, Waypoint};
 use wingman::world::target::{TargetModel, TargetState};
@@ -267,17 +268,6 @@ fn csv_track_reproduces_the_flown_track() {
     assert!((moved + start).norm() < 1e-3, "{moved:?}");
 }
 
-fn wingman_in(cwd: &Path, args: &[&str]) -> (i32, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_wingman"))
-        .args(args)
-        .current_dir(cwd)
-        .env("NODEVICE_SELECT", "1")
-        .output()
-        .expect("binary runs");
-    let code = output.status.code().unwrap_or(-1);
-    (code, String::from_utf8_lossy(&output.stderr).into_owned())
-}
-
 #[test]
 fn bad_csv_tracks_are_scenario_errors_naming_file_and_line() {
     let header = "t_s,n_ft,e_ft,d_ft\n";
@@ -325,7 +315,8 @@ fn bad_csv_tracks_are_scenario_errors_naming_file_and_line() {
         let scenario = "[run]\nduration_s = 5.0\n[output]\nplots = false\n\
                         [target]\nmotion = \"csv\"\ntrack = \"bad.csv\"\n";
         std::fs::write(dir.path().join("s.toml"), scenario).expect("scenario");
-        let (code, stderr) = wingman_in(dir.path(), &["run", "s.toml", "--quiet", "--out", "out"]);
+        let (code, stderr) =
+            common::wingman_cli_in(dir.path(), &["run", "s.toml", "--quiet", "--out", "out"]);
         assert_eq!(code, 2, "{what}: {stderr}");
         assert!(
             stderr.contains(&format!("bad.csv:{line}: ")),

@@ -172,9 +172,14 @@ pub fn assert_noisy_run_bounded(report: &RunReport) {
 /// Runs the `wingman` binary in the repository root with `args`; its exit code (-1 when a
 /// signal ended it) and what it wrote to standard error.
 pub fn wingman_cli(args: &[&str]) -> (i32, String) {
+    wingman_cli_in(Path::new(env!("CARGO_MANIFEST_DIR")), args)
+}
+
+/// [`wingman_cli`], run in the folder `cwd`.
+pub fn wingman_cli_in(cwd: &Path, args: &[&str]) -> (i32, String) {
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_wingman"))
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(cwd)
         .env("NODEVICE_SELECT", "1")
         .output()
         .expect("binary runs");
