@@ -390,7 +390,7 @@ fn finish(report: &RunReport, out_dir: &Path, quiet: bool) -> ExitCode {
             }
             ExitCode::SUCCESS
         }
-        RunStatus::Lost | RunStatus::Diverged => {
+        RunStatus::Lost | RunStatus::FalseLock | RunStatus::Diverged => {
             eprintln!(
                 "error: {}; {line}",
                 s.message.as_deref().unwrap_or("stopped")

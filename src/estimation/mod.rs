@@ -115,6 +115,11 @@ pub trait TargetTracker: std::fmt::Debug + Send {
 
     /// Measurements fused so far.
     fn fused(&self) -> u64;
+
+    /// The mean of the normalised innovations squared νᵀ S⁻¹ ν of the measurements fused at
+    /// or after `t_s` (3 when the filter's model holds: χ² with 3 degrees of freedom); `None`
+    /// when none was.
+    fn mean_normalised_innovation_since(&self, t_s: f64) -> Option<f64>;
 }
 
 /// What a run's filter says at one instant, for the outputs.

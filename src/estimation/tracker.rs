@@ -36,6 +36,8 @@ pub struct KalmanTracker {
     filter: Option<TargetFilter>,
     known_since_s: Option<f64>,
     fused: u64,
+    /// (capture time, s; νᵀ S⁻¹ ν) of every fused measurement after the first.
+    innovations: Vec<(f64, f64)>,
 }
 
 impl KalmanTracker {
@@ -70,6 +72,7 @@ impl KalmanTracker {
             filter: None,
             known_since_s: None,
             fused: 0,
+            innovations: Vec::new(),
         }
     }
 
@@ -117,7 +120,8 @@ impl KalmanTracker {
             }
             Some(filter) => {
                 filter.predict_to(t_s, follower_position_ned_ft);
-                filter.update(r_star, covariance);
+                let innovation = filter.update(r_star, covariance);
+                self.innovations.push((t_s, innovation.normalised_sq));
             }
         }
         self.fused += 1;
@@ -235,5 +239,16 @@ impl TargetTracker for KalmanTracker {
     /// Measurements fused so far.
     fn fused(&self) -> u64 {
         self.fused
+    }
+
+    /// The mean νᵀ S⁻¹ ν of the measurements fused since `t_s`.
+    fn mean_normalised_innovation_since(&self, t_s: f64) -> Option<f64> {
+        let recent: Vec<f64> = self
+            .innovations
+            .iter()
+            .filter(|(t, _)| *t >= t_s)
+            .map(|(_, nis)| *nis)
+            .collect();
+        (!recent.is_empty()).then(|| recent.iter().sum::<f64>() / recent.len() as f64)
     }
 }

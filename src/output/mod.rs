@@ -13,6 +13,7 @@ pub mod plots;
 pub mod preflight;
 pub mod summary;
 pub mod telemetry;
+pub mod track_check;
 
 use crate::render::GpuContext;
 use crate::scenario::Scenario;
@@ -92,6 +93,7 @@ fn io_error(path: &Path) -> impl Fn(std::io::Error) -> RunError + '_ {
 enum EarlyStop {
     Failed(SimError),
     Lost { since_s: f64 },
+    FalseLock { since_s: f64 },
     Interrupted,
 }
 
@@ -151,6 +153,9 @@ pub fn run_to_directory_on(
     let stopped = early.as_ref().map(|e| match e {
         EarlyStop::Failed(e) => (RunStatus::Diverged, e.to_string()),
         EarlyStop::Lost { since_s } => (RunStatus::Lost, lost_message(&sim, *since_s)),
+        EarlyStop::FalseLock { since_s } => {
+            (RunStatus::FalseLock, false_lock_message(&sim, *since_s))
+        }
         EarlyStop::Interrupted => (RunStatus::Interrupted, "interrupted (Ctrl-C)".to_string()),
     });
     let summary = Summary::build(name, &recorder.logged, &sim, wall_s, stopped);
@@ -174,6 +179,16 @@ fn lost_message(sim: &Simulation, since_s: f64) -> String {
     format!(
         "target lost: unmeasured from t = {since_s:.3} s to t = {:.3} s, longer than \
          run.stop_after_lost_s = {} s",
+        sim.time_s(),
+        sim.scenario().run.stop_after_lost_s
+    )
+}
+
+/// Why a run that tracked something other than the target stopped.
+fn false_lock_message(sim: &Simulation, since_s: f64) -> String {
+    format!(
+        "false lock: every frame from t = {since_s:.3} s to t = {:.3} s measured something \
+         other than the target, longer than run.stop_after_lost_s = {} s",
         sim.time_s(),
         sim.scenario().run.stop_after_lost_s
     )
@@ -233,13 +248,15 @@ fn step_to_end(
                 if sim.tick().is_multiple_of(progress_every) {
                     progress(sim.tick() as f64 / sim.total_ticks() as f64);
                 }
-                let lost_since = sim
-                    .unmeasured_since_s()
-                    .filter(|since| lost_limit_s > 0.0 && sim.time_s() - since > lost_limit_s);
-                let stop = match (lost_since, interrupt::requested()) {
-                    (Some(since_s), _) => EarlyStop::Lost { since_s },
-                    (None, true) => EarlyStop::Interrupted,
-                    (None, false) => continue,
+                let too_long =
+                    |since: &f64| lost_limit_s > 0.0 && sim.time_s() - since > lost_limit_s;
+                let lost_since = sim.unmeasured_since_s().filter(too_long);
+                let false_since = sim.off_target_since_s().filter(too_long);
+                let stop = match (lost_since, false_since, interrupt::requested()) {
+                    (Some(since_s), _, _) => EarlyStop::Lost { since_s },
+                    (None, Some(since_s), _) => EarlyStop::FalseLock { since_s },
+                    (None, None, true) => EarlyStop::Interrupted,
+                    (None, None, false) => continue,
                 };
                 if !sim.tick().is_multiple_of(log_every) {
                     recorder.log(sim.snapshot())?;

@@ -1,6 +1,7 @@
 //! `summary.json`: the numbers a run is judged by (docs/design.md, How a run ends; its keys
 //! are listed in docs/outputs.md).
 
+use super::track_check::TrackCheck;
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::GimbalSection;
 use crate::scenario::{EstimatorKind, GuidanceLawKind};
@@ -23,6 +24,9 @@ pub enum RunStatus {
     Diverged,
     /// Stopped because the target went unmeasured longer than `run.stop_after_lost_s`.
     Lost,
+    /// Stopped because every frame measured something other than the target (by the truth)
+    /// for longer than `run.stop_after_lost_s`: the track was not the target.
+    FalseLock,
     /// Stopped because the user asked (Ctrl-C).
     Interrupted,
 }
@@ -110,6 +114,9 @@ pub struct Summary {
     /// The gimbal's angle ranges and the logged rows at one of its limits (gimballed
     /// cameras).
     pub gimbal: Option<GimbalSummary>,
+    /// Whether the track was the target: frames off the target by the truth, the filter's
+    /// innovations and b̂ at a bound over the last 20 s, and warnings.
+    pub track_check: TrackCheck,
 }
 
 /// Every key of `summary.json` in the order [`Summary`] writes them, and what it holds (for
@@ -117,7 +124,7 @@ pub struct Summary {
 #[rustfmt::skip]
 pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("scenario", "the scenario's name (its file stem)"),
-    ("status", "how the run ended: completed, intercepted, lost, diverged or interrupted"),
+    ("status", "how the run ended: completed, intercepted, lost, false_lock, diverged or interrupted"),
     ("message", "why it stopped early (null if it did not)"),
     ("duration_s", "simulated time, s"),
     ("steps", "integration steps taken"),
@@ -149,6 +156,7 @@ pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("stage_wall_s", "wall time of guidance, estimator, control, plant and all steps (`integration`) over the run, s"),
     ("aircraft", "the largest |α| and |β| after the first 5 s, the airspeed and throttle ranges, the largest surface deflections beside their limits, and the ticks at which a command was clamped, per actuator (6-DOF runs)"),
     ("gimbal", "the pan and tilt ranges (°) and the logged rows at which an axis sat within 0.1° of its limit (gimballed cameras)"),
+    ("track_check", "whether the track was the target: off_target_frames (measured frames not of the target, by the truth), nis_mean_last20s (the filter's mean normalised innovation squared, 3 when its model holds), b_hat_at_bound_last20s_s, and warnings"),
 ];
 
 /// The gimbal's travel over the logged rows.
@@ -354,6 +362,7 @@ impl Summary {
             stage_wall_s: sim.stage_times().into(),
             aircraft,
             gimbal: GimbalSummary::of(logged, &sim.scenario().camera.gimbal),
+            track_check: TrackCheck::of(logged, sim),
         }
     }
 

@@ -1,6 +1,7 @@
 //! Loss episodes: the runs of consecutive frames in which the target was not measured (out of
 //! the image, too small, hidden), each with its start, its length and whether a frame measured
-//! the target again.
+//! the target again. The same log keeps false locks: the runs of measured frames whose blob
+//! was not the target (`FrameRecord::on_target`), ended by a frame that measured the target.
 
 use serde::Serialize;
 

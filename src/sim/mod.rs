@@ -133,6 +133,9 @@ pub struct Simulation {
     estimator: Estimator,
     /// The runs of frames that did not measure the target.
     losses: LossLog,
+    /// The runs of frames whose measurement was not of the target, by the truth (false
+    /// locks; camera runs).
+    false_locks: LossLog,
     layout: StateLayout,
     /// What the stages' set-up had to say (estimator gain, observer-gain fallback).
     notes: Vec<String>,
@@ -216,6 +219,7 @@ impl Simulation {
             gimbal,
             estimator,
             losses: LossLog::default(),
+            false_locks: LossLog::default(),
             layout,
             notes,
             stage_times: Cell::new(StageTimes::default()),
@@ -283,6 +287,18 @@ impl Simulation {
     /// frame), s; None while the last frame measured it.
     pub fn unmeasured_since_s(&self) -> Option<f64> {
         self.losses.open_since_s()
+    }
+
+    /// The runs of delivered frames whose measurement was not of the target (false locks),
+    /// in order.
+    pub fn false_lock_episodes(&self) -> Vec<LossEpisode> {
+        self.false_locks.episodes()
+    }
+
+    /// When the false lock going on now began (its first frame that measured something other
+    /// than the target), s; None while the last measurement was of the target.
+    pub fn off_target_since_s(&self) -> Option<f64> {
+        self.false_locks.open_since_s()
     }
 
     /// The noisy sensor, in noisy runs.

@@ -26,6 +26,9 @@ impl Simulation {
         let first = match delivered {
             Some(record) => {
                 self.losses.record(record.t_s, record.r_measured.is_some());
+                if let Some(on_target) = record.on_target() {
+                    self.false_locks.record(record.t_s, on_target);
+                }
                 let stamped = self.stamped(&record);
                 self.estimator.deliver(&stamped, &velocity)
             }

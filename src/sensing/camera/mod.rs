@@ -74,6 +74,26 @@ pub struct FrameRecord {
     pub range_ft: f64,
 }
 
+/// How far a measured point may lie from the target's true reference point beyond the
+/// target's true maximal length and still be of the target, px: a blob of a few pixels at
+/// 200 ft, or measured on binned pixels, stays on its target.
+pub const OFF_TARGET_MARGIN_PX: f64 = 8.0;
+
+impl FrameRecord {
+    /// Whether the measurement the frame gave the estimator is of the target, by the truth:
+    /// its point lies within the true maximal length plus [`OFF_TARGET_MARGIN_PX`] of the
+    /// true reference point. A blob measured while the target is behind the camera is not.
+    /// `None` when the frame gave no measurement.
+    pub fn on_target(&self) -> Option<bool> {
+        self.r_measured?;
+        let measured = self.measured?;
+        Some(self.truth.is_some_and(|truth| {
+            let off_px = (measured.y_i_px - truth.y_i_px).hypot(measured.z_i_px - truth.z_i_px);
+            off_px <= truth.b_i_px + OFF_TARGET_MARGIN_PX
+        }))
+    }
+}
+
 /// Wall-clock time spent in each stage of the camera, summed over the run.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CameraTimings {
