@@ -310,7 +310,7 @@ fn a_case_that_cannot_run_is_a_row() {
 #[test]
 fn shipped_studies_are_valid() {
     let expected = [
-        ("field_of_view", 21),
+        ("field_of_view", 42),
         ("resolution", 15),
         ("rate_latency", 16),
         ("monte_carlo", 50),

@@ -14,6 +14,18 @@ pub enum GimbalKind {
     PanTilt,
 }
 
+/// Where the gimbal points before the camera has seen the target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GimbalCue {
+    /// Ahead, as a camera fixed on the nose looks (the seed's).
+    None,
+    /// Along `cue_deg`, a bearing and elevation an operator states.
+    Bearing,
+    /// Along the true line of sight to the target at t = 0, as a radar or a datalink gives it.
+    Target,
+}
+
 /// `[camera.gimbal]`. The defaults are of a small-UAV pan/tilt camera: tilt from straight down
 /// to 30° up and pan over most of a turn (commercial two-axis payload gimbals range from
 /// ±160° to continuous pan), rates of the order of 100 °/s (surveillance pan/tilt heads run
@@ -41,6 +53,14 @@ pub struct GimbalSection {
     pub search_max_deg: f64,
     /// One search circle takes this long, s.
     pub search_period_s: f64,
+    /// `none` (default), `bearing` or `target`: where the camera points at t = 0 and until it
+    /// first measures the target (a cue, as from a radar or an operator). The search circles
+    /// about the cue, or about ahead without one, from `search_after_s` after the start while
+    /// the target has never been seen.
+    pub cue: GimbalCue,
+    /// The cue of `cue = "bearing"`: [azimuth from north, positive east; elevation above the
+    /// horizon], deg, azimuth in [-360, 360], elevation in [-90, 90].
+    pub cue_deg: [f64; 2],
 }
 
 impl Default for GimbalSection {
@@ -55,6 +75,8 @@ impl Default for GimbalSection {
             search_growth_dps: 10.0,
             search_max_deg: 20.0,
             search_period_s: 1.5,
+            cue: GimbalCue::None,
+            cue_deg: [0.0, 0.0],
         }
     }
 }
@@ -113,6 +135,23 @@ impl GimbalSection {
             self.search_period_s,
             0.01,
             1e3,
+        )?;
+        let [azimuth_deg, elevation_deg] = self.cue_deg;
+        check::require(
+            (-360.0..=360.0).contains(&azimuth_deg) && (-90.0..=90.0).contains(&elevation_deg),
+            "camera.gimbal.cue_deg",
+            format!("[{azimuth_deg}, {elevation_deg}]"),
+            "[azimuth, elevation] with azimuth in [-360, 360] and elevation in [-90, 90]",
         )
+    }
+
+    /// The unit line of sight NED of `cue_deg`.
+    pub fn cue_bearing_ned(&self) -> [f64; 3] {
+        let [azimuth, elevation] = self.cue_deg.map(f64::to_radians);
+        [
+            elevation.cos() * azimuth.cos(),
+            elevation.cos() * azimuth.sin(),
+            -elevation.sin(),
+        ]
     }
 }

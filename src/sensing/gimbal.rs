@@ -14,7 +14,10 @@
 //! while frames measure the target the camera keeps it near the image centre; while none does
 //! it keeps pointing where the estimator predicts, and once the target has been missing for
 //! `search_after_s` it circles about that prediction with a radius growing at
-//! `search_growth_dps` up to `search_max_deg` (one circle every `search_period_s`).
+//! `search_growth_dps` up to `search_max_deg` (one circle every `search_period_s`). Before the
+//! target is first seen there is no prediction: the camera points along the cue
+//! (`camera.gimbal.cue`, a line of sight NED from a radar or an operator) or ahead, and from
+//! `search_after_s` after the start circles about it the same way.
 
 use crate::frames::{EulerAngles, Mat3, Vec3, wrap_angle_rad};
 use crate::scenario::GimbalSection;
@@ -68,11 +71,14 @@ pub struct Gimbal {
     search_growth_rps: f64,
     search_max_rad: f64,
     search_omega_rps: f64,
+    /// The line of sight NED the camera points along until the target is first seen.
+    cue_ned: Option<Vec3>,
 }
 
 impl Gimbal {
-    /// The gimbal a `[camera.gimbal]` section describes.
-    pub fn new(section: &GimbalSection) -> Self {
+    /// The gimbal a `[camera.gimbal]` section describes, cued along `cue_ned` (a line of sight
+    /// NED, any length) when given.
+    pub fn new(section: &GimbalSection, cue_ned: Option<Vec3>) -> Self {
         let radians = |deg: [f64; 2]| deg.map(f64::to_radians);
         Self {
             pan_limits_rad: radians(section.pan_limits_deg),
@@ -83,17 +89,23 @@ impl Gimbal {
             search_growth_rps: section.search_growth_dps.to_radians(),
             search_max_rad: section.search_max_deg.to_radians(),
             search_omega_rps: std::f64::consts::TAU / section.search_period_s,
+            cue_ned,
         }
     }
 
-    /// At the start the camera looks ahead (or as near as its limits allow).
-    pub fn initial_state(&self) -> [f64; GIMBAL_STATE_LEN] {
-        self.clamped(&GimbalAngles::default())
+    /// At the start the camera looks along the cue, or ahead without one (as near as its
+    /// limits allow), for a follower whose L_BE is `body_from_ned`.
+    pub fn initial_state(&self, body_from_ned: &Mat3) -> [f64; GIMBAL_STATE_LEN] {
+        let angles = self.cue_ned.map_or_else(GimbalAngles::default, |cue| {
+            GimbalAngles::pointing_along(&(body_from_ned * cue))
+        });
+        self.clamped(&angles)
     }
 
     /// The commanded angles at `t_s`: along the predicted line of sight `line_of_sight_ned`
-    /// (none: hold the present angles) for a follower whose L_BE is `body_from_ned`, plus the
-    /// search circle when the target has been missing for `missing_s`; inside the limits.
+    /// (before the target is first seen, the cue; without one, hold the present angles, or
+    /// search about ahead) for a follower whose L_BE is `body_from_ned`, plus the search
+    /// circle when the target has been missing for `missing_s`; inside the limits.
     pub fn command(
         &self,
         x: &[f64],
@@ -103,14 +115,19 @@ impl Gimbal {
         t_s: f64,
     ) -> GimbalAngles {
         let now = GimbalAngles::of(x);
-        let Some(los) = line_of_sight_ned else {
-            return now;
-        };
-        let mut angles = GimbalAngles::pointing_along(&(body_from_ned * los));
-        // The pan nearest the present one: a target crossing behind the camera's pan range
-        // holds the pan at the limit on its side instead of swinging the long way round.
-        angles.pan_rad = now.pan_rad + wrap_angle_rad(angles.pan_rad - now.pan_rad);
         let searching_s = missing_s - self.search_after_s;
+        let mut angles = match line_of_sight_ned.or(self.cue_ned) {
+            Some(los) => {
+                let mut angles = GimbalAngles::pointing_along(&(body_from_ned * los));
+                // The pan nearest the present one: a target crossing behind the camera's pan
+                // range holds the pan at the limit on its side instead of swinging the long
+                // way round.
+                angles.pan_rad = now.pan_rad + wrap_angle_rad(angles.pan_rad - now.pan_rad);
+                angles
+            }
+            None if searching_s > 0.0 => GimbalAngles::default(),
+            None => return now,
+        };
         if searching_s > 0.0 {
             let radius = (self.search_growth_rps * searching_s).min(self.search_max_rad);
             let (s, c) = (self.search_omega_rps * t_s).sin_cos();
@@ -161,7 +178,7 @@ mod tests {
     use proptest::prelude::*;
 
     fn gimbal() -> Gimbal {
-        Gimbal::new(&GimbalSection::default())
+        Gimbal::new(&GimbalSection::default(), None)
     }
 
     proptest! {
@@ -248,5 +265,32 @@ mod tests {
         assert!(later > early && early > 0.0, "{early} {later}");
         let widest = offset(section.search_after_s + 1000.0, 0.3);
         assert!((widest - section.search_max_deg.to_radians()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_never_seen_target_is_searched_for_about_ahead_or_the_cue() {
+        let section = GimbalSection::default();
+        let level = Mat3::identity();
+        let at = |gimbal: &Gimbal, missing_s: f64| {
+            let x = [0.0, -0.2];
+            gimbal.command(&x, None, &level, missing_s, 0.3)
+        };
+        let uncued = gimbal();
+        assert_eq!(
+            at(&uncued, 0.2),
+            GimbalAngles::of(&[0.0, -0.2]),
+            "holds at first"
+        );
+        let searching = at(&uncued, section.search_after_s + 1.0);
+        let radius = searching.pan_rad.hypot(searching.tilt_rad);
+        assert!((radius - section.search_growth_dps.to_radians()).abs() < 1e-9);
+        let down = Vec3::new(1.0, 0.0, 1.0);
+        let cued = Gimbal::new(&section, Some(down));
+        assert_eq!(
+            cued.initial_state(&level),
+            [0.0, -std::f64::consts::FRAC_PI_4]
+        );
+        let centred = at(&cued, 0.2);
+        assert!((centred.tilt_rad + std::f64::consts::FRAC_PI_4).abs() < 1e-12);
     }
 }

@@ -11,7 +11,7 @@ use crate::guidance::command::{CommandInput, FormationCommand};
 use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
 use crate::guidance::signals::CommandKind;
 use crate::scenario::{
-    EstimatorKind, ExcitationUnits, GimbalKind, GuidanceLawKind, Scenario, SensorMode,
+    EstimatorKind, ExcitationUnits, GimbalCue, GimbalKind, GuidanceLawKind, Scenario, SensorMode,
     TargetModelKind, TargetMotion,
 };
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
@@ -96,10 +96,17 @@ pub(super) fn first_r(
 }
 
 /// The camera's pan/tilt gimbal, when the camera rides one.
-pub(super) fn gimbal_of(scenario: &Scenario) -> Option<Gimbal> {
-    (scenario.sensor.mode == SensorMode::Camera
-        && scenario.camera.gimbal.kind == GimbalKind::PanTilt)
-        .then(|| Gimbal::new(&scenario.camera.gimbal))
+pub(super) fn gimbal_of(scenario: &Scenario, target: &dyn TargetModel) -> Option<Gimbal> {
+    let section = &scenario.camera.gimbal;
+    let cue_ned = match section.cue {
+        GimbalCue::None => None,
+        GimbalCue::Bearing => Some(Vec3::from(section.cue_bearing_ned())),
+        GimbalCue::Target => {
+            Some(target.position_ned_ft(0.0) - Vec3::from(scenario.follower.initial_position_ft))
+        }
+    };
+    (scenario.sensor.mode == SensorMode::Camera && section.kind == GimbalKind::PanTilt)
+        .then(|| Gimbal::new(section, cue_ned))
 }
 
 /// The estimator `[estimator] kind` asks for, fed by a continuous sensor or a camera, with

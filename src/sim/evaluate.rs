@@ -27,14 +27,15 @@ impl Simulation {
     }
 
     /// The gimbal's command at (t, x): toward where the estimator predicts the target is, and
-    /// searching about it once the target has been missing (see [`Gimbal::command`]).
+    /// searching about it once the target has been missing, since the start when it has not
+    /// been seen yet (see [`Gimbal::command`]).
     pub(super) fn gimbal_command(&self, gimbal: &Gimbal, t_s: f64, x: &[f64]) -> GimbalAngles {
         let slices = self.layout.split(x);
         let position = self.navigated_position_ned_ft(slices.follower);
         let law = self.guidance.estimates(slices.guidance);
         let line_of_sight = self.estimator.predicted_r(t_s, &position, law);
         let base_from_ned = self.navigated_base_from_ned(slices.follower);
-        let missing_s = self.estimator.last_measured_s().map_or(0.0, |m| t_s - m);
+        let missing_s = t_s - self.estimator.last_measured_s().unwrap_or(0.0);
         let angles = encoder_reading(&self.own.sensors, slices.gimbal);
         gimbal.command(&angles, line_of_sight, &base_from_ned, missing_s, t_s)
     }

@@ -172,10 +172,11 @@ impl Simulation {
         let (estimator, guidance, notes) =
             estimation_stage(scenario, compensate, sensor.is_continuous())?;
         let target = target_of(scenario)?;
-        let gimbal = gimbal_of(scenario);
+        let gimbal = gimbal_of(scenario, target.as_ref());
+        let body_from_ned = follower.attitude(&follower_x).body_from_ned();
         let gimbal_x = gimbal
             .as_ref()
-            .map_or(vec![], |g| g.initial_state().to_vec());
+            .map_or(vec![], |g| g.initial_state(&body_from_ned).to_vec());
         let own = OwnSensing::new(scenario, &follower.attitude(&follower_x));
         let camera_from_body = mounted_camera(&own.mount, gimbal.as_ref(), &gimbal_x);
         let truth = capture_geometry(
