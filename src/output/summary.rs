@@ -27,6 +27,29 @@ pub enum RunStatus {
     Interrupted,
 }
 
+impl RunStatus {
+    /// Every status, in the order lines that count them list them (a new status goes here
+    /// too: a test checks that docs/outputs.md and docs/studies.md name each one).
+    pub const ALL: [RunStatus; 5] = [
+        Self::Completed,
+        Self::Intercepted,
+        Self::Lost,
+        Self::Diverged,
+        Self::Interrupted,
+    ];
+
+    /// The status's name, as `summary.json`, `results.csv` and the command's lines write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Completed => "completed",
+            Self::Intercepted => "intercepted",
+            Self::Diverged => "diverged",
+            Self::Lost => "lost",
+            Self::Interrupted => "interrupted",
+        }
+    }
+}
+
 /// The summary of one run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Summary {
