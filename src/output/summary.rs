@@ -140,7 +140,13 @@ pub struct Summary {
 #[rustfmt::skip]
 pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("scenario", "the scenario's name (its file stem)"),
-    ("status", "how the run ended: completed, intercepted, lost, diverged or interrupted"),
+    (
+        "status",
+        "how the run ended: `completed`, `intercepted`, `lost`, `diverged` or `interrupted` \
+         (the names `wingman run`'s last line, a sweep's `results.csv` and its progress lines \
+         use too; a sweep adds `failed` for a case that could not run: docs/studies.md, Case \
+         statuses)",
+    ),
     ("message", "why it stopped early (null if it did not)"),
     ("duration_s", "simulated time, s"),
     ("steps", "integration steps taken"),
