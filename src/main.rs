@@ -11,6 +11,7 @@ use wingman::output::frame_images::render_frame_at;
 use wingman::output::summary::{RunStatus, Summary};
 use wingman::output::{RunReport, folder, interrupt, preflight, run_to_directory};
 use wingman::scenario::Scenario;
+use wingman::study::results::Tally;
 use wingman::study::{Plan, Progress, Shard, StudyError, SweepOptions, merge_shards, run_sweep};
 
 #[derive(Parser)]
@@ -176,20 +177,31 @@ fn sweep(
             }
             if !quiet {
                 eprintln!(
-                    "{name}: {} cases ({} complete before): {} completed or intercepted, {} diverged or failed, {} lost the target; {:.1} s on {jobs} worker(s); results in {}",
+                    "{name}: {} cases ({} complete before): {}; {:.1} s on {jobs} worker(s); results in {}",
                     report.cases,
                     report.skipped,
-                    report.completed,
-                    report.failed,
-                    report.lost_target,
+                    report.tally.counts,
                     started.elapsed().as_secs_f64(),
                     out_dir.join("results.csv").display()
                 );
             }
-            ExitCode::SUCCESS
+            not_run_failure(&report.tally, "run the same command again")
         }
         Err(e) => study_failure(&e),
     }
+}
+
+/// Exit code 1, with the cases named, when some case could not run (status `failed`): a
+/// sweep whose node had no graphics adapter must not look successful; 0 otherwise.
+fn not_run_failure(tally: &Tally, retry: &str) -> ExitCode {
+    let Some((first, why)) = tally.not_run.first() else {
+        return ExitCode::SUCCESS;
+    };
+    eprintln!(
+        "error: {} case(s) could not run and have no result (first: case {first}: {why}); {retry} to retry them",
+        tally.not_run.len()
+    );
+    ExitCode::from(1)
 }
 
 fn merge(shards: &[PathBuf], out: &Path) -> ExitCode {
@@ -199,12 +211,13 @@ fn merge(shards: &[PathBuf], out: &Path) -> ExitCode {
                 eprintln!("warning: {warning}");
             }
             eprintln!(
-                "merged {} shard folder(s): {} cases; results in {}",
+                "merged {} shard folder(s): {} cases: {}; results in {}",
                 shards.len(),
                 report.cases,
+                report.tally.counts,
                 out.join("results.csv").display()
             );
-            ExitCode::SUCCESS
+            not_run_failure(&report.tally, "rerun the shards that hold them, then merge")
         }
         Err(e) => study_failure(&e),
     }
@@ -415,9 +428,9 @@ fn final_line(s: &Summary, out_dir: &Path) -> String {
         String::new()
     };
     format!(
-        "{}: {:?} at t = {:.2} s in {:.3} s wall ({:.0}x real time); b_hat = {:.3} ft (true {} ft); RMS error last 20 s [{:.3}, {:.3}, {:.3}] ft{}{frames}; outputs in {}",
+        "{}: {} at t = {:.2} s in {:.3} s wall ({:.0}x real time); b_hat = {:.3} ft (true {} ft); RMS error last 20 s [{:.3}, {:.3}, {:.3}] ft{}{frames}; outputs in {}",
         s.scenario,
-        s.status,
+        s.status.name(),
         s.duration_s,
         s.wall_s,
         s.realtime_factor,

@@ -86,7 +86,11 @@ fn box_face_on_and_edge_on_match_closed_forms() {
         progress: Progress::Quiet,
     };
     let report = run_sweep(&plan, &options).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!((report.cases, report.completed), (4, 4), "{report:?}");
+    assert_eq!(
+        (report.cases, report.tally.counts.as_str()),
+        (4, "4 completed"),
+        "{report:?}"
+    );
     let l = focal_px();
     for case in 0..4 {
         let record = read_record(&out.join("cases").join(format!("{case:06}"))).unwrap();

@@ -5,15 +5,15 @@
 //! - a sweep killed midway and run again runs only the cases not complete (their records are
 //!   left byte for byte) and ends with the `results.csv` of an uninterrupted sweep;
 //! - a bad value of an axis is reported as a bad study file, naming the file, the axis and
-//!   the value, with exit code 2, before anything runs (no output folder);
-//! - a case that cannot run is a row with status `failed`, and the sweep goes on.
+//!   the value, with exit code 2, before anything runs (no output folder).
+//!
+//! Cases that could not run: tests/study_case_statuses.rs; `--out`: tests/study_out_folder.rs.
 
 mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
-use wingman::study::results::is_timing_column;
 
 fn wingman() -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_wingman"));
@@ -23,14 +23,7 @@ fn wingman() -> Command {
 
 /// Writes a study of `scenarios/seed_ch4_formation.toml` into `dir` and returns its path.
 fn write_study(dir: &Path, name: &str, body: &str) -> PathBuf {
-    let scenario = common::repo_root().join("scenarios/seed_ch4_formation.toml");
-    let text = format!(
-        "[study]\nscenario = \"{}\"\n{body}",
-        scenario.display().to_string().replace('\\', "/")
-    );
-    let path = dir.join(name);
-    std::fs::write(&path, text).expect("study written");
-    path
+    common::write_study(dir, name, "seed_ch4_formation", body)
 }
 
 /// 3 x 2 gains, 2 replicates: 12 cases of 20 s.
@@ -65,42 +58,6 @@ fn sweep(study: &Path, out: &Path, extra: &[&str]) -> Output {
     output
 }
 
-/// `results.csv` as rows of cells, with the wall-clock columns blanked.
-fn results_without_timing(dir: &Path) -> Vec<Vec<String>> {
-    let mut reader = csv::Reader::from_path(dir.join("results.csv")).expect("results.csv");
-    let header: Vec<String> = reader
-        .headers()
-        .expect("header")
-        .iter()
-        .map(str::to_string)
-        .collect();
-    let mut rows = vec![header.clone()];
-    for record in reader.records() {
-        let record = record.expect("row");
-        rows.push(
-            record
-                .iter()
-                .zip(&header)
-                .map(|(cell, name)| if is_timing_column(name) { "" } else { cell }.to_string())
-                .collect(),
-        );
-    }
-    rows
-}
-
-fn file_names(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .map(|entries| {
-            entries
-                .filter_map(Result::ok)
-                .map(|e| e.file_name().to_string_lossy().into_owned())
-                .collect()
-        })
-        .unwrap_or_default();
-    names.sort();
-    names
-}
-
 #[test]
 fn three_shards_merged_equal_the_whole_sweep() {
     let dir = tempfile::tempdir().expect("temp dir");
@@ -116,7 +73,7 @@ fn three_shards_merged_equal_the_whole_sweep() {
         .collect();
     for (i, shard) in shards.iter().enumerate() {
         // Cases are dealt out in turn: shard i holds cases i, i + 3, i + 6, i + 9.
-        let rows = results_without_timing(shard);
+        let rows = common::results_without_timing(shard);
         let cases: Vec<&str> = rows[1..].iter().map(|r| r[0].as_str()).collect();
         let expected: Vec<String> = (0..4).map(|k| (i + 3 * k).to_string()).collect();
         assert_eq!(cases, expected);
@@ -135,7 +92,7 @@ fn three_shards_merged_equal_the_whole_sweep() {
         String::from_utf8_lossy(&output.stderr)
     );
 
-    let expected = results_without_timing(&whole);
+    let expected = common::results_without_timing(&whole);
     assert_eq!(expected.len(), 13, "a header and 12 cases");
     assert!(expected[0].iter().any(|c| c == "guidance.k"));
     assert!(expected[0].iter().any(|c| c == "run.seed"));
@@ -144,21 +101,24 @@ fn three_shards_merged_equal_the_whole_sweep() {
             .iter()
             .all(|row| row[expected[0].iter().position(|c| c == "status").unwrap()] == "completed")
     );
-    assert_eq!(results_without_timing(&merged), expected);
+    assert_eq!(common::results_without_timing(&merged), expected);
     assert_eq!(
-        file_names(&merged.join("cases")),
-        file_names(&whole.join("cases"))
+        common::file_names(&merged.join("cases")),
+        common::file_names(&whole.join("cases"))
     );
     assert_eq!(
-        file_names(&merged.join("plots")),
-        file_names(&whole.join("plots"))
+        common::file_names(&merged.join("plots")),
+        common::file_names(&whole.join("plots"))
     );
-    assert!(file_names(&whole.join("plots")).contains(&"heatmap_b_hat_final_ft.png".to_string()));
+    assert!(
+        common::file_names(&whole.join("plots"))
+            .contains(&"heatmap_b_hat_final_ft.png".to_string())
+    );
 }
 
 /// Counts the cases with a record in a sweep folder.
 fn complete_cases(out: &Path) -> Vec<String> {
-    file_names(&out.join("cases"))
+    common::file_names(&out.join("cases"))
         .into_iter()
         .filter(|case| out.join("cases").join(case).join("case.json").exists())
         .collect()
@@ -223,8 +183,8 @@ fn a_killed_sweep_resumes_with_the_missing_cases_only() {
     let uninterrupted = dir.path().join("uninterrupted");
     sweep(&study, &uninterrupted, &[]);
     assert_eq!(
-        results_without_timing(&out),
-        results_without_timing(&uninterrupted)
+        common::results_without_timing(&out),
+        common::results_without_timing(&uninterrupted)
     );
 }
 
@@ -283,26 +243,6 @@ fn a_bad_axis_value_is_a_bad_study_file() {
     let stderr = String::from_utf8_lossy(&shard.stderr);
     assert!(stderr.contains("--shard 3/3"), "{stderr}");
     assert!(!out.exists(), "nothing runs with a bad shard");
-}
-
-#[test]
-fn a_case_that_cannot_run_is_a_row() {
-    let dir = tempfile::tempdir().expect("temp dir");
-    let body = "set = [\"run.duration_s=2\", \"output.plots=false\", \"camera.mesh=no_such_mesh.obj\", \"camera.rate_hz=25\"]\n\
-                [[axis]]\nkey = \"sensor.mode\"\nvalues = [\"perfect\", \"camera\"]\n";
-    let study = write_study(dir.path(), "failing.toml", body);
-    let out = dir.path().join("out");
-    sweep(&study, &out, &[]);
-    let rows = results_without_timing(&out);
-    let status = rows[0].iter().position(|c| c == "status").unwrap();
-    let message = rows[0].iter().position(|c| c == "message").unwrap();
-    assert_eq!(rows[1][status], "completed");
-    assert_eq!(rows[2][status], "failed");
-    assert!(
-        rows[2][message].contains("no_such_mesh.obj") || rows[2][message].contains("adapter"),
-        "{:?}",
-        rows[2]
-    );
 }
 
 /// Every study in `studies/` passes the checks a sweep makes before it runs, with the number

@@ -48,6 +48,12 @@ fn io_error(path: &Path) -> impl Fn(std::io::Error) -> FolderError + '_ {
 /// ancestor is a folder we may write in), or it is a folder we may write in that is empty or
 /// holds an earlier run.
 pub fn check(dir: &Path) -> Result<(), FolderError> {
+    check_for(dir, holds_a_run)
+}
+
+/// [`check`] for a folder of outputs that `ours` recognises (a sweep's, by its `plan.json`):
+/// [`FolderError::NotARun`] for a folder with files in it that `ours` does not recognise.
+pub fn check_for(dir: &Path, ours: impl Fn(&Path) -> bool) -> Result<(), FolderError> {
     if !dir.exists() {
         let ancestor = dir
             .ancestors()
@@ -66,7 +72,7 @@ pub fn check(dir: &Path) -> Result<(), FolderError> {
         .map_err(io_error(dir))?
         .next()
         .is_none();
-    if empty || holds_a_run(dir) {
+    if empty || ours(dir) {
         writable(dir)
     } else {
         Err(FolderError::NotARun(dir.to_path_buf()))

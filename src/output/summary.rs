@@ -31,6 +31,31 @@ pub enum RunStatus {
     Interrupted,
 }
 
+impl RunStatus {
+    /// Every status, in the order lines that count them list them (a new status goes here
+    /// too: a test checks that docs/outputs.md and docs/studies.md name each one).
+    pub const ALL: [RunStatus; 6] = [
+        Self::Completed,
+        Self::Intercepted,
+        Self::Lost,
+        Self::FalseLock,
+        Self::Diverged,
+        Self::Interrupted,
+    ];
+
+    /// The status's name, as `summary.json`, `results.csv` and the command's lines write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Completed => "completed",
+            Self::Intercepted => "intercepted",
+            Self::Diverged => "diverged",
+            Self::Lost => "lost",
+            Self::FalseLock => "false_lock",
+            Self::Interrupted => "interrupted",
+        }
+    }
+}
+
 /// The summary of one run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Summary {
@@ -124,7 +149,14 @@ pub struct Summary {
 #[rustfmt::skip]
 pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("scenario", "the scenario's name (its file stem)"),
-    ("status", "how the run ended: completed, intercepted, lost, false_lock, diverged or interrupted"),
+    (
+        "status",
+        "how the run ended: `completed`, `intercepted`, `lost`, `false_lock`, `diverged` or \
+         `interrupted` \
+         (the names `wingman run`'s last line, a sweep's `results.csv` and its progress lines \
+         use too; a sweep adds `failed` for a case that could not run: docs/studies.md, Case \
+         statuses)",
+    ),
     ("message", "why it stopped early (null if it did not)"),
     ("duration_s", "simulated time, s"),
     ("steps", "integration steps taken"),

@@ -1,9 +1,11 @@
 //! `wingman sweep merge SHARD_DIR... --out DIR`: the shards' case folders copied into one
 //! sweep folder, then `results.csv` and the plots written as one machine would write them.
+//! A case's result is taken from the first shard that has one; a case no shard has a result
+//! of but that one could not run is copied as it is (status `failed`), and the merge says so.
 
 use super::StudyError;
 use super::outputs::{self, case_folder, claim_folder, read_layout};
-use super::results::{RECORD_FILE, read_record};
+use super::results::{RECORD_FILE, Tally, read_record};
 use std::path::{Path, PathBuf};
 
 /// What a merge did.
@@ -11,12 +13,15 @@ use std::path::{Path, PathBuf};
 pub struct MergeReport {
     /// Cases in the merged study.
     pub cases: usize,
+    /// The cases by status, and those that could not run.
+    pub tally: Tally,
     /// Plots that could not be drawn and similar.
     pub warnings: Vec<String>,
 }
 
 /// Merges shard folders of one study into `out_dir`. Every shard must hold the same
-/// `plan.json`; every case must be complete in one of them (the first that has it is taken).
+/// `plan.json`; every case must have a record in one of them (the first result is taken, or
+/// else the first record of a case that could not run).
 pub fn merge_shards(shard_dirs: &[PathBuf], out_dir: &Path) -> Result<MergeReport, StudyError> {
     let Some(first) = shard_dirs.first() else {
         return Err(StudyError::NotASweep {
@@ -39,9 +44,12 @@ pub fn merge_shards(shard_dirs: &[PathBuf], out_dir: &Path) -> Result<MergeRepor
     claim_folder(&layout, out_dir)?;
     let mut missing = Vec::new();
     for index in 0..layout.cases.len() {
-        let holder = shard_dirs.iter().find(|dir| {
-            read_record(&case_folder(dir, index)).is_some_and(|r| layout.is_record_of(index, &r))
-        });
+        let record_in = |dir: &&PathBuf, result: bool| {
+            read_record(&case_folder(dir, index))
+                .is_some_and(|r| layout.is_record_of(index, &r) && (r.is_final() || !result))
+        };
+        let holder = (shard_dirs.iter().find(|dir| record_in(dir, true)))
+            .or_else(|| shard_dirs.iter().find(|dir| record_in(dir, false)));
         match holder {
             Some(dir) => copy_case(&case_folder(dir, index), &case_folder(out_dir, index))?,
             None => missing.push(index),
@@ -58,6 +66,7 @@ pub fn merge_shards(shard_dirs: &[PathBuf], out_dir: &Path) -> Result<MergeRepor
     let warnings = outputs::write(&layout, &records, out_dir, true)?;
     Ok(MergeReport {
         cases: records.len(),
+        tally: Tally::of(&records),
         warnings,
     })
 }

@@ -84,6 +84,19 @@ pub enum StudyError {
         /// The folder.
         out_dir: PathBuf,
     },
+    /// The output folder holds files, but no sweep's `plan.json`.
+    #[error(
+        "--out {}: the folder is not empty and holds no sweep (no plan.json of one): choose \
+         an empty or new folder, or this study's folder",
+        out_dir.display()
+    )]
+    NotThisStudy {
+        /// The folder.
+        out_dir: PathBuf,
+    },
+    /// The output folder cannot be made or written (a file, no permission).
+    #[error(transparent)]
+    OutFolder(crate::output::folder::FolderError),
     /// A folder given to merge is not a sweep folder of the same study.
     #[error("{}: not a shard of this sweep: {reason}", dir.display())]
     NotASweep {
@@ -131,6 +144,8 @@ impl StudyError {
                 | Self::BadValue { .. }
                 | Self::BadCase { .. }
                 | Self::OtherStudy { .. }
+                | Self::NotThisStudy { .. }
+                | Self::OutFolder(_)
                 | Self::NotASweep { .. }
         )
     }

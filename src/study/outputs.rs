@@ -6,21 +6,29 @@ use super::StudyError;
 use super::layout::StudyLayout;
 use super::plots::draw_study_plots;
 use super::results::{CaseRecord, read_record, write_results_csv};
+use crate::output::folder::{self, FolderError};
 use std::path::Path;
 
 /// The file naming a sweep folder's study.
 pub const PLAN_FILE: &str = "plan.json";
 
-/// Makes `out_dir` this study's folder: creates it and writes `plan.json`, or checks that the
-/// `plan.json` there is this study's (a folder of another study, or of this study with other
-/// scenario or study texts, is refused rather than mixed).
+/// Makes `out_dir` this study's folder: checks it as `wingman run` checks its folder
+/// ([`folder::check_for`]: new, empty, or a sweep's, known by its `plan.json`; a folder of
+/// other files is refused rather than mixed), creates it and writes `plan.json`, or checks
+/// that the `plan.json` there is this study's (a folder of another study, or of this study
+/// with other scenario or study texts, is refused too).
 pub fn claim_folder(layout: &StudyLayout, out_dir: &Path) -> Result<(), StudyError> {
+    let path = out_dir.join(PLAN_FILE);
+    folder::check_for(out_dir, |dir| dir.join(PLAN_FILE).is_file()).map_err(|e| match e {
+        FolderError::NotARun(dir) => StudyError::NotThisStudy { out_dir: dir },
+        other => StudyError::OutFolder(other),
+    })?;
     let io = |path: &Path| {
         let path = path.to_path_buf();
         move |source| StudyError::Io { path, source }
     };
-    std::fs::create_dir_all(out_dir.join("cases")).map_err(io(out_dir))?;
-    let path = out_dir.join(PLAN_FILE);
+    // plan.json goes first: a sweep stopped at once leaves a folder a rerun recognises.
+    std::fs::create_dir_all(out_dir).map_err(io(out_dir))?;
     match std::fs::read_to_string(&path) {
         Ok(existing) if existing == layout.to_json() => Ok(()),
         Ok(_) => Err(StudyError::OtherStudy {
@@ -30,7 +38,9 @@ pub fn claim_folder(layout: &StudyLayout, out_dir: &Path) -> Result<(), StudyErr
             std::fs::write(&path, layout.to_json()).map_err(io(&path))
         }
         Err(source) => Err(StudyError::Io { path, source }),
-    }
+    }?;
+    let cases = out_dir.join("cases");
+    std::fs::create_dir_all(&cases).map_err(io(&cases))
 }
 
 /// The layout in a sweep folder's `plan.json`.

@@ -2,18 +2,58 @@
 //! complete) and the study's `results.csv`, one row per case built from the records.
 //!
 //! Columns of `results.csv`, in order: `case` (index), `point` (combination of axis values),
-//! `replicate`; one column per axis key (and `run.seed` for replicates); `status`
-//! (`completed`, `intercepted`, `diverged`, or `failed` when the run could not start or
-//! write); the case's numbers (for a sweep: `lost_target`, `rms_error_last20s_norm_ft` and
+//! `replicate`; one column per axis key (and `run.seed` for replicates); `status` (one of
+//! [`case_statuses`]: a run's status, or `failed` when the case could not run); the case's
+//! numbers (for a sweep: `lost_target`, `rms_error_last20s_norm_ft` and
 //! every number and true/false of `summary.json`, nested names joined by `.` and array
 //! entries numbered from 0, e.g. `rms_error_last20s_ft.0`; for the apparent-size study its
 //! lengths and sizes), in the order they first appear; and `message` (why a case stopped).
 //! An empty cell is a number the case does not have. The columns of [`is_timing_column`]
 //! hold wall-clock times, the only cells that differ between two runs of one study.
 
+use crate::output::summary::RunStatus;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
+
+/// The status of a case that could not run: a set-up failure (no graphics adapter, a missing
+/// asset), a crash, a run that wrote no summary. Not a result: a rerun of the sweep retries
+/// the case.
+pub const FAILED: &str = "failed";
+
+/// Every status a case can have: a run's ([`RunStatus::name`]), then [`FAILED`]; the order in
+/// which progress and summary lines count them.
+pub fn case_statuses() -> Vec<&'static str> {
+    RunStatus::ALL
+        .iter()
+        .map(|s| s.name())
+        .chain([FAILED])
+        .collect()
+}
+
+/// `records` counted by status, in the order of [`case_statuses`] (statuses no record has
+/// left out; a status this build does not know, from another build's records, last):
+/// `10 completed, 1 lost, 1 failed`.
+pub fn count_statuses<'a>(statuses: impl IntoIterator<Item = &'a str>) -> String {
+    let statuses: Vec<&str> = statuses.into_iter().collect();
+    let mut names = case_statuses();
+    for status in &statuses {
+        if !names.contains(status) {
+            names.push(status);
+        }
+    }
+    let counts: Vec<String> = names
+        .iter()
+        .map(|name| (name, statuses.iter().filter(|s| *s == name).count()))
+        .filter(|(_, count)| *count > 0)
+        .map(|(name, count)| format!("{count} {name}"))
+        .collect();
+    if counts.is_empty() {
+        "none yet".to_string()
+    } else {
+        counts.join(", ")
+    }
+}
 
 /// One named number (or true/false, or text) of a case.
 pub type Column = (String, Value);
@@ -29,8 +69,7 @@ pub struct CaseRecord {
     pub replicate: u32,
     /// Its settings as `results.csv` cells: key, value.
     pub settings: Vec<(String, String)>,
-    /// The run's status (`completed`, `intercepted`, `lost`, `diverged`, `interrupted`), or
-    /// `failed` for a case that could not start or write.
+    /// The run's status ([`RunStatus::name`]), or [`FAILED`] for a case that could not run.
     pub status: String,
     /// Why it stopped early or failed.
     pub message: Option<String>,
@@ -42,7 +81,16 @@ impl CaseRecord {
     /// Whether the run flew to its end (completed or intercepted); anything else counts as
     /// stopped early or failed.
     pub fn ended_ok(&self) -> bool {
-        matches!(self.status.as_str(), "completed" | "intercepted")
+        [RunStatus::Completed, RunStatus::Intercepted]
+            .iter()
+            .any(|s| self.status == s.name())
+    }
+
+    /// Whether the case is a result: it ran, to its end or to a stop of its own (lost,
+    /// diverged). A case that could not run ([`FAILED`]) or that a signal stopped
+    /// (`interrupted`) is not, and a rerun of the sweep runs it again.
+    pub fn is_final(&self) -> bool {
+        self.status != FAILED && self.status != RunStatus::Interrupted.name()
     }
 
     /// Whether the run's summary says the target was lost (`lost_target`).
@@ -65,6 +113,32 @@ impl CaseRecord {
             .iter()
             .find(|(k, _)| k == key)
             .map(|(_, v)| v.as_str())
+    }
+}
+
+/// What a sweep's cases gave, as its last lines say it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Tally {
+    /// The cases counted by status ([`count_statuses`]).
+    pub counts: String,
+    /// The cases that are no result ([`CaseRecord::is_final`]): index and why.
+    pub not_run: Vec<(usize, String)>,
+}
+
+impl Tally {
+    /// The tally of `records`.
+    pub fn of(records: &[CaseRecord]) -> Self {
+        Self {
+            counts: count_statuses(records.iter().map(|r| r.status.as_str())),
+            not_run: records
+                .iter()
+                .filter(|r| !r.is_final())
+                .map(|r| {
+                    let why = r.message.as_deref().unwrap_or(r.status.as_str());
+                    (r.case, why.to_string())
+                })
+                .collect(),
+        }
     }
 }
 

@@ -1,5 +1,6 @@
 //! Running a study's cases: in parallel on a rayon pool, each into its own folder, skipping
-//! the cases a previous run completed, with progress (cases done, failed, time left).
+//! the cases a previous run completed (its results; a case that could not run is run again),
+//! with progress (cases done by status, time left).
 //!
 //! Camera cases render on one GPU device per worker thread, opened at its first camera case
 //! and kept in [`super::workers`]: the fastest of the three ways `examples/sweep_gpu_sharing.rs`
@@ -7,7 +8,9 @@
 
 use super::layout::StudyLayout;
 use super::plan::{Case, Plan, Shard};
-use super::results::{CaseRecord, Column, read_record, summary_columns, write_record};
+use super::results::{
+    CaseRecord, Column, FAILED, Tally, count_statuses, read_record, summary_columns, write_record,
+};
 use super::spec::StudyKind;
 use super::workers::Workers;
 use super::{StudyError, outputs};
@@ -15,8 +18,9 @@ use crate::output::run_to_directory_on;
 use crate::render::GpuContext;
 use crate::scenario::{Scenario, SensorMode};
 use rayon::prelude::*;
+use std::panic::AssertUnwindSafe;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
 /// How a sweep reports its progress.
@@ -50,12 +54,8 @@ pub struct SweepReport {
     pub cases: usize,
     /// Cases complete from an earlier run, skipped.
     pub skipped: usize,
-    /// Cases that ended `completed` or `intercepted`.
-    pub completed: usize,
-    /// Cases that diverged or failed.
-    pub failed: usize,
-    /// Cases that lost the target for good.
-    pub lost_target: usize,
+    /// The cases by status, and those that could not run.
+    pub tally: Tally,
     /// Plots that could not be drawn and similar.
     pub warnings: Vec<String>,
 }
@@ -67,7 +67,7 @@ pub fn run_sweep(plan: &Plan, options: &SweepOptions) -> Result<SweepReport, Stu
     let cases: Vec<&Case> = plan.cases_of(options.shard).collect();
     let complete = |c: &&Case| {
         read_record(&outputs::case_folder(&options.out_dir, c.index))
-            .is_some_and(|r| plan.layout.is_record_of(c.index, &r))
+            .is_some_and(|r| plan.layout.is_record_of(c.index, &r) && r.is_final())
     };
     let pending: Vec<&Case> = cases.iter().copied().filter(|c| !complete(c)).collect();
     let skipped = cases.len() - pending.len();
@@ -91,7 +91,7 @@ pub fn run_sweep(plan: &Plan, options: &SweepOptions) -> Result<SweepReport, Stu
             .par_iter()
             .map(|case| {
                 let dir = outputs::case_folder(&options.out_dir, case.index);
-                let record = run_case(plan, case, &dir, &workers);
+                let record = run_case_or_crash(plan, case, &dir, &workers);
                 tracker.finished(case, &record);
                 write_record(&dir, &record).map_err(StudyError::from)
             })
@@ -108,17 +108,40 @@ pub fn run_sweep(plan: &Plan, options: &SweepOptions) -> Result<SweepReport, Stu
         &options.out_dir,
         options.shard.is_none(),
     )?;
-    Ok(report(&records, skipped, warnings))
-}
-
-fn report(records: &[CaseRecord], skipped: usize, warnings: Vec<String>) -> SweepReport {
-    SweepReport {
+    Ok(SweepReport {
         cases: records.len(),
         skipped,
-        completed: records.iter().filter(|r| r.ended_ok()).count(),
-        failed: records.iter().filter(|r| !r.ended_ok()).count(),
-        lost_target: records.iter().filter(|r| r.lost_target()).count(),
+        tally: Tally::of(&records),
         warnings,
+    })
+}
+
+/// [`run_case`], with a case that panics recorded as [`FAILED`] (the panic's message printed
+/// by Rust's hook) rather than ending the sweep.
+fn run_case_or_crash(plan: &Plan, case: &Case, dir: &Path, workers: &Workers) -> CaseRecord {
+    std::panic::catch_unwind(AssertUnwindSafe(|| run_case(plan, case, dir, workers)))
+        .unwrap_or_else(|panic| {
+            let why = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            let mut record = blank_record(case);
+            record.message = Some(format!("the case crashed: {why}"));
+            record
+        })
+}
+
+/// A case's record before it runs: status [`FAILED`], no numbers.
+fn blank_record(case: &Case) -> CaseRecord {
+    CaseRecord {
+        case: case.index,
+        point: case.point,
+        replicate: case.replicate,
+        settings: case.cells(),
+        status: FAILED.into(),
+        message: None,
+        columns: vec![],
     }
 }
 
@@ -126,15 +149,7 @@ fn report(records: &[CaseRecord], skipped: usize, warnings: Vec<String>) -> Swee
 /// or that diverges is a record with its status, never an error.
 fn run_case(plan: &Plan, case: &Case, dir: &Path, workers: &Workers) -> CaseRecord {
     let _ = std::fs::remove_dir_all(dir);
-    let mut record = CaseRecord {
-        case: case.index,
-        point: case.point,
-        replicate: case.replicate,
-        settings: case.cells(),
-        status: "failed".into(),
-        message: None,
-        columns: vec![],
-    };
+    let mut record = blank_record(case);
     if let Err(e) = std::fs::create_dir_all(dir) {
         record.message = Some(format!("cannot create {}: {e}", dir.display()));
         return record;
@@ -182,25 +197,23 @@ fn run_scenario(
         .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok());
     match summary {
         Some(summary) => {
-            let status = summary["status"].as_str().unwrap_or("failed").to_string();
+            let status = summary["status"].as_str().unwrap_or(FAILED).to_string();
             let message = summary["message"]
                 .as_str()
                 .map(str::to_string)
                 .or(result.err());
             (status, message, summary_columns(&summary))
         }
-        None => ("failed".into(), result.err(), vec![]),
+        None => (FAILED.into(), result.err(), vec![]),
     }
 }
 
-/// Counts finished cases and shows them.
+/// Counts finished cases by status and shows them, with the status names of `results.csv`.
 struct Tracker {
     bar: Option<indicatif::ProgressBar>,
     lines: bool,
     total: usize,
-    done: AtomicUsize,
-    failed: AtomicUsize,
-    lost: AtomicUsize,
+    statuses: Mutex<Vec<String>>,
     started: Instant,
 }
 
@@ -210,44 +223,37 @@ impl Tracker {
             let bar = indicatif::ProgressBar::new(total as u64);
             bar.set_style(
                 indicatif::ProgressStyle::with_template(
-                    "[{bar:30}] {pos}/{len} cases, {msg}, {eta} left",
+                    "[{bar:30}] {pos}/{len} cases ({msg}), {eta} left",
                 )
                 .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
             );
-            bar.set_message("0 failed");
+            bar.set_message(count_statuses([]));
             bar
         });
         Self {
             bar,
             lines: progress == Progress::Lines,
             total,
-            done: AtomicUsize::new(0),
-            failed: AtomicUsize::new(0),
-            lost: AtomicUsize::new(0),
+            statuses: Mutex::default(),
             started: Instant::now(),
         }
     }
 
     fn finished(&self, case: &Case, record: &CaseRecord) {
-        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
-        if !record.ended_ok() {
-            self.failed.fetch_add(1, Ordering::Relaxed);
-        }
-        if record.lost_target() {
-            self.lost.fetch_add(1, Ordering::Relaxed);
-        }
-        let (failed, lost) = (
-            self.failed.load(Ordering::Relaxed),
-            self.lost.load(Ordering::Relaxed),
-        );
+        let (done, counts) = {
+            let mut statuses = self.statuses.lock().unwrap_or_else(PoisonError::into_inner);
+            statuses.push(record.status.clone());
+            let counts = count_statuses(statuses.iter().map(String::as_str));
+            (statuses.len(), counts)
+        };
         if let Some(bar) = &self.bar {
-            bar.set_message(format!("{failed} failed, {lost} lost the target"));
+            bar.set_message(counts);
             bar.inc(1);
         } else if self.lines {
             let elapsed_s = self.started.elapsed().as_secs_f64();
             let left_s = elapsed_s / done as f64 * (self.total - done) as f64;
             eprintln!(
-                "case {} {}: {done}/{} done, {failed} failed, {lost} lost the target, about {left_s:.0} s left",
+                "case {} {}: {done}/{} done ({counts}), about {left_s:.0} s left",
                 case.index, record.status, self.total
             );
         }

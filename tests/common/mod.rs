@@ -213,3 +213,64 @@ pub fn spawn_long_run_logging(out: &Path) -> std::process::Child {
     }
     child
 }
+
+/// Writes a study of `scenarios/<scenario>.toml` (an absolute path, so the study can be run
+/// from any folder) into `dir/name` and returns its path.
+pub fn write_study(dir: &Path, name: &str, scenario: &str, body: &str) -> PathBuf {
+    let scenario = repo_root().join(format!("scenarios/{scenario}.toml"));
+    let text = format!(
+        "[study]\nscenario = \"{}\"\n{body}",
+        scenario.display().to_string().replace('\\', "/")
+    );
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("study written");
+    path
+}
+
+/// A sweep folder's `results.csv` as rows of cells (the header first), with the wall-clock
+/// columns (`results::is_timing_column`) blanked: what two runs of one study share.
+pub fn results_without_timing(dir: &Path) -> Vec<Vec<String>> {
+    use wingman::study::results::is_timing_column;
+    let mut reader = csv::Reader::from_path(dir.join("results.csv")).expect("results.csv");
+    let header: Vec<String> = reader
+        .headers()
+        .expect("header")
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let mut rows = vec![header.clone()];
+    for record in reader.records() {
+        let record = record.expect("row");
+        rows.push(
+            record
+                .iter()
+                .zip(&header)
+                .map(|(cell, name)| if is_timing_column(name) { "" } else { cell }.to_string())
+                .collect(),
+        );
+    }
+    rows
+}
+
+/// The column `name` of rows from [`results_without_timing`].
+pub fn column(rows: &[Vec<String>], name: &str) -> Vec<String> {
+    let index = rows[0]
+        .iter()
+        .position(|c| c == name)
+        .unwrap_or_else(|| panic!("no column {name} in {:?}", rows[0]));
+    rows[1..].iter().map(|row| row[index].clone()).collect()
+}
+
+/// The names in a folder, sorted (none when it cannot be read).
+pub fn file_names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .map(|entries| {
+            entries
+                .filter_map(Result::ok)
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    names.sort();
+    names
+}
