@@ -9,7 +9,8 @@
 //!   accelerometer bias b_a integrated over the aiding's time constant.
 //! - position: ė_p = e_v + (g - e_p) / τ_p: the INS carries the position between fixes with its
 //!   velocity error and the filter pulls it toward the held fix error g with lag τ_p, so the
-//!   solution moves smoothly.
+//!   solution moves smoothly. The INS's own displacement, without the fixes, errs by
+//!   ∫ e_v dt from zero at the start.
 //! - roll, pitch: ė = (m - e) / τ_a + w with m = b_g τ_a + tilt(b_a) (gravity aiding: the gyro
 //!   bias b_g settles at b_g τ_a, the accelerometer bias reads as a tilt b_a / g) and
 //!   stationary σ² = σ_a² + N² τ_a / 2 (the aiding's residual σ_a and the angle random walk
@@ -170,9 +171,12 @@ impl InsGps {
                     .step(e.position_ned_ft[i], position_mean[i], dt_s, 0.0);
             let (nv, na) = (self.normal(), self.normal());
             let e = &mut self.errors;
-            e.velocity_ned_fps[i] =
-                self.velocity
-                    .step(e.velocity_ned_fps[i], velocity_mean[i], dt_s, nv);
+            let velocity_before = e.velocity_ned_fps[i];
+            e.velocity_ned_fps[i] = self
+                .velocity
+                .step(velocity_before, velocity_mean[i], dt_s, nv);
+            e.inertial_position_ned_ft[i] +=
+                0.5 * (velocity_before + e.velocity_ned_fps[i]) * dt_s;
             e.attitude_rad[i] =
                 self.attitude[i].step(e.attitude_rad[i], attitude_mean[i], dt_s, na);
         }
@@ -260,5 +264,24 @@ mod tests {
             }
         }
         assert_eq!(changes, 20, "10 s at 2 Hz");
+    }
+
+    /// The INS's own position error is the trapezoidal integral of its velocity error from
+    /// zero at the start, whatever the fixes do.
+    #[test]
+    fn the_inertial_position_integrates_the_velocity_error() {
+        let level = EulerAngles::new(0.0, 0.0, 0.0);
+        let mut ins = InsGps::new(&NavigationSection::default(), 3, &level);
+        assert_eq!(ins.errors().inertial_position_ned_ft, Vec3::zeros());
+        let dt_s = 0.01;
+        let mut integral = Vec3::zeros();
+        for _ in 0..500 {
+            let before = ins.errors().velocity_ned_fps;
+            ins.advance(dt_s, &level);
+            integral += (before + ins.errors().velocity_ned_fps) * (0.5 * dt_s);
+        }
+        let e = ins.errors();
+        assert!((e.inertial_position_ned_ft - integral).norm() < 1e-12);
+        assert!(e.inertial_position_ned_ft != e.position_ned_ft);
     }
 }

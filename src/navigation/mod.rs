@@ -40,6 +40,9 @@ pub struct NavigationErrors {
     pub velocity_ned_fps: Vec3,
     /// Roll, pitch and heading errors [δφ, δθ, δψ], rad.
     pub attitude_rad: Vec3,
+    /// Error of the position the INS carries from its velocity alone since the start,
+    /// ∫ e_v dt, NED, ft (`estimator.own_motion = "inertial"`).
+    pub inertial_position_ned_ft: Vec3,
 }
 
 impl NavigationErrors {
@@ -177,6 +180,7 @@ mod tests {
                 position_ned_ft: Vec3::new(9.0, 9.0, 9.0),
                 velocity_ned_fps: Vec3::new(0.5, -0.5, 0.25),
                 attitude_rad: Vec3::new(0.01, 0.02, 0.03),
+                inertial_position_ned_ft: Vec3::zeros(),
             },
             air_data: AirDataErrors {
                 airspeed_fps: 1.5,

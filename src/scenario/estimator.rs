@@ -32,6 +32,20 @@ pub enum SizeModel {
     Span,
 }
 
+/// Where the estimator's own-motion displacement ΔR_F comes from (docs/equations.md, Range
+/// and size from the follower's own motion). Both are the truth under perfect navigation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OwnMotion {
+    /// The difference of the navigation's positions (the INS/GPS solution, which follows the
+    /// GPS's fixes: their noise and the steps of their slow error enter the displacement).
+    Position,
+    /// The displacement the INS integrates from its velocity alone: its error is the
+    /// integral of the velocity error, smooth over seconds, which the filter's target-motion
+    /// states absorb.
+    Inertial,
+}
+
 /// `[estimator]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -79,6 +93,9 @@ pub struct EstimatorSection {
     /// span seen up to 37° off the target's plane of symmetry: the fuselage, at most as long
     /// as the span on an aircraft, is then at most 0.6 of it in the image.
     pub span_aspect_min: f64,
+    /// `position` (default) or `inertial`: where the follower's own displacement comes from,
+    /// for the filter and the measurement hold alike.
+    pub own_motion: OwnMotion,
 }
 
 impl Default for EstimatorSection {
@@ -97,6 +114,7 @@ impl Default for EstimatorSection {
             known_sigma_fraction: 0.05,
             size_model: SizeModel::Apparent,
             span_aspect_min: 0.8,
+            own_motion: OwnMotion::Position,
         }
     }
 }

@@ -9,8 +9,8 @@ use super::Simulation;
 use super::build::{capture_geometry, mounted_camera};
 use crate::frames::{EulerAngles, Mat3, Vec3};
 use crate::guidance::signals::FollowerFeedback;
-use crate::navigation::OwnSensors;
-use crate::scenario::Scenario;
+use crate::navigation::{NavigationErrors, OwnSensors};
+use crate::scenario::{OwnMotion, Scenario};
 use crate::sensing::gimbal::Gimbal;
 use crate::sensing::{CaptureGeometry, FollowerPose, FrameRecord};
 use std::borrow::Cow;
@@ -36,6 +36,8 @@ pub(super) struct OwnSensing {
     pub(super) mount: Mat3,
     /// The mount as the follower believes it is (`[camera]`'s, without misalignment).
     pub(super) nominal_mount: Mat3,
+    /// Which navigated position the own-motion consumers (estimator, measurement hold) read.
+    own_motion: OwnMotion,
 }
 
 impl OwnSensing {
@@ -50,6 +52,16 @@ impl OwnSensing {
                 .map_or(nominal_mount, |c| c.true_mount(&nominal_mount)),
             nominal_mount,
             sensors,
+            own_motion: scenario.estimator.own_motion,
+        }
+    }
+
+    /// The error of the position the follower's own-motion consumers read: the INS/GPS
+    /// solution's, or the INS's own integration's (`estimator.own_motion`).
+    fn position_error_ned_ft(&self, errors: &NavigationErrors) -> Vec3 {
+        match self.own_motion {
+            OwnMotion::Position => errors.position_ned_ft,
+            OwnMotion::Inertial => errors.inertial_position_ned_ft,
         }
     }
 
@@ -70,7 +82,7 @@ impl OwnSensing {
         let truth = geometry.follower;
         let angles = encoder_reading(&self.sensors, gimbal_x);
         geometry.navigation = FollowerPose {
-            position_ned_ft: truth.position_ned_ft + e.position_ned_ft,
+            position_ned_ft: truth.position_ned_ft + self.position_error_ned_ft(&e),
             velocity_ned_fps: truth.velocity_ned_fps + e.velocity_ned_fps,
             attitude: e.attitude(&truth.attitude),
             camera_from_body: mounted_camera(&self.nominal_mount, gimbal, &angles),
@@ -95,13 +107,14 @@ impl Simulation {
             .navigated(truth, self.gimbal.as_ref(), slices.gimbal)
     }
 
-    /// R_F as the follower's navigation knows it for a follower slice, NED, ft.
+    /// R_F as the follower's navigation knows it for a follower slice (the position its
+    /// own-motion consumers read, `estimator.own_motion`), NED, ft.
     pub(super) fn navigated_position_ned_ft(&self, follower_x: &[f64]) -> Vec3 {
         let truth = self.follower.position_ned_ft(follower_x);
         self.own
             .sensors
             .navigation_errors()
-            .map_or(truth, |e| truth + e.position_ned_ft)
+            .map_or(truth, |e| truth + self.own.position_error_ned_ft(&e))
     }
 
     /// The follower's attitude as its navigation knows it for a follower slice.
