@@ -27,6 +27,19 @@ pub enum FolderError {
         .0.display()
     )]
     NotARun(PathBuf),
+    /// Another run is writing into the folder now (it holds the folder's lock).
+    #[error(
+        "--out {}: another wingman run{} is writing into this folder: wait for it or choose \
+         another folder",
+        path.display(),
+        holder.map(|p| format!(" (process {p})")).unwrap_or_default()
+    )]
+    Busy {
+        /// The folder.
+        path: PathBuf,
+        /// The process holding the lock, when its lock file says.
+        holder: Option<u32>,
+    },
     /// The folder could not be read or cleared.
     #[error("--out {}: {source}", path.display())]
     Io {
@@ -37,7 +50,8 @@ pub enum FolderError {
     },
 }
 
-fn io_error(path: &Path) -> impl Fn(std::io::Error) -> FolderError + '_ {
+/// An I/O failure on `path`, as a folder error.
+pub(super) fn io_error(path: &Path) -> impl Fn(std::io::Error) -> FolderError + '_ {
     move |source| FolderError::Io {
         path: path.to_path_buf(),
         source,
@@ -46,8 +60,17 @@ fn io_error(path: &Path) -> impl Fn(std::io::Error) -> FolderError + '_ {
 
 /// Whether `dir` may receive a run: it does not exist and can be made (its nearest existing
 /// ancestor is a folder we may write in), or it is a folder we may write in that is empty or
-/// holds an earlier run.
+/// holds an earlier run, and no run is writing into it now.
 pub fn check(dir: &Path) -> Result<(), FolderError> {
+    usable(dir)?;
+    if dir.is_dir() {
+        super::lock::check_free(dir)?;
+    }
+    Ok(())
+}
+
+/// [`check`] but for the lock (which the run preparing the folder holds itself).
+fn usable(dir: &Path) -> Result<(), FolderError> {
     if !dir.exists() {
         let ancestor = dir
             .ancestors()
@@ -92,10 +115,11 @@ fn writable(dir: &Path) -> Result<(), FolderError> {
     }
 }
 
-/// Checks `dir` as [`check`] does and removes what an earlier run wrote there: its three
+/// Checks `dir` as [`check`] does (but for the lock, which the caller holds) and removes
+/// what an earlier run wrote there: its three
 /// files and the PNG images of its `frames/` and `plots/` (the folders too, once empty).
 pub fn prepare(dir: &Path) -> Result<(), FolderError> {
-    check(dir)?;
+    usable(dir)?;
     if !dir.exists() {
         return Ok(());
     }
@@ -127,10 +151,10 @@ pub fn mark(dir: &Path) -> Result<(), FolderError> {
     std::fs::write(&marker, "a wingman run writes this folder\n").map_err(io_error(&marker))
 }
 
-/// Whether `dir` holds a run: its marker, or a `summary.json` (a JSON object with the keys
+/// Whether `dir` holds a run: its marker or its lock file, or a `summary.json` (a JSON object with the keys
 /// every summary has) of a run from before the marker.
 fn holds_a_run(dir: &Path) -> bool {
-    if dir.join(MARKER).is_file() {
+    if dir.join(MARKER).is_file() || dir.join(super::lock::LOCK_FILE).is_file() {
         return true;
     }
     let Ok(text) = std::fs::read_to_string(dir.join("summary.json")) else {

@@ -8,6 +8,7 @@ pub mod figures;
 pub mod folder;
 pub mod frame_images;
 pub mod interrupt;
+pub mod lock;
 pub mod outputs_doc;
 pub mod plots;
 pub mod preflight;
@@ -123,6 +124,8 @@ pub fn run_to_directory_on(
     folder::check(out_dir)?;
     let started = Instant::now();
     let mut sim = Simulation::on_gpu(scenario, gpu).map_err(|e| RunError::Setup(Box::new(e)))?;
+    // Held until the last file is written: a second run into the folder is refused.
+    let _lock = lock::lock(out_dir)?;
     folder::prepare(out_dir)?;
     folder::mark(out_dir)?;
     let scenario_path = out_dir.join("scenario.toml");
