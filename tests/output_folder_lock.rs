@@ -94,7 +94,7 @@ fn concurrent_runs_into_one_folder_never_mix() {
     let dir = tempfile::tempdir().expect("temp dir");
     for trial in 0..20 {
         let out = dir.path().join(format!("run{trial}"));
-        let runs = [start(&out, 40), start(&out, 41)];
+        let runs = [start(&out, 20), start(&out, 21)];
         let ended: Vec<(i32, String)> = runs
             .into_iter()
             .map(|child| {
@@ -109,7 +109,7 @@ fn concurrent_runs_into_one_folder_never_mix() {
         assert_eq!(loser.0, 2, "trial {trial}: {ended:?}");
         assert!(loser.1.contains("another wingman run"), "{}", loser.1);
         assert_eq!(loser.1.trim_end().lines().count(), 1, "{}", loser.1);
-        let duration_s = f64::from(40 + winners[0] as u32);
+        let duration_s = f64::from(20 + winners[0] as u32);
         for said in durations_in(&out) {
             assert!(
                 (said - duration_s).abs() < 1e-6,

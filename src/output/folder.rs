@@ -10,7 +10,13 @@ use std::path::{Path, PathBuf};
 /// The marker a run writes into its folder before anything else.
 pub const MARKER: &str = ".wingman-run";
 /// The files a run writes at the top of its folder.
-const RUN_FILES: [&str; 4] = [MARKER, "scenario.toml", "telemetry.csv", "summary.json"];
+const RUN_FILES: [&str; 5] = [
+    MARKER,
+    "scenario.toml",
+    "telemetry.csv",
+    "summary.json",
+    "summary.json.partial",
+];
 /// The folders a run writes its images into.
 const RUN_FOLDERS: [&str; 2] = ["frames", "plots"];
 
@@ -27,19 +33,9 @@ pub enum FolderError {
         .0.display()
     )]
     NotARun(PathBuf),
-    /// Another run is writing into the folder now (it holds the folder's lock).
-    #[error(
-        "--out {}: another wingman run{} is writing into this folder: wait for it or choose \
-         another folder",
-        path.display(),
-        holder.map(|p| format!(" (process {p})")).unwrap_or_default()
-    )]
-    Busy {
-        /// The folder.
-        path: PathBuf,
-        /// The process holding the lock, when its lock file says.
-        holder: Option<u32>,
-    },
+    /// Another run is writing into the folder now, or its lock cannot be taken.
+    #[error(transparent)]
+    Lock(#[from] super::lock::LockError),
     /// The folder could not be read or cleared.
     #[error("--out {}: {source}", path.display())]
     Io {
@@ -50,8 +46,7 @@ pub enum FolderError {
     },
 }
 
-/// An I/O failure on `path`, as a folder error.
-pub(super) fn io_error(path: &Path) -> impl Fn(std::io::Error) -> FolderError + '_ {
+fn io_error(path: &Path) -> impl Fn(std::io::Error) -> FolderError + '_ {
     move |source| FolderError::Io {
         path: path.to_path_buf(),
         source,

@@ -7,9 +7,40 @@
 use std::fs::File;
 use std::io::{Read, Seek, Write};
 use std::os::fd::AsRawFd;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use super::folder::{FolderError, io_error};
+/// Why a folder's lock could not be taken.
+#[derive(Debug, thiserror::Error)]
+pub enum LockError {
+    /// Another run is writing into the folder now (it holds the folder's lock).
+    #[error(
+        "--out {}: another wingman run{} is writing into this folder: wait for it or choose \
+         another folder",
+        path.display(),
+        holder.map(|p| format!(" (process {p})")).unwrap_or_default()
+    )]
+    Busy {
+        /// The folder.
+        path: PathBuf,
+        /// The process holding the lock, when its lock file says.
+        holder: Option<u32>,
+    },
+    /// The lock file could not be made, read or locked.
+    #[error("--out {}: {source}", path.display())]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+}
+
+fn io_error(path: &Path) -> impl Fn(std::io::Error) -> LockError + '_ {
+    move |source| LockError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
 
 /// The lock file a run keeps in its folder (it stays after the run; only its lock goes).
 pub const LOCK_FILE: &str = ".wingman-lock";
@@ -21,7 +52,7 @@ pub struct FolderLock {
 }
 
 /// Takes the lock of `dir` (created if need be), or says which process holds it.
-pub fn lock(dir: &Path) -> Result<FolderLock, FolderError> {
+pub fn lock(dir: &Path) -> Result<FolderLock, LockError> {
     std::fs::create_dir_all(dir).map_err(io_error(dir))?;
     let path = dir.join(LOCK_FILE);
     let mut file = open(&path)?;
@@ -39,7 +70,7 @@ pub fn lock(dir: &Path) -> Result<FolderLock, FolderError> {
 
 /// Fails when a run holds the lock of `dir` now (a check before the run starts; [`lock`] is
 /// what keeps a second run out).
-pub fn check_free(dir: &Path) -> Result<(), FolderError> {
+pub fn check_free(dir: &Path) -> Result<(), LockError> {
     let path = dir.join(LOCK_FILE);
     if !path.is_file() {
         return Ok(());
@@ -52,7 +83,7 @@ pub fn check_free(dir: &Path) -> Result<(), FolderError> {
     }
 }
 
-fn open(path: &Path) -> Result<File, FolderError> {
+fn open(path: &Path) -> Result<File, LockError> {
     std::fs::OpenOptions::new()
         .read(true)
         .write(true)
@@ -76,13 +107,13 @@ fn try_lock(file: &File) -> std::io::Result<bool> {
 }
 
 /// The refusal, naming the holder's process id when the lock file says it.
-fn busy(dir: &Path, file: &mut File) -> FolderError {
+fn busy(dir: &Path, file: &mut File) -> LockError {
     let mut text = String::new();
     let holder = file
         .read_to_string(&mut text)
         .ok()
         .and_then(|_| text.trim().parse::<u32>().ok());
-    FolderError::Busy {
+    LockError::Busy {
         path: dir.to_path_buf(),
         holder,
     }
@@ -102,7 +133,7 @@ mod tests {
         let error = lock(&run).expect_err("second lock refused");
         let pid = std::process::id();
         assert!(
-            matches!(&error, FolderError::Busy { holder: Some(p), .. } if *p == pid),
+            matches!(&error, LockError::Busy { holder: Some(p), .. } if *p == pid),
             "{error}"
         );
         assert!(check_free(&run).is_err());

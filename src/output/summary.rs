@@ -36,6 +36,9 @@ pub struct Summary {
     pub status: RunStatus,
     /// Why it stopped early, if it did.
     pub message: Option<String>,
+    /// The outputs that could not be written (a full disk), each `file: reason`; empty when
+    /// all were.
+    pub unwritten: Vec<String>,
     /// Simulated time, s.
     pub duration_s: f64,
     /// Integration steps taken.
@@ -119,6 +122,7 @@ pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("scenario", "the scenario's name (its file stem)"),
     ("status", "how the run ended: completed, intercepted, lost, diverged or interrupted"),
     ("message", "why it stopped early (null if it did not)"),
+    ("unwritten", "the outputs that could not be written (a full disk), each `file: reason`: telemetry cut at its last whole row, a plot (and the plots after it); empty when all were written. `wingman run` then exits 1"),
     ("duration_s", "simulated time, s"),
     ("steps", "integration steps taken"),
     ("frames", "camera frames rendered"),
@@ -317,6 +321,7 @@ impl Summary {
             scenario: name.to_string(),
             status,
             message,
+            unwritten: Vec::new(),
             duration_s,
             steps: sim.tick(),
             frames: camera.map_or(0, |c| c.frames()),
