@@ -100,13 +100,11 @@ impl ScenarioSource {
         // A whole number is quoted with its key's range, not its type's; a string choice
         // with its strings.
         let vague = message.contains("allowed a whole number") || message.contains("string only");
-        if let (Some(key), Some(table), true) = (&key, table, vague) {
-            if let (Some(value), Some(allowed)) =
+        if let (Some(key), Some(table), true) = (&key, table, vague)
+            && let (Some(value), Some(allowed)) =
                 (probe::value_text(table, key), probe::allowed(table, key))
-            {
-                message =
-                    origin::shorten(&format!("{key} = {value} is invalid: allowed {allowed}"));
-            }
+        {
+            message = origin::shorten(&format!("{key} = {value} is invalid: allowed {allowed}"));
         }
         ScenarioError::Rejected {
             origin,

@@ -49,10 +49,10 @@ fn range(table: &toml::Table, key: &str) -> Option<String> {
             continue;
         };
         largest = Some(probe);
-        if let Err(invalid) = scenario.validate() {
-            if invalid.key == key {
-                return Some(invalid.allowed);
-            }
+        if let Err(invalid) = scenario.validate()
+            && invalid.key == key
+        {
+            return Some(invalid.allowed);
         }
     }
     largest.map(|n| format!("a whole number in [0, {n}]"))
