@@ -346,6 +346,11 @@ fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> 
     }
     match result {
         Ok(report) => finish(&report, &out_dir, quiet),
+        // The folder's own message names it (`--out DIR: ...`).
+        Err(e @ wingman::output::RunError::Folder(_)) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
         Err(e) if e.is_input_error() => {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(2)
