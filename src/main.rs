@@ -359,6 +359,11 @@ fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> 
     }
     match result {
         Ok(report) => finish(&report, &out_dir, quiet),
+        // The folder's own message names it (`--out DIR: ...`).
+        Err(e @ wingman::output::RunError::Folder(_)) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
         Err(e) if e.is_input_error() => {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(2)
@@ -386,7 +391,8 @@ fn progress_message(fraction: f64, duration_s: f64, wall_s: f64) -> String {
 }
 
 /// Prints the run's notes, warnings and final line; the exit code of its status (0
-/// completed or intercepted, 1 lost, 130 interrupted).
+/// completed or intercepted, 1 lost, diverged or with outputs not written, 130 or 143
+/// interrupted).
 fn finish(report: &RunReport, out_dir: &Path, quiet: bool) -> ExitCode {
     for note in &report.summary.notes {
         eprintln!("note: {note}");
@@ -397,6 +403,11 @@ fn finish(report: &RunReport, out_dir: &Path, quiet: bool) -> ExitCode {
     let s = &report.summary;
     let line = final_line(s, out_dir);
     match s.status {
+        // A full disk: the run's result is in its summary, but outputs are missing.
+        RunStatus::Completed | RunStatus::Intercepted if !s.unwritten.is_empty() => {
+            eprintln!("error: not written: {}; {line}", s.unwritten.join("; "));
+            ExitCode::from(1)
+        }
         RunStatus::Completed | RunStatus::Intercepted => {
             if !quiet {
                 eprintln!("{line}");

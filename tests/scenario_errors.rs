@@ -242,7 +242,7 @@ fn origin_is_line_and_column_or_the_set_argument() {
     assert_rejected(
         "[run]\nlog_every = -1\n",
         &[],
-        &["run.log_every = -1", "a whole number in [0, 4294967295]"],
+        &["run.log_every = -1", "an integer in [1, 1000000]"],
     );
 }
 
@@ -329,4 +329,135 @@ fn collect_overrides(prefix: &str, table: &toml::Table, out: &mut Vec<String>) {
             other => out.push(format!("{key}={other}")),
         }
     }
+}
+
+/// A string-choice key given something else shows the value and lists its strings.
+#[test]
+fn string_choices_show_the_value_and_the_strings() {
+    for (key, value, choice) in [
+        ("target.motion", "1", "\"seed_profile\", \"straight\""),
+        ("sensor.mode", "[1, 2]", "\"perfect\""),
+        ("guidance.law", "true", "\"velocity\" or \"acceleration\""),
+    ] {
+        let set = format!("{key}={value}");
+        let said = format!("{key} = {value} is invalid: allowed ");
+        assert_rejected(MINIMAL, &["--set", &set], &[&said, choice]);
+    }
+    assert_rejected(
+        "[camera.gimbal]\nkind = 3\n",
+        &[],
+        &["bad.toml:2:8:", "camera.gimbal.kind = 3", "\"pan_tilt\""],
+    );
+}
+
+/// Whole numbers too large or negative for their key quote the key's own range, never a
+/// Rust type's; run.seed's stated range is what TOML can write (2^63 - 1).
+#[test]
+fn integers_quote_the_range_of_their_key() {
+    for value in ["-640", "0", "99999999999999999999999"] {
+        assert_rejected(
+            &format!("[camera]\nwidth_px = {value}\n"),
+            &[],
+            &[&format!("camera.width_px = {value}"), "[8, 8192]"],
+        );
+    }
+    assert_rejected(
+        MINIMAL,
+        &["--set", "camera.width_px=-640"],
+        &["camera.width_px = -640", "[8, 8192]"],
+    );
+    for value in ["9223372036854775808", "99999999999999999999999", "-1"] {
+        assert_rejected(
+            &format!("[run]\nseed = {value}\n"),
+            &[],
+            &[&format!("run.seed = {value}"), "[0, 9223372036854775807]"],
+        );
+    }
+    let largest = ["run.seed=9223372036854775807".to_string()];
+    let loaded = wingman::scenario::Scenario::from_toml_str("", Path::new("s.toml"), &largest);
+    assert_eq!(
+        loaded.expect("largest seed").run.seed,
+        9_223_372_036_854_775_807
+    );
+}
+
+/// A key given twice, an unknown section and an unknown top-level key are named with their
+/// line and column.
+#[test]
+fn duplicates_and_unknown_sections_are_placed() {
+    assert_rejected(
+        "[run]\nseed = 1\nseed = 2\n",
+        &[],
+        &["bad.toml:3:1:", "duplicate key run.seed"],
+    );
+    assert_rejected(
+        "[run]\nseed = 1\n[bogus_section]\nx = 1\n",
+        &[],
+        &["bad.toml:3:", "unknown key bogus_section"],
+    );
+    assert_rejected(
+        "bogus = 1\n[run]\nseed = 1\n",
+        &[],
+        &["bad.toml:1:", "unknown key bogus"],
+    );
+}
+
+/// `--set` of a key or section the schema does not have is blamed on the `--set` argument.
+#[test]
+fn unknown_set_keys_are_blamed_on_the_set_argument() {
+    assert_rejected(
+        MINIMAL,
+        &["--set", "bogus.key=1"],
+        &["--set bogus.key=1:", "bogus"],
+    );
+}
+
+/// Bounds are printed short: a tiny bound from another key is no 50-digit float.
+#[test]
+fn bounds_are_short() {
+    assert_rejected(
+        "[excitation]\nk1 = 1e-30\n",
+        &[],
+        &["excitation.k3 = 0.0002", "allowed [0, 1e-30]"],
+    );
+}
+
+/// Values no aircraft can have are refused before anything is written, with their range:
+/// positions of 1e308 ft, a signal-to-noise ratio of 0 dB or below, a gain of 5e-324.
+#[test]
+fn physically_meaningless_values_are_refused_up_front() {
+    for (set, expected) in [
+        ("target.initial_position_ft=[1e308,0,0]", "[-1e6, 1e6] ft"),
+        ("follower.initial_position_ft=[0,-2e6,0]", "[-1e6, 1e6] ft"),
+        ("guidance.command_ft=[1e308,0,0]", "[-1e6, 1e6] ft"),
+        ("sensor.snr_db=0", "(0, 200] dB"),
+        ("sensor.snr_db=-5", "(0, 200] dB"),
+        ("guidance.estimator_gain=5e-324", "[1e-9, 1e9]"),
+        ("guidance.k=5e-324", "[1e-9, 1e9]"),
+        ("acceleration.chi=1e300", "[1e-9, 1e9]"),
+    ] {
+        let key = set.split('=').next().expect("key");
+        assert_rejected(MINIMAL, &["--set", set], &[key, expected]);
+    }
+}
+
+/// Every key is checked whatever mode uses it: a camera key with a perfect or noisy sensor,
+/// a waypoint with another motion.
+#[test]
+fn every_key_is_checked_in_every_mode() {
+    assert_rejected(
+        "[sensor]\nmode = \"perfect\"\n",
+        &["--set", "camera.hfov_deg=nan"],
+        &["camera.hfov_deg = NaN", "(0, 179)"],
+    );
+    assert_rejected(
+        "[sensor]\nmode = \"noisy\"\n[camera]\nmsaa_samples = 3\n",
+        &[],
+        &["camera.msaa_samples = 3", "1 or 4"],
+    );
+    assert_rejected(
+        "[target]\nmotion = \"straight\"\n[[target.waypoints]]\nposition_ft = [0.0, nan, 0.0]\nspeed_fps = 50.0\n",
+        &[],
+        &["target.waypoints[0].position_ft"],
+    );
 }

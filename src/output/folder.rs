@@ -10,7 +10,13 @@ use std::path::{Path, PathBuf};
 /// The marker a run writes into its folder before anything else.
 pub const MARKER: &str = ".wingman-run";
 /// The files a run writes at the top of its folder.
-const RUN_FILES: [&str; 4] = [MARKER, "scenario.toml", "telemetry.csv", "summary.json"];
+const RUN_FILES: [&str; 5] = [
+    MARKER,
+    "scenario.toml",
+    "telemetry.csv",
+    "summary.json",
+    "summary.json.partial",
+];
 /// The folders a run writes its images into.
 const RUN_FOLDERS: [&str; 2] = ["frames", "plots"];
 
@@ -27,6 +33,9 @@ pub enum FolderError {
         .0.display()
     )]
     NotARun(PathBuf),
+    /// Another run is writing into the folder now, or its lock cannot be taken.
+    #[error(transparent)]
+    Lock(#[from] super::lock::LockError),
     /// The folder could not be read or cleared.
     #[error("--out {}: {source}", path.display())]
     Io {
@@ -46,14 +55,24 @@ fn io_error(path: &Path) -> impl Fn(std::io::Error) -> FolderError + '_ {
 
 /// Whether `dir` may receive a run: it does not exist and can be made (its nearest existing
 /// ancestor is a folder we may write in), or it is a folder we may write in that is empty or
-/// holds an earlier run.
+/// holds an earlier run, and no run is writing into it now.
 pub fn check(dir: &Path) -> Result<(), FolderError> {
     check_for(dir, holds_a_run)
 }
 
 /// [`check`] for a folder of outputs that `ours` recognises (a sweep's, by its `plan.json`):
 /// [`FolderError::NotARun`] for a folder with files in it that `ours` does not recognise.
+/// A run's folder is also refused while another run holds its lock.
 pub fn check_for(dir: &Path, ours: impl Fn(&Path) -> bool) -> Result<(), FolderError> {
+    usable(dir, ours)?;
+    if dir.is_dir() {
+        super::lock::check_free(dir)?;
+    }
+    Ok(())
+}
+
+/// [`check_for`] but for the lock (which the run preparing the folder holds itself).
+fn usable(dir: &Path, ours: impl Fn(&Path) -> bool) -> Result<(), FolderError> {
     if !dir.exists() {
         let ancestor = dir
             .ancestors()
@@ -98,10 +117,11 @@ fn writable(dir: &Path) -> Result<(), FolderError> {
     }
 }
 
-/// Checks `dir` as [`check`] does and removes what an earlier run wrote there: its three
+/// Checks `dir` as [`check`] does (but for the lock, which the caller holds) and removes
+/// what an earlier run wrote there: its three
 /// files and the PNG images of its `frames/` and `plots/` (the folders too, once empty).
 pub fn prepare(dir: &Path) -> Result<(), FolderError> {
-    check(dir)?;
+    usable(dir, holds_a_run)?;
     if !dir.exists() {
         return Ok(());
     }
@@ -133,10 +153,10 @@ pub fn mark(dir: &Path) -> Result<(), FolderError> {
     std::fs::write(&marker, "a wingman run writes this folder\n").map_err(io_error(&marker))
 }
 
-/// Whether `dir` holds a run: its marker, or a `summary.json` (a JSON object with the keys
+/// Whether `dir` holds a run: its marker or its lock file, or a `summary.json` (a JSON object with the keys
 /// every summary has) of a run from before the marker.
 fn holds_a_run(dir: &Path) -> bool {
-    if dir.join(MARKER).is_file() {
+    if dir.join(MARKER).is_file() || dir.join(super::lock::LOCK_FILE).is_file() {
         return true;
     }
     let Ok(text) = std::fs::read_to_string(dir.join("summary.json")) else {

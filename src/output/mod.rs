@@ -8,6 +8,7 @@ pub mod figures;
 pub mod folder;
 pub mod frame_images;
 pub mod interrupt;
+pub mod lock;
 pub mod outputs_doc;
 pub mod plots;
 pub mod preflight;
@@ -43,9 +44,6 @@ pub enum RunError {
     /// The simulation stopped; telemetry up to that point and a summary were written.
     #[error("{} (telemetry up to that point is in {})", .0, .1.display())]
     Sim(Box<SimError>, PathBuf),
-    /// The run's plots could not be drawn (telemetry and summary were written).
-    #[error("plots not drawn: {0}")]
-    Plots(#[from] plots::PlotError),
 }
 
 impl RunError {
@@ -67,6 +65,15 @@ fn io_message(path: &Path, source: &std::io::Error) -> String {
         format!("no space left on device writing {}", path.display())
     } else {
         format!("cannot write {}: {source}", path.display())
+    }
+}
+
+/// What the operating system said of a write, in words (a full disk plainly).
+pub fn io_reason(source: &std::io::Error) -> String {
+    if source.kind() == std::io::ErrorKind::StorageFull {
+        "no space left on device".to_string()
+    } else {
+        source.to_string()
     }
 }
 
@@ -125,16 +132,25 @@ pub fn run_to_directory_on(
     folder::check(out_dir)?;
     let started = Instant::now();
     let mut sim = Simulation::on_gpu(scenario, gpu).map_err(|e| RunError::Setup(Box::new(e)))?;
+    // Held until the last file is written: a second run into the folder is refused.
+    let _lock = lock::lock(out_dir).map_err(folder::FolderError::from)?;
     folder::prepare(out_dir)?;
     folder::mark(out_dir)?;
+    // The summary's space is taken first: on a disk that fills up it is what remains.
+    let reserve_path = out_dir.join(SUMMARY_FILE).with_extension("json.partial");
+    std::fs::write(&reserve_path, vec![b' '; SUMMARY_RESERVE_BYTES])
+        .map_err(io_error(&reserve_path))?;
     let scenario_path = out_dir.join("scenario.toml");
     std::fs::write(&scenario_path, scenario.to_toml_string()).map_err(io_error(&scenario_path))?;
     let telemetry_path = out_dir.join("telemetry.csv");
     let mut recorder = Recorder {
-        telemetry: TelemetryWriter::create(&telemetry_path).map_err(io_error(&telemetry_path))?,
+        telemetry: Some(
+            TelemetryWriter::create(&telemetry_path).map_err(io_error(&telemetry_path))?,
+        ),
         telemetry_path: telemetry_path.clone(),
         logged: Vec::new(),
         warnings: Vec::new(),
+        unwritten: Vec::new(),
         frame_saver: (scenario.output.frames_every > 0).then(|| {
             frame_images::FrameSaver::new(
                 &out_dir.join("frames"),
@@ -143,12 +159,9 @@ pub fn run_to_directory_on(
             )
         }),
     };
-    recorder.log(sim.snapshot())?;
-    let early = step_to_end(&mut sim, &mut recorder, &mut progress)?;
-    recorder
-        .telemetry
-        .flush()
-        .map_err(io_error(&telemetry_path))?;
+    recorder.log(sim.snapshot());
+    let early = step_to_end(&mut sim, &mut recorder, &mut progress);
+    recorder.finish_telemetry();
     let wall_s = started.elapsed().as_secs_f64();
     let stopped = early.as_ref().map(|e| match e {
         EarlyStop::Failed(e) => (RunStatus::Diverged, e.to_string()),
@@ -158,12 +171,10 @@ pub fn run_to_directory_on(
         }
         EarlyStop::Interrupted => (RunStatus::Interrupted, "interrupted (Ctrl-C)".to_string()),
     });
-    let summary = Summary::build(name, &recorder.logged, &sim, wall_s, stopped);
-    let summary_path = out_dir.join("summary.json");
-    std::fs::write(&summary_path, summary.to_json()).map_err(io_error(&summary_path))?;
-    if scenario.output.plots {
-        figures::draw_all(&out_dir.join("plots"), scenario, &recorder.logged)?;
-    }
+    let mut summary = Summary::build(name, &recorder.logged, &sim, wall_s, stopped);
+    summary.unwritten = std::mem::take(&mut recorder.unwritten);
+    write_outputs_after_telemetry(out_dir, scenario, &recorder.logged, &mut summary)
+        .map_err(io_error(&out_dir.join(SUMMARY_FILE)))?;
     match early {
         Some(EarlyStop::Failed(e)) => Err(RunError::Sim(Box::new(e), telemetry_path)),
         _ => Ok(RunReport {
@@ -172,6 +183,60 @@ pub fn run_to_directory_on(
             logged: recorder.logged,
         }),
     }
+}
+
+/// The summary's file in a run's folder.
+const SUMMARY_FILE: &str = "summary.json";
+/// Space kept for the summary from the start of the run, bytes (a summary takes 2-8 KB).
+const SUMMARY_RESERVE_BYTES: usize = 64 * 1024;
+
+/// Writes the summary (small, so first: on a full disk it is what remains), then the plots;
+/// a plot that cannot be written is named in the summary's `unwritten`, written again. Fails
+/// only when the first summary cannot be written.
+fn write_outputs_after_telemetry(
+    out_dir: &Path,
+    scenario: &Scenario,
+    logged: &[Snapshot],
+    summary: &mut Summary,
+) -> std::io::Result<()> {
+    let summary_path = out_dir.join(SUMMARY_FILE);
+    write_whole(&summary_path, &summary.to_json())?;
+    if !scenario.output.plots {
+        return Ok(());
+    }
+    if let Err(e) = figures::draw_all(&out_dir.join("plots"), scenario, logged) {
+        summary
+            .unwritten
+            .push(format!("plots (none after this one): {e}"));
+        if let Err(e) = write_whole(&summary_path, &summary.to_json()) {
+            let reason = io_reason(&e);
+            summary
+                .unwritten
+                .push(format!("{SUMMARY_FILE} naming the plot: {reason}"));
+        }
+    }
+    Ok(())
+}
+
+/// Writes `text` into `path` whole or not at all: into the file beside it (the space
+/// reserved at the start, when it is there) cut to the text's length, then renamed over
+/// `path` (a full disk leaves the earlier file, never a cut-off one).
+fn write_whole(path: &Path, text: &str) -> std::io::Result<()> {
+    use std::io::Write;
+    let partial = path.with_extension("json.partial");
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(&partial)
+        .and_then(|mut file| {
+            file.write_all(text.as_bytes())?;
+            file.set_len(text.len() as u64)
+        })
+        .and_then(|()| std::fs::rename(&partial, path))
+        .inspect_err(|_| {
+            let _ = std::fs::remove_file(&partial);
+        })
 }
 
 /// Why a lost run stopped.
@@ -195,22 +260,44 @@ fn false_lock_message(sim: &Simulation, since_s: f64) -> String {
 }
 
 /// What the run writes as it goes: telemetry rows (kept for the summary and plots) and
-/// saved frames.
+/// saved frames. A telemetry file the disk stops taking is closed with the whole rows it
+/// holds, and the run goes on (its summary and plots come from the rows kept in memory).
 struct Recorder {
-    telemetry: TelemetryWriter,
+    telemetry: Option<TelemetryWriter>,
     telemetry_path: PathBuf,
     logged: Vec<Snapshot>,
     warnings: Vec<String>,
+    /// The outputs that could not be written, each `file: reason`.
+    unwritten: Vec<String>,
     frame_saver: Option<frame_images::FrameSaver>,
 }
 
 impl Recorder {
-    fn log(&mut self, snapshot: Snapshot) -> Result<(), RunError> {
-        self.telemetry
-            .write(&row_of(&snapshot))
-            .map_err(io_error(&self.telemetry_path))?;
+    fn log(&mut self, snapshot: Snapshot) {
+        if let Some(writer) = self.telemetry.as_mut()
+            && let Err(e) = writer.write(&row_of(&snapshot))
+        {
+            self.telemetry_failed(&e, snapshot.t_s);
+        }
         self.logged.push(snapshot);
-        Ok(())
+    }
+
+    /// Writes the rows still held back.
+    fn finish_telemetry(&mut self) {
+        let t_s = self.logged.last().map_or(0.0, |s| s.t_s);
+        if let Some(Err(e)) = self.telemetry.as_mut().map(|w| w.flush()) {
+            self.telemetry_failed(&e, t_s);
+        }
+    }
+
+    fn telemetry_failed(&mut self, error: &std::io::Error, t_s: f64) {
+        let name = self.telemetry_path.file_name().unwrap_or_default();
+        self.unwritten.push(format!(
+            "{}: {} at t = {t_s:.3} s (the rows before are whole)",
+            name.to_string_lossy(),
+            io_reason(error)
+        ));
+        self.telemetry = None;
     }
 
     /// Saves the camera's latest frame when it is one to keep; a failure to save is a
@@ -233,7 +320,7 @@ fn step_to_end(
     sim: &mut Simulation,
     recorder: &mut Recorder,
     progress: &mut impl FnMut(f64),
-) -> Result<Option<EarlyStop>, RunError> {
+) -> Option<EarlyStop> {
     let log_every = u64::from(sim.scenario().run.log_every);
     let lost_limit_s = sim.scenario().run.stop_after_lost_s;
     let progress_every = (sim.total_ticks() / 1000).max(1);
@@ -243,7 +330,7 @@ fn step_to_end(
         match outcome {
             Ok(StepOutcome::Running) => {
                 if sim.tick().is_multiple_of(log_every) {
-                    recorder.log(sim.snapshot())?;
+                    recorder.log(sim.snapshot());
                 }
                 if sim.tick().is_multiple_of(progress_every) {
                     progress(sim.tick() as f64 / sim.total_ticks() as f64);
@@ -259,15 +346,15 @@ fn step_to_end(
                     (None, None, false) => continue,
                 };
                 if !sim.tick().is_multiple_of(log_every) {
-                    recorder.log(sim.snapshot())?;
+                    recorder.log(sim.snapshot());
                 }
-                return Ok(Some(stop));
+                return Some(stop);
             }
             Ok(StepOutcome::Finished | StepOutcome::Intercepted { .. }) => {
-                recorder.log(sim.snapshot())?;
-                return Ok(None);
+                recorder.log(sim.snapshot());
+                return None;
             }
-            Err(e) => return Ok(Some(EarlyStop::Failed(e))),
+            Err(e) => return Some(EarlyStop::Failed(e)),
         }
     }
 }
@@ -289,9 +376,10 @@ mod tests {
         );
     }
 
-    /// Plots that cannot be drawn fail the run (after telemetry and summary were written).
+    /// A plot that cannot be written is named in the summary, which was written before it
+    /// and is written again; the run itself is not lost.
     #[test]
-    fn failed_plots_fail_the_run() {
+    fn failed_plots_are_named_in_the_summary() {
         let dir = tempfile::tempdir().expect("temp dir");
         // A file where the plots' folder goes.
         std::fs::write(dir.path().join("plots"), "in the way").expect("file");
@@ -303,8 +391,16 @@ mod tests {
         let scenario =
             Scenario::from_toml_str("[run]\nduration_s = 0.1\n", Path::new("s.toml"), &[])
                 .expect("valid");
-        let result = run_to_directory(&scenario, "s", dir.path(), |_| {});
-        assert!(matches!(result, Err(RunError::Plots(_))), "{result:?}");
-        assert!(dir.path().join("summary.json").is_file());
+        let report = run_to_directory(&scenario, "s", dir.path(), |_| {}).expect("ran");
+        assert_eq!(
+            report.summary.unwritten.len(),
+            1,
+            "{:?}",
+            report.summary.unwritten
+        );
+        assert!(report.summary.unwritten[0].starts_with("plots"));
+        let written = std::fs::read_to_string(dir.path().join("summary.json")).expect("summary");
+        assert!(written.contains("plots (none after this one)"), "{written}");
+        assert!(!dir.path().join("summary.json.partial").exists());
     }
 }

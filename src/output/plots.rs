@@ -20,6 +20,41 @@ pub enum PlotError {
         /// What the drawing backend or the file system said.
         source: Box<dyn std::error::Error + Send + Sync>,
     },
+    /// The drawn PNG could not be written (no part of it is left behind).
+    #[error("cannot write {}: {}", path.display(), super::io_reason(source))]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// What the file system said.
+        source: std::io::Error,
+    },
+}
+
+impl PlotError {
+    /// The file the error is about (None for a missing font).
+    pub fn path(&self) -> Option<&Path> {
+        match self {
+            Self::NoFont => None,
+            Self::Draw { path, .. } | Self::Write { path, .. } => Some(path),
+        }
+    }
+}
+
+/// Encodes an RGB `buffer` of `size` pixels as PNG into `path`; a file the disk does not take
+/// whole is removed, so no cut-off image stays.
+fn write_png(path: &Path, buffer: &[u8], size: (u32, u32)) -> Result<(), PlotError> {
+    use image::ImageEncoder;
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image(buffer, size.0, size.1, image::ExtendedColorType::Rgb8)
+        .map_err(draw_error(path))?;
+    std::fs::write(path, &png).map_err(|source| {
+        let _ = std::fs::remove_file(path);
+        PlotError::Write {
+            path: path.to_path_buf(),
+            source,
+        }
+    })
 }
 
 /// The chart's legend, top right on a half-white box: the same on every figure.
@@ -136,47 +171,52 @@ pub fn draw_figure(
     if !font_available() {
         return Err(PlotError::NoFont);
     }
-    let height = 60 + 260 * panels.len() as u32;
-    let root = BitMapBackend::new(path, (1000, height)).into_drawing_area();
-    root.fill(&WHITE).map_err(draw_error(path))?;
-    let root = root
-        .titled(title, ("sans-serif", 24))
-        .map_err(draw_error(path))?;
-    let areas = root.split_evenly((panels.len(), 1));
-    let t_end = t_s.last().copied().unwrap_or(1.0).max(1e-6);
-    for (panel, area) in panels.iter().zip(areas.iter()) {
-        let (lo, hi) = value_range(panel);
-        let mut chart = ChartBuilder::on(area)
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(70)
-            .build_cartesian_2d(0.0..t_end, lo..hi)
+    let size = (1000, 60 + 260 * panels.len() as u32);
+    // Drawn in memory and written in one piece (see `write_png`).
+    let mut buffer = vec![0u8; 3 * size.0 as usize * size.1 as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buffer, size).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_error(path))?;
+        let root = root
+            .titled(title, ("sans-serif", 24))
             .map_err(draw_error(path))?;
-        chart
-            .configure_mesh()
-            .x_desc("t, s")
-            .y_desc(panel.y_label.as_str())
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(draw_error(path))?;
-        for series in &panel.series {
-            let color = series.color;
-            let points = t_s
-                .iter()
-                .zip(&series.values)
-                .filter(|(_, v)| v.is_finite())
-                .map(|(t, v)| (*t, *v));
+        let areas = root.split_evenly((panels.len(), 1));
+        let t_end = t_s.last().copied().unwrap_or(1.0).max(1e-6);
+        for (panel, area) in panels.iter().zip(areas.iter()) {
+            let (lo, hi) = value_range(panel);
+            let mut chart = ChartBuilder::on(area)
+                .margin(10)
+                .x_label_area_size(35)
+                .y_label_area_size(70)
+                .build_cartesian_2d(0.0..t_end, lo..hi)
+                .map_err(draw_error(path))?;
             chart
-                .draw_series(LineSeries::new(points, color.stroke_width(2)))
-                .map_err(draw_error(path))?
-                .label(series.label.as_str())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+                .configure_mesh()
+                .x_desc("t, s")
+                .y_desc(panel.y_label.as_str())
+                .light_line_style(WHITE.mix(0.0))
+                .draw()
+                .map_err(draw_error(path))?;
+            for series in &panel.series {
+                let color = series.color;
+                let points = t_s
+                    .iter()
+                    .zip(&series.values)
+                    .filter(|(_, v)| v.is_finite())
+                    .map(|(t, v)| (*t, *v));
+                chart
+                    .draw_series(LineSeries::new(points, color.stroke_width(2)))
+                    .map_err(draw_error(path))?
+                    .label(series.label.as_str())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                    });
+            }
+            draw_legend(&mut chart, path)?;
         }
-        draw_legend(&mut chart, path)?;
+        root.present().map_err(draw_error(path))?;
     }
-    root.present().map_err(draw_error(path))
+    write_png(path, &buffer, size)
 }
 
 /// The panel's finite value range with a 5% margin (and a minimum span).

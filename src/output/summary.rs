@@ -65,6 +65,9 @@ pub struct Summary {
     pub status: RunStatus,
     /// Why it stopped early, if it did.
     pub message: Option<String>,
+    /// The outputs that could not be written (a full disk), each `file: reason`; empty when
+    /// all were.
+    pub unwritten: Vec<String>,
     /// Simulated time, s.
     pub duration_s: f64,
     /// Integration steps taken.
@@ -158,6 +161,7 @@ pub static SUMMARY_KEYS: &[(&str, &str)] = &[
          statuses)",
     ),
     ("message", "why it stopped early (null if it did not)"),
+    ("unwritten", "the outputs that could not be written (a full disk), each `file: reason`: telemetry cut at its last whole row, a plot (and the plots after it); empty when all were written. `wingman run` then exits 1"),
     ("duration_s", "simulated time, s"),
     ("steps", "integration steps taken"),
     ("frames", "camera frames rendered"),
@@ -343,13 +347,13 @@ impl Summary {
         wall_s: f64,
         stopped: Option<(RunStatus, String)>,
     ) -> Self {
-        let (status, message) = match (stopped, sim.intercept_time_s()) {
-            (Some((status, message)), _) => (status, Some(message)),
-            (None, Some(_)) => (RunStatus::Intercepted, None),
-            (None, None) => (RunStatus::Completed, None),
-        };
         let duration_s = sim.time_s();
         let last = logged.last();
+        let rms_error_last20s_ft = rms_error_since(logged, duration_s - 20.0);
+        let b_hat_final_ft = last.map_or(f64::NAN, |s| s.b_hat_ft);
+        let intercepted = sim.intercept_time_s().is_some();
+        let (status, message) =
+            final_status(stopped, intercepted, &rms_error_last20s_ft, b_hat_final_ft);
         let camera = sim.camera();
         let per_frame_ms = per_frame_cost(sim);
         let aircraft = aircraft_summary(sim);
@@ -357,6 +361,7 @@ impl Summary {
             scenario: name.to_string(),
             status,
             message,
+            unwritten: Vec::new(),
             duration_s,
             steps: sim.tick(),
             frames: camera.map_or(0, |c| c.frames()),
@@ -367,7 +372,7 @@ impl Summary {
                 f64::INFINITY
             },
             b_true_ft: sim.scenario().target.size_ft,
-            b_hat_final_ft: last.map_or(f64::NAN, |s| s.b_hat_ft),
+            b_hat_final_ft,
             law: sim.scenario().guidance.law,
             estimator: sim.scenario().estimator.kind,
             kalman_b_hat_final_ft: last.and_then(|s| s.filter.estimate()).map(|f| f.b_hat_ft),
@@ -376,7 +381,7 @@ impl Summary {
             d_hat_norm_final: last.map_or(f64::NAN, |s| s.target_motion.vector().norm()),
             intercept_time_s: sim.intercept_time_s(),
             min_range_ft: sim.min_range_ft(),
-            rms_error_last20s_ft: rms_error_since(logged, duration_s - 20.0),
+            rms_error_last20s_ft,
             lost_frames: camera.map_or(0, |c| c.lost_frames()),
             loss_episodes: sim.loss_episodes(),
             noise_snr_db: sim.noisy_sensor().and_then(|n| n.realised_snr_db()),
@@ -475,6 +480,37 @@ impl ApparentSize {
     }
 }
 
+/// How the run ended and why: the early stop when there was one, else intercepted or
+/// completed; but a run whose RMS error or final b̂ is not finite (a state that overflowed
+/// without tripping the divergence checks) is `diverged`, never `completed`.
+fn final_status(
+    stopped: Option<(RunStatus, String)>,
+    intercepted: bool,
+    rms_error_ft: &[f64; 3],
+    b_hat_ft: f64,
+) -> (RunStatus, Option<String>) {
+    if let Some((status, message)) = stopped {
+        return (status, Some(message));
+    }
+    if rms_error_ft
+        .iter()
+        .chain([&b_hat_ft])
+        .any(|x| !x.is_finite())
+    {
+        let rms: Vec<String> = rms_error_ft.iter().map(|x| format!("{x:.3}")).collect();
+        let message = format!(
+            "the results are not finite (b_hat = {b_hat_ft:.3} ft, RMS error [{}] ft)",
+            rms.join(", ")
+        );
+        return (RunStatus::Diverged, Some(message));
+    }
+    if intercepted {
+        (RunStatus::Intercepted, None)
+    } else {
+        (RunStatus::Completed, None)
+    }
+}
+
 /// Per-axis RMS of R - R_c over the snapshots with t ≥ `from_s`.
 pub fn rms_error_since(logged: &[Snapshot], from_s: f64) -> [f64; 3] {
     let mut sum = [0.0; 3];
@@ -490,4 +526,30 @@ pub fn rms_error_since(logged: &[Snapshot], from_s: f64) -> [f64; 3] {
         return [f64::NAN; 3];
     }
     sum.map(|s| (s / n as f64).sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Results that are not finite are never reported as completed or intercepted; an early
+    /// stop keeps its own status.
+    #[test]
+    fn non_finite_results_are_diverged() {
+        let finite = [1.0, 2.0, 3.0];
+        assert_eq!(
+            final_status(None, false, &finite, 8.0),
+            (RunStatus::Completed, None)
+        );
+        let (status, message) = final_status(None, false, &[f64::NAN, 0.0, 0.0], 8.0);
+        assert_eq!(status, RunStatus::Diverged);
+        assert!(message.expect("why").contains("not finite"));
+        let (status, _) = final_status(None, true, &finite, f64::INFINITY);
+        assert_eq!(status, RunStatus::Diverged);
+        let lost = Some((RunStatus::Lost, "lost".to_string()));
+        assert_eq!(
+            final_status(lost, false, &[f64::NAN; 3], 8.0).0,
+            RunStatus::Lost
+        );
+    }
 }

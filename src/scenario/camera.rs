@@ -170,20 +170,25 @@ impl CameraSection {
         crate::frames::EulerAngles::new(0.0, self.mount_pitch_deg.to_radians(), 0.0).body_from_ned()
     }
 
-    /// Checks every value; `dt_s` is the simulation step the frame period must divide.
-    pub fn validate(&self, dt_s: f64) -> Check {
-        self.validate_focal_length()?;
-        check::int_in("camera.height_px", i64::from(self.height_px), 8, 8192)?;
-        check::in_closed("camera.mount_pitch_deg", self.mount_pitch_deg, -90.0, 90.0)?;
-        self.gimbal.validate()?;
-        check::in_closed("camera.rate_hz", self.rate_hz, 0.01, 10_000.0)?;
+    /// Checks that the frame period is a whole number of simulation steps `dt_s` (only a
+    /// camera run takes frames).
+    pub fn validate_rate(&self, dt_s: f64) -> Check {
         let ticks = 1.0 / (self.rate_hz * dt_s);
         check::require(
             ticks >= 1.0 - 1e-9 && (ticks - ticks.round()).abs() < 1e-6 * ticks,
             "camera.rate_hz",
             self.rate_hz,
             format!("a rate whose period is a whole number of run.dt_s = {dt_s} s"),
-        )?;
+        )
+    }
+
+    /// Checks every value, whatever the sensor: a key is refused even where it goes unused.
+    pub fn validate(&self) -> Check {
+        self.validate_focal_length()?;
+        check::int_in("camera.height_px", i64::from(self.height_px), 8, 8192)?;
+        check::in_closed("camera.mount_pitch_deg", self.mount_pitch_deg, -90.0, 90.0)?;
+        self.gimbal.validate()?;
+        check::in_closed("camera.rate_hz", self.rate_hz, 0.01, 10_000.0)?;
         check::int_in(
             "camera.latency_frames",
             i64::from(self.latency_frames),
@@ -237,9 +242,9 @@ impl CameraSection {
         )
     }
 
-    /// Checks the keys [`Self::focal_length_px`] reads (also used by the noisy sensor's
-    /// noise on pixels, which needs no other camera key).
-    pub fn validate_focal_length(&self) -> Check {
+    /// Checks the keys [`Self::focal_length_px`] reads (the noisy sensor's noise on pixels
+    /// reads them too).
+    fn validate_focal_length(&self) -> Check {
         check::int_in("camera.width_px", i64::from(self.width_px), 8, 8192)?;
         check::in_open("camera.hfov_deg", self.hfov_deg, 0.0, 179.0, "(0, 179)")?;
         check::in_closed("camera.focal_px", self.focal_px, 0.0, MAX_FOCAL_PX)?;

@@ -10,6 +10,7 @@ mod estimator;
 mod gimbal;
 mod navigation;
 pub mod origin;
+mod probe;
 mod sections;
 mod sensor;
 mod target;
@@ -81,11 +82,13 @@ impl ScenarioSource {
     }
 
     /// The schema's error (syntax, type, unknown key) with its origin: the `--set` that
-    /// wrote the key, else the key's place in the file, else the place the parser names.
-    fn schema_error(&self, error: &toml::de::Error) -> ScenarioError {
+    /// wrote the key, else the key's place in the file, else the place the parser names. A
+    /// value of the wrong kind is quoted with what its key allows (probed in `table`, the
+    /// scenario read so far, when there is one).
+    fn schema_error(&self, error: &toml::de::Error, table: Option<&toml::Table>) -> ScenarioError {
         // An error of the text has a span (and a message without the excerpt around it); an
         // error of the overridden table names its key at the end of its message.
-        let (key, message) = match error.span() {
+        let (key, mut message) = match error.span() {
             Some(_) => origin::schema_message(error.message()),
             None => origin::schema_message(&error.to_string()),
         };
@@ -94,11 +97,60 @@ impl ScenarioSource {
             (None, Some(span)) => self.at_offset(span.start),
             (None, None) => self.file(),
         };
+        // A whole number is quoted with its key's range, not its type's; a string choice
+        // with its strings.
+        let vague = message.contains("allowed a whole number") || message.contains("string only");
+        if let (Some(key), Some(table), true) = (&key, table, vague)
+            && let (Some(value), Some(allowed)) =
+                (probe::value_text(table, key), probe::allowed(table, key))
+        {
+            message = origin::shorten(&format!("{key} = {value} is invalid: allowed {allowed}"));
+        }
         ScenarioError::Rejected {
             origin,
             key,
             message,
         }
+    }
+
+    /// The parser's error of the text: a key given twice, or a number too large to be
+    /// written in TOML, is named with its key (and the number with what the key allows).
+    fn text_error(&self, error: &toml::de::Error) -> ScenarioError {
+        let (Some(span), raw) = (error.span(), error.message()) else {
+            return self.schema_error(error, None);
+        };
+        let Some(key) = origin::key_at(&self.text, span.start) else {
+            return self.schema_error(error, None);
+        };
+        let message = if raw.starts_with("duplicate key") {
+            format!("duplicate key {key}: give each key once")
+        } else if raw.contains(" as i128") || raw.contains("value was too large") {
+            let value = self.text.get(span.clone()).unwrap_or("?").trim();
+            let allowed = self
+                .probe_table(span.clone())
+                .and_then(|table| probe::allowed(&table, &key))
+                .unwrap_or_else(|| format!("a number in [-{0}, {0}]", i64::MAX));
+            format!("{key} = {value} is invalid: allowed {allowed}")
+        } else {
+            return self.schema_error(error, None);
+        };
+        ScenarioError::Rejected {
+            origin: self.at_offset(span.start),
+            key: Some(key),
+            message: origin::shorten(&message),
+        }
+    }
+
+    /// The scenario with the text of `span` written as 0 and the overrides applied (to ask
+    /// what the key there allows).
+    fn probe_table(&self, span: std::ops::Range<usize>) -> Option<toml::Table> {
+        let mut text = self.text.clone();
+        text.replace_range(span, "0");
+        let mut table: toml::Table = text.parse().ok()?;
+        for set in &self.overrides {
+            apply_override(&mut table, set).ok()?;
+        }
+        Some(table)
     }
 }
 
@@ -158,16 +210,16 @@ impl Scenario {
 
     /// Parses, overrides and validates a source.
     fn from_source(source: &ScenarioSource) -> Result<Scenario, ScenarioError> {
-        let mut table: toml::Table = source.text.parse().map_err(|e| source.schema_error(&e))?;
+        let mut table: toml::Table = source.text.parse().map_err(|e| source.text_error(&e))?;
         for text in &source.overrides {
             apply_override(&mut table, text).map_err(|reason| ScenarioError::Override {
                 text: text.clone(),
                 reason,
             })?;
         }
-        let scenario: Scenario = toml::Value::Table(table)
+        let scenario: Scenario = toml::Value::Table(table.clone())
             .try_into()
-            .map_err(|e| source.schema_error(&e))?;
+            .map_err(|e| source.schema_error(&e, Some(&table)))?;
         scenario
             .validate()
             .map_err(|invalid| source.reject(&invalid.key, invalid.to_string()))?;

@@ -117,6 +117,29 @@ pub fn locate_key(text: &str, key: &str) -> Option<(usize, usize)> {
     None
 }
 
+/// The dotted key written on the line of byte `offset` of `text` (its section from the last
+/// `[section]` header above it): for the parser's errors, which carry a place but no key.
+pub fn key_at(text: &str, offset: usize) -> Option<String> {
+    let (line, _) = line_column(text, offset);
+    let lines: Vec<&str> = text.lines().collect();
+    let name = lines
+        .get(line - 1)?
+        .split_once('=')?
+        .0
+        .trim()
+        .trim_matches('"');
+    let section = lines[..line - 1].iter().rev().find_map(|l| {
+        let header = l.trim().split('#').next()?.trim();
+        let inner = header.strip_prefix('[')?.trim_start_matches('[');
+        Some(inner.trim_end_matches(']').trim().to_string())
+    });
+    match section {
+        Some(section) if !name.is_empty() => Some(format!("{section}.{name}")),
+        _ if !name.is_empty() => Some(name.to_string()),
+        _ => None,
+    }
+}
+
 /// A message of the schema (serde through toml), split into the key it ends with (`... in
 /// \`run.dt_s\``) and its text in a user's words.
 pub fn schema_message(raw: &str) -> (Option<String>, String) {
@@ -129,13 +152,14 @@ pub fn schema_message(raw: &str) -> (Option<String>, String) {
         _ => (raw.clone(), None),
     };
     let words = plain_words(&text, key.as_deref().unwrap_or("value"));
-    // An unknown key is found where it is written, not at its section.
+    // An unknown key is found where it is written, not at its section (a top-level one,
+    // a section or key outside every section, at its own place).
     let key = match (text.strip_prefix("unknown field `"), key) {
-        (Some(rest), Some(section)) => rest
-            .split('`')
-            .next()
-            .map(|unknown| format!("{section}.{unknown}")),
-        (_, key) => key,
+        (Some(rest), section) => rest.split('`').next().map(|unknown| match section {
+            Some(section) => format!("{section}.{unknown}"),
+            None => unknown.to_string(),
+        }),
+        (None, key) => key,
     };
     (key, shorten(&words))
 }
@@ -235,7 +259,8 @@ fn plain_type(expected: &str) -> String {
 /// 2^bits - 1, short.
 fn short_bound(bits: u32) -> String {
     match bits {
-        64 => "1.8e19".to_string(),
+        // TOML's integers are 64-bit signed: no larger whole number can be written.
+        64 => i64::MAX.to_string(),
         _ => ((1u64 << bits) - 1).to_string(),
     }
 }
@@ -281,6 +306,14 @@ mod tests {
         let (_, m) =
             schema_message("unknown field `sigmaa`, expected `k` or `sigma` in `guidance`");
         assert_eq!(m, "unknown key guidance.sigmaa: did you mean sigma?");
+    }
+
+    #[test]
+    fn parser_places_are_given_their_key() {
+        let text = "[run]\nseed = 1\n[camera.gimbal] # c\nkind = 1\n";
+        assert_eq!(key_at(text, 8).as_deref(), Some("run.seed"));
+        assert_eq!(key_at(text, 40).as_deref(), Some("camera.gimbal.kind"));
+        assert_eq!(key_at("x = 1\n", 2).as_deref(), Some("x"));
     }
 
     #[test]

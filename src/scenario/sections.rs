@@ -132,7 +132,7 @@ impl Default for FollowerSection {
 
 impl FollowerSection {
     fn validate(&self) -> Check {
-        check::finite_vec("follower.initial_position_ft", &self.initial_position_ft)?;
+        check::position_ft("follower.initial_position_ft", &self.initial_position_ft)?;
         check::finite_vec("follower.initial_attitude_deg", &self.initial_attitude_deg)?;
         check::in_closed(
             "follower.initial_attitude_deg[1]",
@@ -376,7 +376,7 @@ impl GuidanceSection {
 
     /// The formation command and its frames.
     fn validate_command(&self) -> Check {
-        check::finite_vec("guidance.command_ft", &self.command_ft)?;
+        check::position_ft("guidance.command_ft", &self.command_ft)?;
         check::in_closed("guidance.command_range_ft", self.command_range_ft, 0.0, 1e5)?;
         check::in_closed(
             "guidance.command_bearing_deg",
@@ -658,14 +658,9 @@ impl Scenario {
         )?;
         self.sensor
             .validate(self.run.dt_s, self.has_formation_command())?;
-        // The camera's focal length also serves the noisy sensor's noise on pixels.
-        if self.sensor.mode == super::SensorMode::Noisy
-            && self.sensor.noise_on == super::NoiseOn::Pixels
-        {
-            self.camera.validate_focal_length()?;
-        }
+        self.camera.validate()?;
         if self.sensor.mode == super::SensorMode::Camera {
-            self.camera.validate(self.run.dt_s)?;
+            self.camera.validate_rate(self.run.dt_s)?;
         }
         self.atmosphere.validate()?;
         self.autopilot.validate()?;

@@ -82,7 +82,14 @@ impl SensorSection {
     /// `dt_s` is the step the sample period must be a multiple of, `has_command` whether the
     /// run has a nonzero formation command for `snr_reference = "command"`.
     pub fn validate(&self, dt_s: f64, has_command: bool) -> Check {
-        check::in_closed("sensor.snr_db", self.snr_db, -20.0, 200.0)?;
+        // At 0 dB or below the noise is as large as the signal (the scaled position, or the
+        // command): no camera measures that, and the estimator's gains follow it out of range.
+        check::require(
+            self.snr_db > 0.0 && self.snr_db <= 200.0,
+            "sensor.snr_db",
+            self.snr_db,
+            "(0, 200] dB",
+        )?;
         for (i, sigma) in self.pixel_noise_px.iter().enumerate() {
             check::in_closed(&format!("sensor.pixel_noise_px[{i}]"), *sigma, 0.0, 1e3)?;
         }

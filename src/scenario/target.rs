@@ -208,7 +208,7 @@ const MAX_WAYPOINTS: usize = 10_000;
 impl TargetSection {
     /// Checks every value and the keys the chosen motion needs.
     pub(super) fn validate(&self) -> Check {
-        check::finite_vec("target.initial_position_ft", &self.initial_position_ft)?;
+        check::position_ft("target.initial_position_ft", &self.initial_position_ft)?;
         check::finite_vec("target.straight_velocity_fps", &self.straight_velocity_fps)?;
         check::in_closed("target.size_ft", self.size_ft, 0.01, 1000.0)?;
         check::in_closed("target.bank_limit_deg", self.bank_limit_deg, 1.0, 60.0)?;
@@ -236,8 +236,17 @@ impl TargetSection {
         check::in_closed("target.response_time_s", self.response_time_s, 0.1, 60.0)?;
         self.random.validate()?;
         self.validate_aircraft()?;
+        // Every waypoint listed is checked whatever the motion; only "waypoints" needs some.
+        self.validate_waypoints()?;
         match self.motion {
-            TargetMotion::Waypoints => self.validate_waypoints(),
+            TargetMotion::Waypoints => check::require(
+                (1..=MAX_WAYPOINTS).contains(&self.waypoints.len()),
+                "target.waypoints",
+                format!("{} waypoints", self.waypoints.len()),
+                format!(
+                    "1 to {MAX_WAYPOINTS} [[target.waypoints]] with target.motion = \"waypoints\""
+                ),
+            ),
             TargetMotion::Csv => check::require(
                 !self.track.is_empty(),
                 "target.track",
@@ -263,14 +272,8 @@ impl TargetSection {
     }
 
     fn validate_waypoints(&self) -> Check {
-        check::require(
-            (1..=MAX_WAYPOINTS).contains(&self.waypoints.len()),
-            "target.waypoints",
-            format!("{} waypoints", self.waypoints.len()),
-            format!("1 to {MAX_WAYPOINTS} [[target.waypoints]] with target.motion = \"waypoints\""),
-        )?;
         for (i, waypoint) in self.waypoints.iter().enumerate() {
-            check::finite_vec(
+            check::position_ft(
                 &format!("target.waypoints[{i}].position_ft"),
                 &waypoint.position_ft,
             )?;
