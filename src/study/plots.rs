@@ -7,7 +7,8 @@
 use super::layout::{AxisLayout, StudyLayout};
 use super::results::CaseRecord;
 use super::spec::StudyKind;
-use crate::output::plots::{PlotError, draw_error, draw_legend, font_available};
+use crate::output::plots::text::{LegendEntry, Sample, draw_legend};
+use crate::output::plots::{PlotError, draw_error, font_available};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -222,7 +223,19 @@ fn draw_lines(
             .map_err(draw_error(path))?;
     }
     if lines.len() > 1 || lines.iter().any(|l| !l.label.is_empty()) {
-        draw_legend(&mut chart, path)?;
+        let entries: Vec<LegendEntry> = lines
+            .iter()
+            .enumerate()
+            .map(|(k, l)| LegendEntry {
+                label: l.label.clone(),
+                color: PALETTE[k % PALETTE.len()],
+                sample: Sample::Line {
+                    width_px: 2,
+                    dashed: false,
+                },
+            })
+            .collect();
+        draw_legend(&chart.plotting_area().strip_coord_spec(), &entries, path)?;
     }
     root.present().map_err(draw_error(path))
 }
