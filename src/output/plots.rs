@@ -203,7 +203,7 @@ pub fn draw_figure(
 }
 
 /// A chart whose both axes are numbers.
-type Chart<'a, 'b> =
+pub type Chart<'a, 'b> =
     ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// One curve, broken where a value is missing or outside `(lo, hi)` (so that it is not
