@@ -197,7 +197,12 @@ pub fn draw_figure(
         }
         draw_y_description(area, &chart, &panel.y_label, path)?;
         let entries: Vec<LegendEntry> = panel.series.iter().map(Series::legend).collect();
-        draw_legend(&chart.plotting_area().strip_coord_spec(), &entries, path)?;
+        draw_legend(
+            &chart.plotting_area().strip_coord_spec(),
+            &entries,
+            None,
+            path,
+        )?;
     }
     root.present().map_err(draw_error(path))
 }

@@ -58,7 +58,12 @@ pub fn draw_study_plots(layout: &StudyLayout, records: &[CaseRecord], dir: &Path
         if layout.axes.len() >= 2 && layout.kind == StudyKind::Sweep {
             let path = dir.join(format!("heatmap_{}.png", file_part(outcome)));
             let (x, y) = (&layout.axes[0], &layout.axes[1]);
-            let title = format!("median over {} and {}", label(&x.name), label(&y.name));
+            let title = format!(
+                "{}: median over {} and {}",
+                label(outcome),
+                label(&x.name),
+                label(&y.name)
+            );
             results.push(heatmap(&path, &title, (x, y), records, outcome));
         }
     }

@@ -132,10 +132,17 @@ const LEGEND_FONT_PX: u32 = 13;
 const ROW_PX: i32 = 18;
 const SAMPLE_PX: i32 = 24;
 
-/// Draws the legend box in the top right corner of `plot` (a chart's plotting area).
+/// The height of a legend of `entries` entries, px.
+pub fn legend_height_px(entries: usize) -> u32 {
+    (ROW_PX * entries as i32 + 10) as u32
+}
+
+/// Draws the legend box in the top right corner of `plot` (a chart's plotting area), or
+/// with its top left corner at `at`.
 pub fn draw_legend<DB: DrawingBackend>(
     plot: &DrawingArea<DB, Shift>,
     entries: &[LegendEntry],
+    at: Option<(i32, i32)>,
     path: &Path,
 ) -> Result<(), PlotError>
 where
@@ -154,8 +161,8 @@ where
     }
     let (plot_w, _) = plot.dim_in_pixel();
     let box_w = SAMPLE_PX + text_w + 24;
-    let box_h = ROW_PX * entries.len() as i32 + 10;
-    let (x0, y0) = (plot_w as i32 - box_w - 8, 8);
+    let box_h = legend_height_px(entries.len()) as i32;
+    let (x0, y0) = at.unwrap_or((plot_w as i32 - box_w - 8, 8));
     let frame = [(x0, y0), (x0 + box_w, y0 + box_h)];
     plot.draw(&Rectangle::new(frame, WHITE.mix(0.85).filled()))
         .map_err(draw_error(path))?;

@@ -4,7 +4,8 @@
 use super::super::layout::AxisLayout;
 use super::super::results::CaseRecord;
 use super::labels::label;
-use super::{padded_range, quartiles, tick_label};
+use super::lines::STOPPED;
+use super::{counts, padded_range, quartiles, tick_label};
 use crate::output::plots::{PlotError, draw_error, draw_y_description};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -21,8 +22,16 @@ pub fn colour(t: f64) -> RGBColor {
     RGBColor(mix(30.0, 250.0), mix(40.0, 220.0), mix(140.0, 40.0))
 }
 
-/// The median of `outcome` in each cell of two axes, coloured and written in the cell, and
-/// the colour scale.
+/// One cell of a heat map: the median over the cases that count, and how many did not.
+#[derive(Debug, Clone, Copy, Default)]
+struct Cell {
+    median: Option<f64>,
+    left_out: usize,
+}
+
+/// The median of `outcome` in each cell of two axes over the cases that count (those that
+/// stopped early or lost the target are left out, and their number written in the cell),
+/// coloured and written in the cell, and the colour scale.
 pub fn heatmap(
     path: &Path,
     title: &str,
@@ -31,17 +40,21 @@ pub fn heatmap(
     outcome: &str,
 ) -> Result<(), PlotError> {
     let (nx, ny) = (x_axis.values.len(), y_axis.values.len());
-    let mut cells = vec![None; nx * ny];
+    let mut cells = vec![Cell::default(); nx * ny];
     for (i, cell) in cells.iter_mut().enumerate() {
         let (x, y) = (i % nx, i / nx);
-        let values: Vec<f64> = records
+        let rows = records
             .iter()
-            .filter(|r| x_axis.index_of(r) == Some(x) && y_axis.index_of(r) == Some(y))
-            .filter_map(|r| r.number(outcome))
-            .collect();
-        *cell = quartiles(&values).map(|q| q[1]);
+            .filter(|r| x_axis.index_of(r) == Some(x) && y_axis.index_of(r) == Some(y));
+        let (counted, left_out): (Vec<&CaseRecord>, Vec<&CaseRecord>) =
+            rows.partition(|r| counts(r));
+        let values: Vec<f64> = counted.iter().filter_map(|r| r.number(outcome)).collect();
+        *cell = Cell {
+            median: quartiles(&values).map(|q| q[1]),
+            left_out: left_out.len(),
+        };
     }
-    let (lo, hi) = padded_range(cells.iter().flatten().copied(), 0.0);
+    let (lo, hi) = padded_range(cells.iter().filter_map(|c| c.median), 0.0);
     let root = BitMapBackend::new(path, (900 + SCALE_AREA_PX, 700)).into_drawing_area();
     root.fill(&WHITE).map_err(draw_error(path))?;
     let (grid, scale) = root.split_horizontally(900);
@@ -70,6 +83,7 @@ fn draw_scale(
         .configure_mesh()
         .disable_mesh()
         .disable_x_axis()
+        .y_label_style(("sans-serif", 13))
         .y_label_formatter(&format)
         .draw()
         .map_err(draw_error(path))?;
@@ -91,7 +105,7 @@ fn draw_cells(
     path: &Path,
     title: &str,
     (x_axis, y_axis): (&AxisLayout, &AxisLayout),
-    cells: &[Option<f64>],
+    cells: &[Cell],
     (lo, hi): (f64, f64),
 ) -> Result<(), PlotError> {
     let (nx, ny) = (x_axis.values.len(), y_axis.values.len());
@@ -122,21 +136,33 @@ fn draw_cells(
         .map_err(draw_error(path))?;
     draw_y_description(area, &chart, &y_label, path)?;
     let font_px = if nx * ny > 100 { 11 } else { 15 };
-    for (i, value) in cells.iter().enumerate() {
+    for (i, cell) in cells.iter().enumerate() {
         let (x, y) = ((i % nx) as f64, (i / nx) as f64);
-        let Some(value) = value else { continue };
-        let corners = [(x - 0.5, y - 0.5), (x + 0.5, y + 0.5)];
-        let t = (value - lo) / (hi - lo).max(1e-12);
-        chart
-            .draw_series([Rectangle::new(corners, colour(t).filled())])
-            .map_err(draw_error(path))?;
-        let style = ("sans-serif", font_px)
-            .into_font()
-            .color(&BLACK)
-            .pos(Pos::new(HPos::Center, VPos::Center));
-        chart
-            .draw_series([Text::new(format!("{value:.3}"), (x, y), style)])
-            .map_err(draw_error(path))?;
+        let centre = Pos::new(HPos::Center, VPos::Center);
+        if let Some(value) = cell.median {
+            let corners = [(x - 0.5, y - 0.5), (x + 0.5, y + 0.5)];
+            let t = (value - lo) / (hi - lo).max(1e-12);
+            let style = ("sans-serif", font_px)
+                .into_font()
+                .color(&BLACK)
+                .pos(centre);
+            chart
+                .draw_series([
+                    Rectangle::new(corners, colour(t).filled()).into_dyn(),
+                    Text::new(format!("{value:.3}"), (x, y), style).into_dyn(),
+                ])
+                .map_err(draw_error(path))?;
+        }
+        if cell.left_out > 0 {
+            let style = ("sans-serif", font_px)
+                .into_font()
+                .color(&STOPPED)
+                .pos(centre);
+            let text = format!("{} left out", cell.left_out);
+            chart
+                .draw_series([Text::new(text, (x, y - 0.25), style)])
+                .map_err(draw_error(path))?;
+        }
     }
     Ok(())
 }

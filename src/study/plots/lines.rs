@@ -5,7 +5,7 @@
 use super::super::layout::AxisLayout;
 use super::labels::label;
 use super::{padded_range, tick_label};
-use crate::output::plots::text::{LegendEntry, Sample, draw_legend};
+use crate::output::plots::text::{LegendEntry, Sample, draw_legend, legend_height_px};
 use crate::output::plots::{Chart, PlotError, draw_error, draw_y_description};
 use plotters::prelude::*;
 use std::path::Path;
@@ -91,8 +91,8 @@ pub struct LineChart<'a> {
 }
 
 /// How far each line's points are moved sideways so that their boxes do not overlap, and
-/// the boxes' half width, in x units: a box takes 70% of its share of the smallest spacing
-/// of the x values.
+/// the boxes' half width, in x units: the lines share 40% of the smallest spacing of the x
+/// values, a box taking 80% of its share.
 pub fn dodge(lines: &[Line]) -> (f64, f64) {
     let mut xs: Vec<f64> = lines
         .iter()
@@ -105,8 +105,8 @@ pub fn dodge(lines: &[Line]) -> (f64, f64) {
         .map(|w| w[1] - w[0])
         .fold(f64::INFINITY, f64::min);
     let spacing = if spacing.is_finite() { spacing } else { 1.0 };
-    let share = 0.8 * spacing / lines.len().max(1) as f64;
-    (share, 0.35 * share)
+    let share = 0.4 * spacing / lines.len().max(1) as f64;
+    (share, 0.4 * share)
 }
 
 /// The y range: the lines' medians, boxes and cases (the stopped cases only when there is
@@ -138,8 +138,16 @@ pub fn draw_lines(path: &Path, chart_spec: &LineChart) -> Result<(), PlotError> 
         .chain(chart_spec.stopped.0.iter().map(|p| p.0));
     let (x0, x1) = padded_range(xs, 0.05);
     let (y0, y1) = y_range(chart_spec);
-    let root = BitMapBackend::new(path, (900, 560)).into_drawing_area();
-    root.fill(&WHITE).map_err(draw_error(path))?;
+    let n_entries = lines.iter().filter(|l| !l.label.is_empty()).count()
+        + usize::from(!chart_spec.stopped.0.is_empty());
+    let legend_px = if n_entries > 0 {
+        legend_height_px(n_entries) + 8
+    } else {
+        0
+    };
+    let image = BitMapBackend::new(path, (900, 560 + legend_px)).into_drawing_area();
+    image.fill(&WHITE).map_err(draw_error(path))?;
+    let (root, below) = image.split_vertically(560);
     let mut chart = ChartBuilder::on(&root)
         .caption(&chart_spec.title, ("sans-serif", 20))
         .margin(12)
@@ -187,8 +195,9 @@ pub fn draw_lines(path: &Path, chart_spec: &LineChart) -> Result<(), PlotError> 
         });
     }
     draw_y_description(&root, &chart, &chart_spec.y_label, path)?;
-    draw_legend(&chart.plotting_area().strip_coord_spec(), &entries, path)?;
-    root.present().map_err(draw_error(path))
+    // Under the chart, where it hides no case.
+    draw_legend(&below, &entries, Some((87, 0)), path)?;
+    image.present().map_err(draw_error(path))
 }
 
 /// One line: its medians joined, and at each point a box from the 25th to the 75th
