@@ -175,8 +175,7 @@ impl InsGps {
             e.velocity_ned_fps[i] = self
                 .velocity
                 .step(velocity_before, velocity_mean[i], dt_s, nv);
-            e.inertial_position_ned_ft[i] +=
-                0.5 * (velocity_before + e.velocity_ned_fps[i]) * dt_s;
+            e.inertial_position_ned_ft[i] += 0.5 * (velocity_before + e.velocity_ned_fps[i]) * dt_s;
             e.attitude_rad[i] =
                 self.attitude[i].step(e.attitude_rad[i], attitude_mean[i], dt_s, na);
         }

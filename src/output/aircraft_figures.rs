@@ -34,6 +34,7 @@ fn versus_command(
 ) -> Panel {
     let scale = if deg { DEG_PER_RAD } else { 1.0 };
     Panel {
+        y_range: None,
         y_label: label.to_string(),
         series: vec![
             Series::new("aircraft", series(logged, |a| value(a) * scale), TRUTH),
@@ -51,6 +52,7 @@ fn single(
     scale: f64,
 ) -> Panel {
     Panel {
+        y_range: None,
         y_label: label.to_string(),
         series: vec![Series::new(name, series(logged, |a| f(a) * scale), TRUTH)],
     }
@@ -99,6 +101,7 @@ pub fn draw_aircraft_figures(dir: &Path, t: &[f64], logged: &[Snapshot]) -> Resu
 fn velocity_panels(logged: &[Snapshot]) -> Vec<Panel> {
     (0..3)
         .map(|i| Panel {
+            y_range: None,
             y_label: format!("V{}, ft/s", AXES[i]),
             series: vec![
                 Series::new(

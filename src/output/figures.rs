@@ -14,7 +14,7 @@
 use super::figure_set::{FigureNumbers, FigureSet, MotionEstimate};
 use super::plots::{
     EXTRA, HIGHLIGHT, Panel, PlotError, REFERENCE, Series, TRUTH, draw_error, draw_figure,
-    moving_mean,
+    moving_mean, padded_range,
 };
 use crate::frames::Vec3;
 use crate::scenario::Scenario;
@@ -77,10 +77,12 @@ pub fn draw_all(dir: &Path, scenario: &Scenario, logged: &[Snapshot]) -> Result<
     Ok(())
 }
 
-/// `relative_position.png`: R against R_c and the excited R*_c, per NED axis.
+/// `relative_position.png`: R against R_c and the excited R*_c, per NED axis. R_c is drawn
+/// last and dashed, so that it shows where it lies on R*_c (the excitation is small).
 fn relative_position_panels(logged: &[Snapshot]) -> Vec<Panel> {
     (0..3)
         .map(|i| Panel {
+            y_range: None,
             y_label: format!("R{}, ft", AXES[i]),
             series: vec![
                 Series::new(
@@ -88,12 +90,12 @@ fn relative_position_panels(logged: &[Snapshot]) -> Vec<Panel> {
                     component(logged, |s| s.relative_ned_ft, i),
                     TRUTH,
                 ),
-                Series::new("R_c", component(logged, |s| s.command_ned_ft, i), REFERENCE),
                 Series::new(
                     "R*_c (with excitation)",
                     component(logged, |s| s.excited_command_ned_ft, i),
                     EXTRA,
                 ),
+                Series::new("R_c", component(logged, |s| s.command_ned_ft, i), REFERENCE).dashed(3),
             ],
         })
         .collect()
@@ -103,14 +105,15 @@ fn relative_position_panels(logged: &[Snapshot]) -> Vec<Panel> {
 /// (b̂ d̂ against V_T for the velocity law, ‖d̂‖ for the acceleration law).
 fn estimate_panels(motion: MotionEstimate, size_ft: f64, logged: &[Snapshot]) -> Vec<Panel> {
     let b_panel = Panel {
+        y_range: None,
         y_label: "b, ft".to_string(),
         series: vec![
             Series::new(
-                "b estimate",
+                "b̂ (estimate)",
                 logged.iter().map(|s| s.b_hat_ft).collect(),
                 TRUTH,
             ),
-            Series::new("b true", vec![size_ft; logged.len()], REFERENCE),
+            Series::new("b (true)", vec![size_ft; logged.len()], REFERENCE),
         ],
     };
     match motion {
@@ -118,6 +121,7 @@ fn estimate_panels(motion: MotionEstimate, size_ft: f64, logged: &[Snapshot]) ->
         MotionEstimate::AccelerationBound => vec![
             b_panel,
             Panel {
+                y_range: None,
                 y_label: "‖d̂‖, ft/s".to_string(),
                 series: vec![Series::new(
                     "estimate of ‖d_T‖",
@@ -136,6 +140,7 @@ fn estimate_panels(motion: MotionEstimate, size_ft: f64, logged: &[Snapshot]) ->
 fn velocity_law_estimates(b_panel: Panel, logged: &[Snapshot]) -> Vec<Panel> {
     let mut estimates = vec![b_panel];
     estimates.extend((0..3).map(|i| Panel {
+        y_range: None,
         y_label: format!("V_T{}, ft/s", AXES[i]),
         series: vec![
             Series::new(
@@ -163,6 +168,7 @@ fn versus_target(
 ) -> Vec<Panel> {
     (0..3)
         .map(|i| Panel {
+            y_range: None,
             y_label: format!("{symbol}{}, {unit}", AXES[i]),
             series: vec![
                 Series::new(follower.0, component(logged, follower.1, i), TRUTH),
@@ -215,6 +221,7 @@ fn draw_acceleration_figures(
     )?;
     let target: Vec<Panel> = (0..3)
         .map(|i| Panel {
+            y_range: None,
             y_label: format!("a_T{}, ft/s²", AXES[i]),
             series: vec![Series::new(
                 "a_T",
@@ -241,6 +248,7 @@ fn draw_measurement_figure(
 ) -> Result<(), PlotError> {
     let panels: Vec<Panel> = (0..3)
         .map(|i| Panel {
+            y_range: None,
             y_label: format!("r{}", AXES[i]),
             series: vec![
                 Series::new(
@@ -271,6 +279,28 @@ fn draw_measurement_figure(
     )
 }
 
+/// The part of the run `size_estimate.png`'s y axis is fitted to: the filter's transient
+/// before it (σ_b of the first guess, b̂ far off) would squeeze the band that matters into a
+/// few pixels.
+const SIZE_TRANSIENT_FRACTION: f64 = 0.25;
+
+/// The y range of `curves` from `from_s` on, with `include` in it and a 10% margin each
+/// side (None when no curve has a value then).
+pub fn focus_range(
+    t_s: &[f64],
+    curves: &[&[f64]],
+    include: f64,
+    from_s: f64,
+) -> Option<(f64, f64)> {
+    let after: Vec<f64> = curves
+        .iter()
+        .flat_map(|values| t_s.iter().zip(values.iter()))
+        .filter(|(t, v)| **t >= from_s && v.is_finite())
+        .map(|(_, v)| *v)
+        .collect();
+    (!after.is_empty()).then(|| padded_range(after.into_iter().chain([include]), 0.1))
+}
+
 /// Kalman filter: b̂ with its ±3σ_b band against the true b and, given the camera's focal
 /// length `focal_px`, the size the frames' silhouettes imply (b_i ‖R‖ / f), and the
 /// excitation's amplitude.
@@ -295,7 +325,7 @@ fn draw_size_figure(
         Series::new("b̂ (Kalman)", filter(|b, _| b), TRUTH),
         Series::new("b̂ + 3σ", filter(|b, sigma| b + 3.0 * sigma), EXTRA),
         Series::new("b̂ - 3σ", filter(|b, sigma| b - 3.0 * sigma), EXTRA),
-        Series::new("b true", vec![size_ft; logged.len()], REFERENCE),
+        Series::new("b (true)", vec![size_ft; logged.len()], REFERENCE),
     ];
     if let Some(focal_px) = focal_px {
         let apparent = logged
@@ -306,14 +336,21 @@ fn draw_size_figure(
                     .unwrap_or(f64::NAN)
             })
             .collect();
-        size.push(Series::new("silhouette's size", apparent, HIGHLIGHT));
+        // 1 px: a noisy curve drawn wider grows spikes at its sharp turns.
+        let mut silhouette = Series::new("silhouette's size", apparent, HIGHLIGHT);
+        silhouette.width_px = 1;
+        size.push(silhouette);
     }
+    let from_s = SIZE_TRANSIENT_FRACTION * t.last().copied().unwrap_or(0.0);
+    let band: Vec<&[f64]> = size[..3].iter().map(|s| s.values.as_slice()).collect();
     let panels = [
         Panel {
-            y_label: "b, ft".to_string(),
+            y_range: focus_range(t, &band, size_ft, from_s),
+            y_label: format!("b, ft (range of t > {from_s:.0} s)"),
             series: size,
         },
         Panel {
+            y_range: None,
             y_label: "excitation amplitude".to_string(),
             series: vec![Series::new(
                 "a(t)",
@@ -328,4 +365,47 @@ fn draw_size_figure(
         t,
         &panels,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The size panel's y range leaves out the filter's first guesses (b̂ from 4 ft, σ_b
+    /// wide) and spans b̂ ± 3σ after them and the true size, with a margin.
+    #[test]
+    fn size_range_is_fitted_after_the_transient() {
+        let t: Vec<f64> = (0..100).map(f64::from).collect();
+        let b_hat: Vec<f64> = t
+            .iter()
+            .map(|t| if *t < 10.0 { 4.0 } else { 7.9 })
+            .collect();
+        let sigma = |t: f64| if t < 10.0 { 4.0 } else { 0.05 };
+        let plus: Vec<f64> = t
+            .iter()
+            .zip(&b_hat)
+            .map(|(t, b)| b + 3.0 * sigma(*t))
+            .collect();
+        let minus: Vec<f64> = t
+            .iter()
+            .zip(&b_hat)
+            .map(|(t, b)| b - 3.0 * sigma(*t))
+            .collect();
+        let (lo, hi) = focus_range(&t, &[&b_hat, &plus, &minus], 8.0, 25.0).unwrap();
+        assert!(lo < 7.75 && lo > 7.6, "lo {lo}");
+        assert!(hi > 8.05 && hi < 8.2, "hi {hi}");
+        assert_eq!(focus_range(&t, &[&b_hat], 8.0, 200.0), None);
+    }
+
+    /// R_c is drawn after R*_c (on top of it), dashed and wider, so that it shows where the
+    /// two coincide.
+    #[test]
+    fn command_is_drawn_over_the_excited_command() {
+        let panel = &relative_position_panels(&[])[0];
+        let names: Vec<&str> = panel.series.iter().map(|s| s.label.as_str()).collect();
+        assert_eq!(names, ["R (true)", "R*_c (with excitation)", "R_c"]);
+        let (excited, command) = (&panel.series[1], &panel.series[2]);
+        assert!(command.dashed && !excited.dashed);
+        assert!(command.width_px > excited.width_px);
+    }
 }

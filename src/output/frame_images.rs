@@ -37,12 +37,21 @@ fn create_dir(path: &Path) -> Result<(), FrameWriteError> {
 }
 
 /// Saves every N-th frame of a camera into a directory.
+///
+/// A frame is measured, and so saved, after it was exposed: in the same tick without
+/// latency, one frame period later when measuring overlaps the next exposure. Its captions
+/// (the gimbal's angles) are therefore taken at the tick the frame was exposed and kept
+/// until it is saved, so that they show the same instant as the image.
 #[derive(Debug)]
 pub struct FrameSaver {
     dir: PathBuf,
     every: u64,
     overlay: bool,
     last_index: Option<u64>,
+    /// Frames the camera had taken at the previous offer (None before the first).
+    frames_seen: Option<u64>,
+    /// The captions of the frames to keep that were exposed but not yet saved, by index.
+    exposed: Vec<(u64, Vec<String>)>,
 }
 
 impl FrameSaver {
@@ -53,16 +62,31 @@ impl FrameSaver {
             every: u64::from(every.max(1)),
             overlay,
             last_index: None,
+            frames_seen: None,
+            exposed: Vec::new(),
         }
     }
 
-    /// Saves the camera's last frame if it is new and its index is a multiple of N, with
-    /// `captions()` under the overlay's status line (when the overlay is on).
+    /// Called after every step: keeps `captions()` (the state now) when a frame to save was
+    /// exposed at this step, and saves the camera's last measured frame if it is new and its
+    /// index is a multiple of N, with its time and the captions of its exposure under the
+    /// overlay's status line (when the overlay is on). A frame exposed before the first
+    /// offer (frame 0, at the simulation's start) carries its time only.
     pub fn offer(
         &mut self,
         camera: &CameraSensor,
         captions: impl FnOnce() -> Vec<String>,
     ) -> Result<(), FrameWriteError> {
+        let taken = camera.frames();
+        let newly_exposed = self.frames_seen.is_some_and(|seen| taken > seen);
+        self.frames_seen = Some(taken);
+        if let Some(index) = taken.checked_sub(1)
+            && newly_exposed
+            && self.overlay
+            && index.is_multiple_of(self.every)
+        {
+            self.exposed.push((index, captions()));
+        }
         let Some((frame, record, blob)) = camera.last_frame() else {
             return Ok(());
         };
@@ -72,12 +96,28 @@ impl FrameSaver {
         self.last_index = Some(record.index);
         create_dir(&self.dir)?;
         let path = self.dir.join(format!("{:06}.png", record.index));
+        let at_exposure = self
+            .exposed
+            .iter()
+            .position(|(index, _)| *index == record.index)
+            .map(|k| self.exposed.swap_remove(k).1)
+            .unwrap_or_default();
+        self.exposed.retain(|(index, _)| *index > record.index);
         let overlay = self.overlay.then(|| Overlay {
             measurement: blob,
-            captions: captions(),
+            captions: [frame_caption(record.index, record.t_s)]
+                .into_iter()
+                .chain(at_exposure)
+                .collect(),
         });
         write_frame(&path, frame, overlay.as_ref())
     }
+}
+
+/// The overlay's line for a frame's number and the time it was exposed:
+/// `FRAME 30 T 1.000 S`.
+pub fn frame_caption(index: u64, t_s: f64) -> String {
+    format!("FRAME {index} T {t_s:.3} S")
 }
 
 /// What is drawn over a saved frame: its measurement and lines of text under the status.
@@ -169,7 +209,10 @@ pub fn render_frame_at(
     }
     let overlay = Overlay {
         measurement: blob,
-        captions: gimbal_captions(sim.gimbal_reading()),
+        captions: [frame_caption(record.index, record.t_s)]
+            .into_iter()
+            .chain(gimbal_captions(sim.gimbal_reading()))
+            .collect(),
     };
     write_frame(path, &copy, Some(&overlay))?;
     Ok(*record)

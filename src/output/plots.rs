@@ -5,6 +5,9 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
+use text::{LegendEntry, Sample, TextLayout, draw_legend, draw_text};
+
+pub mod text;
 
 /// Why a figure could not be drawn.
 #[derive(Debug, thiserror::Error)]
@@ -57,23 +60,6 @@ fn write_png(path: &Path, buffer: &[u8], size: (u32, u32)) -> Result<(), PlotErr
     })
 }
 
-/// The chart's legend, top right on a half-white box: the same on every figure.
-pub fn draw_legend<'a, DB: DrawingBackend + 'a>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
-    path: &Path,
-) -> Result<(), PlotError>
-where
-    DB::ErrorType: 'static,
-{
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(draw_error(path))
-}
-
 /// Wraps a drawing or file-system error of the file (or folder) `path`.
 pub fn draw_error<E: std::error::Error + Send + Sync + 'static>(
     path: &Path,
@@ -93,15 +79,42 @@ pub struct Series {
     pub values: Vec<f64>,
     /// Colour.
     pub color: RGBColor,
+    /// Stroke width, px.
+    pub width_px: u32,
+    /// Drawn dashed (so that a curve under it still shows).
+    pub dashed: bool,
 }
 
 impl Series {
-    /// A curve with a label and colour.
+    /// A solid curve, 2 px wide, with a label and colour.
     pub fn new(label: impl Into<String>, values: Vec<f64>, color: RGBColor) -> Self {
         Self {
             label: label.into(),
             values,
             color,
+            width_px: 2,
+            dashed: false,
+        }
+    }
+
+    /// The same curve dashed and `width_px` wide.
+    pub fn dashed(self, width_px: u32) -> Self {
+        Self {
+            width_px,
+            dashed: true,
+            ..self
+        }
+    }
+
+    /// Its legend entry.
+    fn legend(&self) -> LegendEntry {
+        LegendEntry {
+            label: self.label.clone(),
+            color: self.color,
+            sample: Sample::Line {
+                width_px: self.width_px,
+                dashed: self.dashed,
+            },
         }
     }
 }
@@ -111,8 +124,21 @@ impl Series {
 pub struct Panel {
     /// Y-axis caption, with unit.
     pub y_label: String,
-    /// Curves.
+    /// Curves, drawn in order (the last on top).
     pub series: Vec<Series>,
+    /// The y range shown (None: every value's range); values outside it are not drawn.
+    pub y_range: Option<(f64, f64)>,
+}
+
+impl Panel {
+    /// A panel showing every value of its curves.
+    pub fn new(y_label: impl Into<String>, series: Vec<Series>) -> Self {
+        Self {
+            y_label: y_label.into(),
+            series,
+            y_range: None,
+        }
+    }
 }
 
 /// Colours for measured/true (blue) and command/reference (red) curves, and a third.
@@ -161,6 +187,13 @@ pub fn font_available() -> bool {
     })
 }
 
+/// Space right of a chart, px: half the widest x tick label ("140.0") and a little more,
+/// so that the last tick's label is not cut off at the image's edge.
+pub const RIGHT_MARGIN_PX: u32 = 32;
+
+/// Space left of a chart for the y tick labels and the y-axis description, px.
+const Y_LABEL_AREA_PX: u32 = 70;
+
 /// Draws panels sharing the time axis `t_s` into a PNG.
 pub fn draw_figure(
     path: &Path,
@@ -183,65 +216,170 @@ pub fn draw_figure(
         let areas = root.split_evenly((panels.len(), 1));
         let t_end = t_s.last().copied().unwrap_or(1.0).max(1e-6);
         for (panel, area) in panels.iter().zip(areas.iter()) {
-            let (lo, hi) = value_range(panel);
+            let (lo, hi) = panel.y_range.unwrap_or_else(|| value_range(panel));
             let mut chart = ChartBuilder::on(area)
                 .margin(10)
+                .margin_right(RIGHT_MARGIN_PX)
                 .x_label_area_size(35)
-                .y_label_area_size(70)
+                .y_label_area_size(Y_LABEL_AREA_PX)
                 .build_cartesian_2d(0.0..t_end, lo..hi)
                 .map_err(draw_error(path))?;
             chart
                 .configure_mesh()
                 .x_desc("t, s")
-                .y_desc(panel.y_label.as_str())
                 .light_line_style(WHITE.mix(0.0))
                 .draw()
                 .map_err(draw_error(path))?;
             for series in &panel.series {
-                let color = series.color;
-                let points = t_s
-                    .iter()
-                    .zip(&series.values)
-                    .filter(|(_, v)| v.is_finite())
-                    .map(|(t, v)| (*t, *v));
-                chart
-                    .draw_series(LineSeries::new(points, color.stroke_width(2)))
-                    .map_err(draw_error(path))?
-                    .label(series.label.as_str())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                    });
+                draw_curve(&mut chart, t_s, series, (lo, hi), path)?;
             }
-            draw_legend(&mut chart, path)?;
+            draw_y_description(area, &chart, &panel.y_label, path)?;
+            let entries: Vec<LegendEntry> = panel.series.iter().map(Series::legend).collect();
+            draw_legend(
+                &chart.plotting_area().strip_coord_spec(),
+                &entries,
+                None,
+                path,
+            )?;
         }
         root.present().map_err(draw_error(path))?;
     }
     write_png(path, &buffer, size)
 }
 
+/// A chart whose both axes are numbers.
+pub type Chart<'a, 'b> =
+    ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// One curve, broken where a value is missing or outside `(lo, hi)` (so that it is not
+/// drawn flattened along the chart's edge).
+fn draw_curve(
+    chart: &mut Chart,
+    t_s: &[f64],
+    series: &Series,
+    (lo, hi): (f64, f64),
+    path: &Path,
+) -> Result<(), PlotError> {
+    let style = series.color.stroke_width(series.width_px);
+    for run in visible_runs(t_s, &series.values, (lo, hi)) {
+        if series.dashed {
+            chart
+                .draw_series(DashedLineSeries::new(run, 10, 6, style))
+                .map_err(draw_error(path))?;
+        } else {
+            chart
+                .draw_series(LineSeries::new(run, style))
+                .map_err(draw_error(path))?;
+        }
+    }
+    Ok(())
+}
+
+/// The stretches of (t, value) with a value inside `(lo, hi)`.
+pub fn visible_runs(t_s: &[f64], values: &[f64], (lo, hi): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let mut runs = vec![Vec::new()];
+    for (t, v) in t_s.iter().zip(values) {
+        if v.is_finite() && (lo..=hi).contains(v) {
+            if let Some(run) = runs.last_mut() {
+                run.push((*t, *v));
+            }
+        } else if runs.last().is_some_and(|r| !r.is_empty()) {
+            runs.push(Vec::new());
+        }
+    }
+    runs.retain(|r| !r.is_empty());
+    runs
+}
+
+/// The y-axis description, read upward, centred beside the chart's plotting area (drawn
+/// here rather than by plotters, so that hats sit on their letters).
+pub fn draw_y_description(
+    area: &DrawingArea<BitMapBackend, plotters::coord::Shift>,
+    chart: &Chart,
+    label: &str,
+    path: &Path,
+) -> Result<(), PlotError> {
+    let style = TextLayout {
+        size_px: 13,
+        upward: true,
+    };
+    let font = TextStyle::from(("sans-serif", style.size_px).into_font());
+    let (width, _) = area
+        .estimate_text_size(&text::split_hats(label).0, &font)
+        .map_err(draw_error(path))?;
+    let (area_x, area_y) = area.get_base_pixel();
+    let (_, plot_y) = chart.plotting_area().get_pixel_range();
+    let centre = (plot_y.start + plot_y.end) / 2 - area_y;
+    let pos = (
+        chart.plotting_area().get_pixel_range().0.start - area_x - Y_LABEL_AREA_PX as i32 + 4,
+        centre + width as i32 / 2,
+    );
+    draw_text(area, label, pos, style, path)
+}
+
 /// The panel's finite value range with a 5% margin (and a minimum span).
 fn value_range(panel: &Panel) -> (f64, f64) {
-    let mut lo = f64::INFINITY;
-    let mut hi = f64::NEG_INFINITY;
-    for v in panel
-        .series
-        .iter()
-        .flat_map(|s| s.values.iter())
+    let values = panel.series.iter().flat_map(|s| s.values.iter().copied());
+    padded_range(values, 0.05)
+}
+
+/// The finite values' range widened by `margin` of its span each side (and a minimum span);
+/// (-1, 1) without any.
+pub fn padded_range(values: impl Iterator<Item = f64>, margin: f64) -> (f64, f64) {
+    let (lo, hi) = values
         .filter(|v| v.is_finite())
-    {
-        lo = lo.min(*v);
-        hi = hi.max(*v);
-    }
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
     if !lo.is_finite() {
         return (-1.0, 1.0);
     }
     let span = (hi - lo).max(1e-3 * hi.abs().max(1.0));
-    (lo - 0.05 * span, hi + 0.05 * span)
+    (lo - margin * span, hi + margin * span)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The last x tick's label (140.0 at the end of a 140 s run) is drawn whole: it ends
+    /// inside the image, with white columns between it and the right edge.
+    #[test]
+    fn last_x_tick_label_is_not_cut_off() {
+        assert!(font_available(), "tests need DejaVu Sans");
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f.png");
+        let t: Vec<f64> = (0..=1400).map(|k| f64::from(k) * 0.1).collect();
+        let panel = Panel::new("y, ft", vec![Series::new("y", t.clone(), TRUTH)]);
+        draw_figure(&path, "t", &t, &[panel]).unwrap();
+        let png = image::open(&path).unwrap().to_rgb8();
+        let (w, h) = png.dimensions();
+        let dark = |x: u32, y: u32| png.get_pixel(x, y).0.iter().all(|c| *c < 128);
+        let last_dark_column = (0..w).rev().find(|&x| (0..h).any(|y| dark(x, y))).unwrap();
+        assert!(
+            last_dark_column + 4 < w,
+            "ink reaches column {last_dark_column} of {w}"
+        );
+        // The label row: under the plotting area, above the "t, s" description.
+        let label_rows = h - 60..h - 25;
+        let label_ink = (w - 45..w).any(|x| label_rows.clone().any(|y| dark(x, y)));
+        assert!(label_ink, "no tick label near the right edge");
+    }
+
+    #[test]
+    fn curves_break_outside_the_range() {
+        let t = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+        let v = [1.0, 9.0, 1.5, f64::NAN, 2.0, 2.5];
+        let runs = visible_runs(&t, &v, (0.0, 5.0));
+        assert_eq!(
+            runs,
+            vec![
+                vec![(0.0, 1.0)],
+                vec![(2.0, 1.5)],
+                vec![(4.0, 2.0), (5.0, 2.5)]
+            ]
+        );
+    }
 
     #[test]
     fn moving_mean_is_centred() {

@@ -1,27 +1,26 @@
 //! A study's `plots/*.png`: each outcome against each axis (the median over replicates and
-//! the other axes, bars from the 25th to the 75th percentile), a heatmap of each outcome over
-//! the first two axes, the rate of runs that lost the target or did not complete against
-//! each axis, the distribution of each outcome when a study has no axes, and, for the
-//! apparent-size study, the apparent size over yaw and pitch for each roll.
+//! the other axes with a box from the 25th to the 75th percentile and a dot per case; runs
+//! that stopped early or lost the target for good are left out of the medians and drawn as
+//! red rings), a heat map of each outcome over the first two axes with its colour scale, the
+//! rate of runs that lost the target or did not complete against each axis, the
+//! distribution of each outcome when a study has no axes, and, for the apparent-size study,
+//! the apparent size over yaw and pitch for each roll. Pixel outcomes are also drawn as
+//! angles (`*_deg`, [`angles`]); axes and outcomes are labelled in words with units
+//! ([`labels`]).
 
 use super::layout::{AxisLayout, StudyLayout};
 use super::results::CaseRecord;
 use super::spec::StudyKind;
-use crate::output::plots::{PlotError, draw_error, draw_legend, font_available};
-use plotters::coord::Shift;
-use plotters::prelude::*;
+use crate::output::plots::{PlotError, font_available};
+use heatmap::heatmap;
+use labels::label;
+use lines::{Line, LineChart, Point, XAxis, draw_lines};
 use std::path::Path;
 
-const PALETTE: [RGBColor; 8] = [
-    RGBColor(20, 60, 200),
-    RGBColor(210, 40, 40),
-    RGBColor(20, 150, 60),
-    RGBColor(240, 150, 0),
-    RGBColor(120, 50, 170),
-    RGBColor(0, 160, 170),
-    RGBColor(120, 120, 120),
-    RGBColor(170, 110, 40),
-];
+pub mod angles;
+pub mod heatmap;
+pub mod labels;
+pub mod lines;
 
 /// The most lines one outcome-against-axis chart draws (one per value of the other axis).
 const MAX_LINES: usize = 8;
@@ -37,7 +36,8 @@ pub fn draw_study_plots(layout: &StudyLayout, records: &[CaseRecord], dir: &Path
         warnings.push(format!("cannot create {}: {e}", dir.display()));
         return warnings;
     }
-    let outcomes = layout.outcomes_to_plot(records, &mut warnings);
+    let (outcomes, records) = with_angle_outcomes(layout, records, &mut warnings);
+    let records = records.as_slice();
     let mut results = Vec::new();
     for outcome in &outcomes {
         if layout.axes.is_empty() {
@@ -58,7 +58,12 @@ pub fn draw_study_plots(layout: &StudyLayout, records: &[CaseRecord], dir: &Path
         if layout.axes.len() >= 2 && layout.kind == StudyKind::Sweep {
             let path = dir.join(format!("heatmap_{}.png", file_part(outcome)));
             let (x, y) = (&layout.axes[0], &layout.axes[1]);
-            let title = format!("{outcome} (median) over {} and {}", x.name, y.name);
+            let title = format!(
+                "{}: median over {} and {}",
+                label(outcome),
+                label(&x.name),
+                label(&y.name)
+            );
             results.push(heatmap(&path, &title, (x, y), records, outcome));
         }
     }
@@ -79,6 +84,39 @@ pub fn draw_study_plots(layout: &StudyLayout, records: &[CaseRecord], dir: &Path
             .map(|e| e.to_string()),
     );
     warnings
+}
+
+/// The outcomes to plot, each pixel outcome of a sweep followed by its angle, and the
+/// records with the angles.
+fn with_angle_outcomes(
+    layout: &StudyLayout,
+    records: &[CaseRecord],
+    warnings: &mut Vec<String>,
+) -> (Vec<String>, Vec<CaseRecord>) {
+    let outcomes = layout.outcomes_to_plot(records, warnings);
+    if layout.kind != StudyKind::Sweep {
+        return (outcomes, records.to_vec());
+    }
+    let pixels: Vec<String> = outcomes
+        .iter()
+        .filter(|o| angles::angle_name(o).is_some())
+        .cloned()
+        .collect();
+    let records = angles::with_angles(layout, records, &pixels);
+    let mut all = Vec::new();
+    for outcome in outcomes {
+        let angle =
+            angles::angle_name(&outcome).filter(|a| records.iter().any(|r| r.number(a).is_some()));
+        all.push(outcome);
+        all.extend(angle);
+    }
+    (all, records)
+}
+
+/// Whether a case counts towards the medians: it flew to its end and did not lose the
+/// target for good (a run cut short or flying blind measures something else).
+pub fn counts(record: &CaseRecord) -> bool {
+    record.ended_ok() && !record.lost_target()
 }
 
 /// A name fit for a file: letters, digits, `_` and `-`; everything else `_`.
@@ -109,46 +147,9 @@ pub fn quartiles(values: &[f64]) -> Option<[f64; 3]> {
     Some([at(0.25), at(0.5), at(0.75)])
 }
 
-/// A point of a line: x, the value (a median) and optional bars (low, high).
-type Point = (f64, f64, Option<(f64, f64)>);
-
-/// One line of a chart.
-struct Line {
-    label: String,
-    points: Vec<Point>,
-}
-
-/// Which rows count towards a rate.
-type RowTest<'a> = &'a dyn Fn(&CaseRecord) -> bool;
-
-/// The x axis of a chart: numbers, or named categories at 0, 1, 2...
-struct XAxis {
-    label: String,
-    categories: Option<Vec<String>>,
-}
-
-impl XAxis {
-    fn of(axis: &AxisLayout) -> Self {
-        Self {
-            label: axis.name.clone(),
-            categories: (!axis.is_numeric()).then(|| axis.value_labels()),
-        }
-    }
-
-    fn format(&self, x: f64) -> String {
-        match &self.categories {
-            Some(names) if x >= -1e-9 && (x - x.round()).abs() < 1e-9 => {
-                names.get(x.round() as usize).cloned().unwrap_or_default()
-            }
-            Some(_) => String::new(),
-            None => tick_label(x),
-        }
-    }
-}
-
 /// A tick's number with at most six decimals and no trailing zeros: plotters' ticks are
 /// round numbers stepped in floating point (1.2000000000000002 is 1.2).
-fn tick_label(x: f64) -> String {
+pub fn tick_label(x: f64) -> String {
     let fixed = format!("{x:.6}");
     let trimmed = fixed.trim_end_matches('0').trim_end_matches('.');
     if trimmed == "-0" {
@@ -158,77 +159,8 @@ fn tick_label(x: f64) -> String {
     }
 }
 
-/// Draws lines with their bars on one chart.
-fn draw_lines(
-    path: &Path,
-    title: &str,
-    x_axis: &XAxis,
-    y_label: &str,
-    lines: &[Line],
-) -> Result<(), PlotError> {
-    let xs = lines.iter().flat_map(|l| l.points.iter().map(|p| p.0));
-    let ys = lines.iter().flat_map(|l| {
-        l.points.iter().flat_map(|p| {
-            [p.1]
-                .into_iter()
-                .chain(p.2.map(|b| b.0))
-                .chain(p.2.map(|b| b.1))
-        })
-    });
-    let (x0, x1) = padded_range(xs, 0.05);
-    let (y0, y1) = padded_range(ys, 0.08);
-    let root = BitMapBackend::new(path, (900, 560)).into_drawing_area();
-    root.fill(&WHITE).map_err(draw_error(path))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(75)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(draw_error(path))?;
-    let format_x = |x: &f64| x_axis.format(*x);
-    chart
-        .configure_mesh()
-        .x_desc(x_axis.label.as_str())
-        .y_desc(y_label)
-        .x_label_formatter(&format_x)
-        .x_labels(x_axis.categories.as_ref().map_or(10, |c| c.len().max(2)))
-        .light_line_style(WHITE.mix(0.0))
-        .draw()
-        .map_err(draw_error(path))?;
-    for (k, line) in lines.iter().enumerate() {
-        let color = PALETTE[k % PALETTE.len()];
-        let points: Vec<(f64, f64)> = line.points.iter().map(|p| (p.0, p.1)).collect();
-        chart
-            .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-            .map_err(draw_error(path))?
-            .label(line.label.as_str())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
-        chart
-            .draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))
-            .map_err(draw_error(path))?;
-        let bars = line
-            .points
-            .iter()
-            .filter_map(|p| p.2.map(|(lo, hi)| (p.0, lo, hi)));
-        chart
-            .draw_series(
-                bars.map(|(x, lo, hi)| {
-                    PathElement::new(vec![(x, lo), (x, hi)], color.stroke_width(1))
-                }),
-            )
-            .map_err(draw_error(path))?;
-    }
-    if lines.len() > 1 || lines.iter().any(|l| !l.label.is_empty()) {
-        draw_legend(&mut chart, path)?;
-    }
-    root.present().map_err(draw_error(path))
-}
-
 /// The finite values' range, widened by `margin` of its span each side (and never empty).
-fn padded_range(values: impl Iterator<Item = f64>, margin: f64) -> (f64, f64) {
+pub fn padded_range(values: impl Iterator<Item = f64>, margin: f64) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
@@ -241,9 +173,10 @@ fn padded_range(values: impl Iterator<Item = f64>, margin: f64) -> (f64, f64) {
     (lo - margin * span, hi + margin * span)
 }
 
-/// Outcome against axis `k`: the median and quartiles over the rows at each of its values,
-/// one line per value of the other axis when there are two axes (and at most
-/// [`MAX_LINES`] values), one line over everything else otherwise.
+/// Outcome against axis `k`: the median and quartiles over the counted rows at each of its
+/// values, one line per value of the other axis when there are two axes (and at most
+/// [`MAX_LINES`] values), one line over everything else otherwise; the rows that do not
+/// count ([`counts`]) apart.
 fn outcome_vs_axis(
     path: &Path,
     layout: &StudyLayout,
@@ -255,37 +188,70 @@ fn outcome_vs_axis(
     let other = (layout.axes.len() == 2)
         .then(|| &layout.axes[1 - k])
         .filter(|o| o.values.len() <= MAX_LINES);
+    let counted: Vec<&CaseRecord> = records.iter().filter(|r| counts(r)).collect();
     let groups: Vec<(String, Vec<&CaseRecord>)> = match other {
         Some(o) => (0..o.values.len())
             .map(|v| {
-                let rows = records
+                let rows = counted
                     .iter()
+                    .copied()
                     .filter(|r| o.index_of(r) == Some(v))
                     .collect();
-                (format!("{} = {}", o.name, o.value_labels()[v]), rows)
+                let name = format!("{} = {}", label(&o.name), o.value_labels()[v]);
+                (name, rows)
             })
             .collect(),
-        None => vec![(String::new(), records.iter().collect())],
+        None => vec![(String::new(), counted)],
     };
     let lines: Vec<Line> = groups
         .into_iter()
         .map(|(label, rows)| Line {
             label,
-            points: (0..axis.values.len())
-                .filter_map(|v| {
-                    let values: Vec<f64> = rows
-                        .iter()
-                        .filter(|r| axis.index_of(r) == Some(v))
-                        .filter_map(|r| r.number(outcome))
-                        .collect();
-                    quartiles(&values)
-                        .map(|[q1, median, q3]| (axis.x_of(v), median, Some((q1, q3))))
-                })
-                .collect(),
+            points: axis_points(axis, &rows, outcome),
         })
         .collect();
-    let title = format!("{outcome} against {} (median, 25-75%)", axis.name);
-    draw_lines(path, &title, &XAxis::of(axis), outcome, &lines)
+    let stopped = stopped_cases(axis, records, outcome);
+    let note = format!(
+        "stopped early or lost the target ({}): not in the medians",
+        stopped.len()
+    );
+    let x_axis = XAxis::of(axis);
+    let chart = LineChart {
+        title: format!("{} (median, box 25-75%, dot per case)", label(outcome)),
+        x_axis: &x_axis,
+        y_label: label(outcome),
+        lines,
+        stopped: (stopped, note),
+    };
+    draw_lines(path, &chart)
+}
+
+/// The median, quartiles and values of `outcome` over `rows` at each value of `axis`.
+pub fn axis_points(axis: &AxisLayout, rows: &[&CaseRecord], outcome: &str) -> Vec<Point> {
+    (0..axis.values.len())
+        .filter_map(|v| {
+            let values: Vec<f64> = rows
+                .iter()
+                .filter(|r| axis.index_of(r) == Some(v))
+                .filter_map(|r| r.number(outcome))
+                .collect();
+            quartiles(&values).map(|[q1, median, q3]| Point {
+                x: axis.x_of(v),
+                median,
+                spread: Some((q1, q3)),
+                cases: values,
+            })
+        })
+        .collect()
+}
+
+/// Where the cases that do not count sit: (x on `axis`, value of `outcome`).
+pub fn stopped_cases(axis: &AxisLayout, records: &[CaseRecord], outcome: &str) -> Vec<(f64, f64)> {
+    records
+        .iter()
+        .filter(|r| !counts(r))
+        .filter_map(|r| Some((axis.x_of(axis.index_of(r)?), r.number(outcome)?)))
+        .collect()
 }
 
 /// The empirical distribution of an outcome over every case.
@@ -298,19 +264,33 @@ fn distribution(path: &Path, records: &[CaseRecord], outcome: &str) -> Result<()
         points: values
             .iter()
             .enumerate()
-            .map(|(k, v)| (*v, (k + 1) as f64 / n, None))
+            .map(|(k, v)| Point {
+                x: *v,
+                median: (k + 1) as f64 / n,
+                spread: None,
+                cases: vec![],
+            })
             .collect(),
     };
     let x_axis = XAxis {
-        label: outcome.to_string(),
+        label: label(outcome),
         categories: None,
     };
-    let title = format!("{outcome}: fraction of cases at or below");
-    draw_lines(path, &title, &x_axis, "fraction of cases", &[line])
+    let chart = LineChart {
+        title: format!("{}: fraction of cases at or below", label(outcome)),
+        x_axis: &x_axis,
+        y_label: "fraction of cases".into(),
+        lines: vec![line],
+        stopped: (vec![], String::new()),
+    };
+    draw_lines(path, &chart)
 }
 
+/// Which rows count towards a rate.
+type RowTest<'a> = &'a dyn Fn(&CaseRecord) -> bool;
+
 /// The fraction of runs that lost the target for good, and of runs that did not complete
-/// (diverged or failed), against each axis.
+/// (stopped early, diverged or failed), against each axis.
 fn loss_rates(path: &Path, layout: &StudyLayout, records: &[CaseRecord]) -> Result<(), PlotError> {
     let rate = |rows: &[&CaseRecord], test: RowTest| {
         (!rows.is_empty())
@@ -318,8 +298,10 @@ fn loss_rates(path: &Path, layout: &StudyLayout, records: &[CaseRecord]) -> Resu
     };
     let lost = |r: &CaseRecord| r.lost_target();
     let stopped = |r: &CaseRecord| !r.ended_ok();
-    let tests: [(&str, RowTest); 2] =
-        [("lost the target", &lost), ("diverged or failed", &stopped)];
+    let tests: [(&str, RowTest); 2] = [
+        ("lost the target", &lost),
+        ("did not fly to the end", &stopped),
+    ];
     for (k, axis) in layout.axes.iter().enumerate() {
         let lines: Vec<Line> = tests
             .iter()
@@ -331,7 +313,12 @@ fn loss_rates(path: &Path, layout: &StudyLayout, records: &[CaseRecord]) -> Resu
                             .iter()
                             .filter(|r| axis.index_of(r) == Some(v))
                             .collect();
-                        rate(&rows, test).map(|y| (axis.x_of(v), y, None))
+                        rate(&rows, test).map(|y| Point {
+                            x: axis.x_of(v),
+                            median: y,
+                            spread: None,
+                            cases: vec![],
+                        })
                     })
                     .collect(),
             })
@@ -341,96 +328,15 @@ fn loss_rates(path: &Path, layout: &StudyLayout, records: &[CaseRecord]) -> Resu
         } else {
             path.with_file_name(format!("lost_target_rate_vs_{}.png", file_part(&axis.name)))
         };
-        let title = format!("runs that lost the target, against {}", axis.name);
-        draw_lines(&file, &title, &XAxis::of(axis), "fraction of runs", &lines)?;
-    }
-    Ok(())
-}
-
-/// The median of `outcome` in each cell of two axes, coloured and written in the cell.
-fn heatmap(
-    path: &Path,
-    title: &str,
-    (x_axis, y_axis): (&AxisLayout, &AxisLayout),
-    records: &[CaseRecord],
-    outcome: &str,
-) -> Result<(), PlotError> {
-    let (nx, ny) = (x_axis.values.len(), y_axis.values.len());
-    let mut cells = vec![None; nx * ny];
-    for (i, cell) in cells.iter_mut().enumerate() {
-        let (x, y) = (i % nx, i / nx);
-        let values: Vec<f64> = records
-            .iter()
-            .filter(|r| x_axis.index_of(r) == Some(x) && y_axis.index_of(r) == Some(y))
-            .filter_map(|r| r.number(outcome))
-            .collect();
-        *cell = quartiles(&values).map(|q| q[1]);
-    }
-    let (lo, hi) = padded_range(cells.iter().flatten().copied(), 0.0);
-    let root = BitMapBackend::new(path, (900, 700)).into_drawing_area();
-    root.fill(&WHITE).map_err(draw_error(path))?;
-    draw_cells(&root, path, title, (x_axis, y_axis), &cells, (lo, hi))?;
-    root.present().map_err(draw_error(path))
-}
-
-/// The grid of [`heatmap`]: a cell per pair of values, blue (low) to yellow (high).
-fn draw_cells(
-    area: &DrawingArea<BitMapBackend, Shift>,
-    path: &Path,
-    title: &str,
-    (x_axis, y_axis): (&AxisLayout, &AxisLayout),
-    cells: &[Option<f64>],
-    (lo, hi): (f64, f64),
-) -> Result<(), PlotError> {
-    let (nx, ny) = (x_axis.values.len(), y_axis.values.len());
-    let (x_names, y_names) = (x_axis.value_labels(), y_axis.value_labels());
-    let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 20))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(75)
-        .build_cartesian_2d(-0.5..nx as f64 - 0.5, -0.5..ny as f64 - 0.5)
-        .map_err(draw_error(path))?;
-    let name = |names: &[String], v: f64| {
-        names
-            .get(v.round().max(0.0) as usize)
-            .cloned()
-            .unwrap_or_default()
-    };
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(x_axis.name.as_str())
-        .y_desc(y_axis.name.as_str())
-        .x_labels(nx)
-        .y_labels(ny)
-        .x_label_formatter(&|v| name(&x_names, *v))
-        .y_label_formatter(&|v| name(&y_names, *v))
-        .draw()
-        .map_err(draw_error(path))?;
-    let colour = |v: f64| {
-        let t = ((v - lo) / (hi - lo).max(1e-12)).clamp(0.0, 1.0);
-        let mix = |a: f64, b: f64| (a + (b - a) * t).round() as u8;
-        RGBColor(mix(30.0, 250.0), mix(40.0, 220.0), mix(140.0, 40.0))
-    };
-    let font_px = if nx * ny > 100 { 11 } else { 15 };
-    for (i, value) in cells.iter().enumerate() {
-        let (x, y) = ((i % nx) as f64, (i / nx) as f64);
-        let Some(value) = value else { continue };
-        let corners = [(x - 0.5, y - 0.5), (x + 0.5, y + 0.5)];
-        chart
-            .draw_series([Rectangle::new(corners, colour(*value).filled())])
-            .map_err(draw_error(path))?;
-        let text = format!("{:.3}", value);
-        let style = ("sans-serif", font_px).into_font().color(&BLACK).pos(
-            plotters::style::text_anchor::Pos::new(
-                plotters::style::text_anchor::HPos::Center,
-                plotters::style::text_anchor::VPos::Center,
-            ),
-        );
-        chart
-            .draw_series([Text::new(text, (x, y), style)])
-            .map_err(draw_error(path))?;
+        let x_axis = XAxis::of(axis);
+        let chart = LineChart {
+            title: format!("runs that lost the target, against {}", label(&axis.name)),
+            x_axis: &x_axis,
+            y_label: "fraction of runs".into(),
+            lines,
+            stopped: (vec![], String::new()),
+        };
+        draw_lines(&file, &chart)?;
     }
     Ok(())
 }
@@ -478,7 +384,141 @@ fn apparent_size_maps(
 
 #[cfg(test)]
 mod tests {
-    use super::tick_label;
+    use super::lines::PALETTE;
+    use super::*;
+    use plotters::style::RGBColor;
+    use serde_json::Value;
+
+    fn hfov_axis() -> AxisLayout {
+        AxisLayout {
+            name: "camera.hfov_deg".into(),
+            keys: vec!["camera.hfov_deg".into()],
+            values: vec![vec!["30".into()], vec!["45".into()], vec!["60".into()]],
+        }
+    }
+
+    /// A case at `hfov` with `rms` ft, its status, and whether it lost the target for good.
+    fn case(hfov: &str, status: &str, lost: bool, rms: f64) -> CaseRecord {
+        CaseRecord {
+            case: 0,
+            point: 0,
+            replicate: 0,
+            settings: vec![("camera.hfov_deg".into(), hfov.into())],
+            status: status.into(),
+            message: None,
+            columns: vec![
+                ("lost_target".into(), Value::Bool(lost)),
+                ("rms_error_last20s_norm_ft".into(), Value::from(rms)),
+            ],
+        }
+    }
+
+    /// The three 30° runs of the field-of-view study that stop as lost after 5 s (175 ft
+    /// off) are not in the medians; they are drawn apart, where they are.
+    #[test]
+    fn stopped_and_lost_cases_are_left_out_of_the_medians() {
+        let records = [
+            case("30", "lost", true, 175.0),
+            case("30", "completed", true, 90.0),
+            case("30", "completed", false, 2.0),
+            case("45", "completed", false, 1.0),
+            case("45", "completed", false, 3.0),
+            case("60", "diverged", false, 50.0),
+        ];
+        let counted: Vec<&CaseRecord> = records.iter().filter(|r| counts(r)).collect();
+        let points = axis_points(&hfov_axis(), &counted, "rms_error_last20s_norm_ft");
+        let medians: Vec<(f64, f64)> = points.iter().map(|p| (p.x, p.median)).collect();
+        assert_eq!(medians, [(30.0, 2.0), (45.0, 2.0)]);
+        assert_eq!(points[1].spread, Some((1.5, 2.5)));
+        let stopped = stopped_cases(&hfov_axis(), &records, "rms_error_last20s_norm_ft");
+        assert_eq!(stopped, [(30.0, 175.0), (30.0, 90.0), (60.0, 50.0)]);
+    }
+
+    fn read_png(path: &Path) -> image::RgbImage {
+        image::open(path).expect("plot written").to_rgb8()
+    }
+
+    /// The spread of a point is a box many pixels wide, not a hairline.
+    #[test]
+    fn spread_boxes_are_visible() {
+        assert!(font_available(), "tests need DejaVu Sans");
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("lines.png");
+        let records: Vec<CaseRecord> = [("30", 1.0), ("30", 3.0), ("45", 2.0), ("45", 6.0)]
+            .iter()
+            .map(|(h, v)| case(h, "completed", false, *v))
+            .collect();
+        let layout = StudyLayout {
+            study: "s".into(),
+            kind: StudyKind::Sweep,
+            axes: vec![hfov_axis()],
+            replicated: true,
+            outcomes: None,
+            cases: vec![],
+            study_file: String::new(),
+            scenario_file: String::new(),
+        };
+        outcome_vs_axis(&path, &layout, &records, "rms_error_last20s_norm_ft", 0).unwrap();
+        let png = read_png(&path);
+        // The boxes' fill: the line colour at a quarter over white.
+        let RGBColor(r, g, b) = PALETTE[0];
+        let fill = [r, g, b].map(|c| 0.25 * f64::from(c) + 0.75 * 255.0);
+        let filled = |p: &image::Rgb<u8>| (0..3).all(|i| (f64::from(p.0[i]) - fill[i]).abs() < 3.0);
+        let columns = (0..png.width())
+            .filter(|x| (0..png.height()).any(|y| filled(png.get_pixel(*x, y))))
+            .count();
+        // Two boxes of 70% of 80% of the spacing of the two values (~ 720 px apart).
+        assert!(columns > 100, "{columns} columns carry a box");
+    }
+
+    /// A heat map has a colour scale: a column beside the grid runs through the colours of
+    /// the scale from low to high (the grid alone shows one colour per cell).
+    #[test]
+    fn heat_maps_have_a_colour_scale() {
+        assert!(font_available(), "tests need DejaVu Sans");
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("heat.png");
+        let seeds = AxisLayout {
+            name: "run.seed".into(),
+            keys: vec!["run.seed".into()],
+            values: vec![vec!["1".into()], vec!["2".into()]],
+        };
+        let records: Vec<CaseRecord> = (0..6)
+            .map(|k| {
+                let mut r = case(&hfov_axis().values[k % 3][0], "completed", false, k as f64);
+                r.settings
+                    .push(("run.seed".into(), (1 + k / 3).to_string()));
+                r
+            })
+            .collect();
+        let axes = (&hfov_axis(), &seeds);
+        heatmap(&path, "t", axes, &records, "rms_error_last20s_norm_ft").unwrap();
+        let png = read_png(&path);
+        let on_scale = |p: &image::Rgb<u8>| {
+            (0..=100).any(|k| {
+                let RGBColor(r, g, b) = heatmap::colour(f64::from(k) / 100.0);
+                let d = |a: u8, b: u8| (i32::from(a) - i32::from(b)).abs();
+                d(p.0[0], r) + d(p.0[1], g) + d(p.0[2], b) <= 6
+            })
+        };
+        let best = (0..png.width())
+            .map(|x| {
+                let mut colours: Vec<[u8; 3]> = (0..png.height())
+                    .map(|y| png.get_pixel(x, y))
+                    .filter(|p| on_scale(p))
+                    .map(|p| p.0)
+                    .collect();
+                colours.sort_unstable();
+                colours.dedup();
+                colours.len()
+            })
+            .max()
+            .unwrap();
+        assert!(
+            best >= 50,
+            "at most {best} colours of the scale in one column"
+        );
+    }
 
     /// Ticks stepped in floating point print as the round numbers they are.
     #[test]
