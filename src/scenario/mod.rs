@@ -10,6 +10,7 @@ mod estimator;
 mod gimbal;
 mod navigation;
 pub mod origin;
+pub mod reference;
 mod sections;
 mod sensor;
 mod target;
