@@ -221,9 +221,9 @@ pub enum Kind {
         let dotted: Vec<String> = found.iter().map(KeyDoc::dotted).collect();
         assert_eq!(dotted, ["a_ft", "points", "inner.kind", "points[].at"]);
         assert_eq!(found[0].doc, "A number, ft.");
-        let variants: Vec<&str> = found[1].variants.iter().map(|v| v.name.as_str()).collect();
+        let variants: Vec<&str> = found[2].variants.iter().map(|v| v.name.as_str()).collect();
         assert_eq!(variants, ["first_one", "second"]);
-        assert_eq!(found[1].variants[0].doc, "The first.");
+        assert_eq!(found[2].variants[0].doc, "The first.");
         assert!(keys(&schema, "Missing", "x").is_err());
     }
 }
