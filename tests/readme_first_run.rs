@@ -1,4 +1,4 @@
-//! The README is a front page a new user can follow (issue 12): its first command works as
+//! The README is a front page a new user can follow: its first command works as
 //! root (no sudo in a container) and as a user, the Rust it asks for is the `rust-version` of
 //! `Cargo.toml`, every link names a file of this repository (none outside it), and the
 //! equations, design and findings it points to are in `docs/`.
