@@ -282,8 +282,8 @@ fn issue_citations(text: &str) -> Vec<usize> {
     for pair in words.windows(2) {
         let (word, next) = (&pair[0].0, pair[1].0.trim_start_matches('#'));
         let word = word.trim_start_matches(|c: char| !c.is_alphanumeric());
-        let cites = (word == "issue" || word == "issues")
-            && next.starts_with(|c: char| c.is_ascii_digit());
+        let cites =
+            (word == "issue" || word == "issues") && next.starts_with(|c: char| c.is_ascii_digit());
         if cites {
             found.push(pair[0].1);
         }

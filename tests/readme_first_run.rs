@@ -116,7 +116,10 @@ fn the_dissertation_is_cited_in_full() {
 #[test]
 fn readme_says_how_to_install_on_the_path() {
     let readme = read("README.md");
-    assert!(readme.contains("`cargo install --path .`"), "no install command");
+    assert!(
+        readme.contains("`cargo install --path .`"),
+        "no install command"
+    );
     assert!(
         readme.contains("`target/release/wingman`"),
         "README does not say what `wingman` stands for"
@@ -131,9 +134,17 @@ fn licence_is_mit_or_apache() {
         Some("MIT OR Apache-2.0")
     );
     assert!(read("LICENSE-MIT").contains("Permission is hereby granted, free of charge"));
-    assert!(read("LICENSE-APACHE").contains("Apache License\n                           Version 2.0"));
+    assert!(
+        read("LICENSE-APACHE").contains("Apache License\n                           Version 2.0")
+    );
     for file in ["LICENSE-MIT", "LICENSE-APACHE"] {
-        assert!(read(file).contains("the wingman developers"), "{file}: no copyright line");
-        assert!(read("README.md").contains(file), "README does not name {file}");
+        assert!(
+            read(file).contains("the wingman developers"),
+            "{file}: no copyright line"
+        );
+        assert!(
+            read("README.md").contains(file),
+            "README does not name {file}"
+        );
     }
 }

@@ -23,7 +23,10 @@ fn documented_keys(doc: &str) -> BTreeSet<String> {
     let mut keys = BTreeSet::new();
     for line in doc.lines() {
         if let Some(title) = line.strip_prefix("## `[") {
-            section = title.trim_end_matches("]`").trim_matches(['[', ']']).to_string();
+            section = title
+                .trim_end_matches("]`")
+                .trim_matches(['[', ']'])
+                .to_string();
         } else if let Some(row) = line.strip_prefix("| `") {
             let name = row.split('`').next().unwrap_or_default();
             keys.insert(format!("{section}.{name}"));
@@ -72,7 +75,11 @@ fn every_key_a_shipped_scenario_writes_is_documented() {
         let mut written = Vec::new();
         flatten(&table, "", &mut written);
         for (key, _) in written {
-            assert!(documented.contains(&key), "{}: {key} has no row", path.display());
+            assert!(
+                documented.contains(&key),
+                "{}: {key} has no row",
+                path.display()
+            );
             checked += 1;
         }
     }
@@ -82,7 +89,8 @@ fn every_key_a_shipped_scenario_writes_is_documented() {
 /// The reader above finds what it should: a heading's section and a row's key.
 #[test]
 fn documented_keys_reads_headings_and_rows() {
-    let doc = "## `[a.b]`\n\n| key | type |\n|---|---|\n| `c` | float |\n## `[[a.w]]`\n| `p` | x |\n";
+    let doc =
+        "## `[a.b]`\n\n| key | type |\n|---|---|\n| `c` | float |\n## `[[a.w]]`\n| `p` | x |\n";
     let keys: Vec<String> = documented_keys(doc).into_iter().collect();
     assert_eq!(keys, ["a.b.c", "a.w.p"]);
 }

@@ -47,7 +47,11 @@ fn toml_type(key: &KeyDoc) -> String {
     }
     let array = |t: &str| {
         let (element, n) = t.strip_prefix('[')?.strip_suffix(']')?.split_once("; ")?;
-        let noun = if element == "f64" { "floats" } else { "integers" };
+        let noun = if element == "f64" {
+            "floats"
+        } else {
+            "integers"
+        };
         Some(format!("{n} {noun}"))
     };
     match ty {
@@ -62,7 +66,11 @@ fn toml_type(key: &KeyDoc) -> String {
 
 /// A value of the key's type, for a key without a default (in a table of an array).
 fn example_value(key: &KeyDoc) -> toml::Value {
-    match key.rust_type.strip_prefix('[').and_then(|t| t.split_once("; ")) {
+    match key
+        .rust_type
+        .strip_prefix('[')
+        .and_then(|t| t.split_once("; "))
+    {
         Some((_, n)) => {
             let n = n.trim_end_matches(']').parse().unwrap_or(0);
             toml::Value::Array(vec![toml::Value::Float(0.0); n])
@@ -96,7 +104,9 @@ pub fn tables(schema: &Schema, contexts: &[Scenario]) -> Result<String, String> 
         .iter()
         .find(|(key, _)| !keys.iter().any(|k| k.dotted() == *key))
     {
-        return Err(format!("the default scenario's key {key} is not documented"));
+        return Err(format!(
+            "the default scenario's key {key} is not documented"
+        ));
     }
     let mut out = String::new();
     let mut section = None;
@@ -162,7 +172,11 @@ fn section_doc(schema: &Schema, section: &str) -> Option<String> {
         field_doc = field.doc.clone();
     }
     let struct_doc = &schema.get(&type_name)?.doc;
-    Some(if struct_doc.is_empty() { field_doc } else { struct_doc.clone() })
+    Some(if struct_doc.is_empty() {
+        field_doc
+    } else {
+        struct_doc.clone()
+    })
 }
 
 /// The schema of the scenario sources in `dir` (`src/scenario/`).

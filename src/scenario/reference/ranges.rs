@@ -74,7 +74,11 @@ fn refusal(table: &toml::Table, key: &str, value: toml::Value) -> Option<String>
 /// What the validator allows for `key` (default value `default`): the distinct refusals of
 /// its probes in the first scenario of `contexts` that refuses any, joined by "; "; `None`
 /// when none refuses one.
-pub fn validated_range(key: &str, default: &toml::Value, contexts: &[toml::Table]) -> Option<String> {
+pub fn validated_range(
+    key: &str,
+    default: &toml::Value,
+    contexts: &[toml::Table],
+) -> Option<String> {
     contexts.iter().find_map(|table| {
         let mut found: Vec<String> = Vec::new();
         for value in probes(default) {
@@ -94,7 +98,9 @@ fn same_for_each_element(found: Vec<String>) -> Vec<String> {
     let Some(first) = found.iter().find_map(|f| f.strip_prefix("[0]: ")) else {
         return found;
     };
-    let elements = found.iter().filter(|f| f.starts_with('[') && f.contains("]: "));
+    let elements = found
+        .iter()
+        .filter(|f| f.starts_with('[') && f.contains("]: "));
     let count = elements.clone().count();
     let all_same = (0..count).all(|i| found.contains(&format!("[{i}]: {first}")));
     if count < 2 || !all_same {
@@ -112,7 +118,11 @@ fn same_for_each_element(found: Vec<String>) -> Vec<String> {
 /// The range of a key no probe found a check for: what its type admits.
 pub fn type_range(key: &KeyDoc) -> String {
     if !key.variants.is_empty() {
-        let names: Vec<String> = key.variants.iter().map(|v| format!("`{}`", v.name)).collect();
+        let names: Vec<String> = key
+            .variants
+            .iter()
+            .map(|v| format!("`{}`", v.name))
+            .collect();
         return format!("one of {}", names.join(", "));
     }
     match key.rust_type.as_str() {
@@ -135,7 +145,11 @@ pub fn check_variants(key: &KeyDoc, table: &toml::Table) -> Result<(), String> {
         let parsed = with_value(table, &key.dotted(), value)
             .and_then(|t| toml::Value::Table(t).try_into::<Scenario>().ok());
         if parsed.is_none() {
-            return Err(format!("{} = \"{}\" is not read", key.dotted(), variant.name));
+            return Err(format!(
+                "{} = \"{}\" is not read",
+                key.dotted(),
+                variant.name
+            ));
         }
     }
     Ok(())

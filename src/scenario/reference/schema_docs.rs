@@ -65,7 +65,11 @@ fn snake_case(name: &str) -> String {
 
 /// The type's last path segment (`super::TargetSection` → `TargetSection`).
 fn bare_type(rust_type: &str) -> String {
-    rust_type.rsplit("::").next().unwrap_or(rust_type).to_string()
+    rust_type
+        .rsplit("::")
+        .next()
+        .unwrap_or(rust_type)
+        .to_string()
 }
 
 /// Adds the `pub struct` and `pub enum` items of one source file to `schema`.
