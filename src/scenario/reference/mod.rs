@@ -171,8 +171,17 @@ fn section_doc(schema: &Schema, section: &str) -> Option<String> {
             .to_string();
         field_doc = field.doc.clone();
     }
+    // A struct doc that only names its section, or names another one (a struct used in two
+    // places), gives way to the field's.
     let struct_doc = &schema.get(&type_name)?.doc;
-    Some(if struct_doc.is_empty() {
+    let own = format!("`[{section}]`");
+    let rest = struct_doc.strip_prefix(&own).unwrap_or(struct_doc);
+    let bare = matches!(
+        rest.trim_matches(|c: char| ":. ".contains(c)),
+        "" | "section"
+    );
+    let foreign = struct_doc.starts_with("`[") && !struct_doc.starts_with(&own);
+    Some(if bare || foreign {
         field_doc
     } else {
         struct_doc.clone()
