@@ -1,4 +1,4 @@
-//! The tracking window (issue 13) measures what the whole image measures.
+//! The tracking window measures what the whole image measures.
 //!
 //! (1) Over the 60-pose test set, a frame drawn, read back and measured only in the window the
 //! tracker predicts from the whole image's measurement has the whole image's centroid and

@@ -242,6 +242,7 @@ fn shipped_text_files() -> Vec<PathBuf> {
         "shaders",
         "docs",
         ".ci",
+        "assets",
     ]
     .iter()
     .map(|d| repo().join(d))
@@ -250,7 +251,8 @@ fn shipped_text_files() -> Vec<PathBuf> {
         for entry in std::fs::read_dir(&dir).expect("readable folder") {
             let path = entry.expect("readable entry").path();
             let text_like = path.extension().is_some_and(|e| {
-                ["rs", "toml", "md", "sh", "wgsl", "yaml", "py"].contains(&e.to_str().unwrap_or(""))
+                ["rs", "toml", "md", "sh", "wgsl", "yaml", "py", "obj"]
+                    .contains(&e.to_str().unwrap_or(""))
             });
             if path.is_dir() {
                 stack.push(path);
@@ -267,6 +269,28 @@ fn shipped_text_files() -> Vec<PathBuf> {
 /// read them (the model is `docs/equations.md`, the program `docs/design.md`).
 const ABSENT_DOCUMENTS: [&str; 5] = ["SPEC §", "SPEC.md", "DESIGN §", "DESIGN.md", "../shared"];
 
+/// The place of a citation of an issue in `text` ("issue 12", "issues 5, 10", "Issue #3",
+/// also with the number on the next line after a comment marker): its 0-based line.
+fn issue_citations(text: &str) -> Vec<usize> {
+    // The text as one line per file, comment markers dropped, with each word's line kept.
+    let mut words: Vec<(String, usize)> = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let body = line.trim_start().trim_start_matches(['/', '!', '#', '*']);
+        words.extend(body.split_whitespace().map(|w| (w.to_lowercase(), i)));
+    }
+    let mut found = Vec::new();
+    for pair in words.windows(2) {
+        let (word, next) = (&pair[0].0, pair[1].0.trim_start_matches('#'));
+        let word = word.trim_start_matches(|c: char| !c.is_alphanumeric());
+        let cites =
+            (word == "issue" || word == "issues") && next.starts_with(|c: char| c.is_ascii_digit());
+        if cites {
+            found.push(pair[0].1);
+        }
+    }
+    found
+}
+
 #[test]
 fn no_shipped_file_cites_a_document_outside_the_repository() {
     let this_file = repo().join("tests").join("code_health.rs");
@@ -278,12 +302,25 @@ fn no_shipped_file_cites_a_document_outside_the_repository() {
                 found.push(format!("{}:{}: cites {name}", file.display(), i + 1));
             }
         }
+        for i in issue_citations(&text) {
+            found.push(format!("{}:{}: cites an issue", file.display(), i + 1));
+        }
     }
     assert!(
         found.is_empty(),
-        "citations of absent documents:\n{}",
+        "citations of absent documents (cite docs/*.md headings or the seed's equation \
+         numbers instead):\n{}",
         found.join("\n")
     );
+}
+
+/// The issue matcher finds a number after "issue" on its line or the next, and nothing else.
+#[test]
+fn issue_citations_are_found() {
+    assert_eq!(issue_citations("//! works (issue 12): yes"), [0]);
+    assert_eq!(issue_citations("a\n/// Issues 5, 10"), [1]);
+    assert_eq!(issue_citations("# see (issue\n# #13)"), [0]);
+    assert!(issue_citations("an issue with 3 frames; tissue 4; issue bounds").is_empty());
 }
 
 /// The source with everything from its first `#[cfg(test)]` on removed: the unit tests at a

@@ -1,4 +1,4 @@
-//! The product's main scenario (issues 5, 10, 11): `scenarios/formation.toml`, the camera on
+//! The product's main scenario: `scenarios/formation.toml`, the camera on
 //! its gimbal in the loop on the 6-DOF follower over the seed's 140 s target manoeuvres, the
 //! Kalman estimator, the seed's slot in the target's velocity frame, light Dryden turbulence.
 //!

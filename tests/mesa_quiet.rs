@@ -1,4 +1,4 @@
-//! A user never sees Mesa's "XDG_RUNTIME_DIR is invalid or not set" (issue 12): a camera run
+//! A user never sees Mesa's "XDG_RUNTIME_DIR is invalid or not set": a camera run
 //! with the variable unset (and without the NODEVICE_SELECT work-around) prints nothing.
 
 use std::process::Command;

@@ -1,4 +1,4 @@
-//! An output folder never mixes runs (issue 12): a second run into the folder of a first
+//! An output folder never mixes runs: a second run into the folder of a first
 //! clears the first's files (frames and plots it does not write again are gone), and a folder
 //! with other files in it is refused with exit code 2, naming it, and left as it was.
 

@@ -1,7 +1,9 @@
-//! The README is a front page a new user can follow (issue 12): its first command works as
+//! The README is a front page a new user can follow: its first command works as
 //! root (no sudo in a container) and as a user, the Rust it asks for is the `rust-version` of
-//! `Cargo.toml`, every link names a file of this repository (none outside it), and the
-//! equations, design and findings it points to are in `docs/`.
+//! `Cargo.toml`, every link names a file of this repository (none outside it), the
+//! equations, design, findings and scenario reference it points to are in `docs/`, it says
+//! how to put `wingman` on the PATH, names the dissertation in full (as docs/equations.md
+//! does) and the licence, whose files and `Cargo.toml` key agree.
 
 use std::path::Path;
 
@@ -67,6 +69,7 @@ fn links_stay_inside_the_repository() {
         "docs/design.md",
         "docs/findings.md",
         "docs/outputs.md",
+        "docs/scenario_reference.md",
     ] {
         let text = read(doc);
         assert!(
@@ -92,6 +95,7 @@ fn links_stay_inside_the_repository() {
         "docs/design.md",
         "docs/findings.md",
         "docs/outputs.md",
+        "docs/scenario_reference.md",
     ] {
         assert!(readme.contains(doc), "README does not point to {doc}");
     }
@@ -99,4 +103,59 @@ fn links_stay_inside_the_repository() {
         readme.lines().count() < 150,
         "the front page grew into a notebook"
     );
+}
+
+/// The dissertation: title, author, institution and year.
+const DISSERTATION: [&str; 4] = [
+    "Vision Based Guidance and Flight Control in Problems of Aerial Tracking",
+    "Vahram Stepanyan",
+    "Virginia Polytechnic Institute and State University",
+    "2006",
+];
+
+#[test]
+fn the_dissertation_is_cited_in_full() {
+    for doc in ["README.md", "docs/equations.md"] {
+        // Line breaks inside the citation are spaces.
+        let text = read(doc).split_whitespace().collect::<Vec<_>>().join(" ");
+        for part in DISSERTATION {
+            assert!(text.contains(part), "{doc} does not name {part:?}");
+        }
+    }
+}
+
+#[test]
+fn readme_says_how_to_install_on_the_path() {
+    let readme = read("README.md");
+    assert!(
+        readme.contains("`cargo install --path .`"),
+        "no install command"
+    );
+    assert!(
+        readme.contains("`target/release/wingman`"),
+        "README does not say what `wingman` stands for"
+    );
+}
+
+#[test]
+fn licence_is_mit_or_apache() {
+    let manifest: toml::Table = read("Cargo.toml").parse().expect("Cargo.toml");
+    assert_eq!(
+        manifest["package"]["license"].as_str(),
+        Some("MIT OR Apache-2.0")
+    );
+    assert!(read("LICENSE-MIT").contains("Permission is hereby granted, free of charge"));
+    assert!(
+        read("LICENSE-APACHE").contains("Apache License\n                           Version 2.0")
+    );
+    for file in ["LICENSE-MIT", "LICENSE-APACHE"] {
+        assert!(
+            read(file).contains("the wingman developers"),
+            "{file}: no copyright line"
+        );
+        assert!(
+            read("README.md").contains(file),
+            "README does not name {file}"
+        );
+    }
 }

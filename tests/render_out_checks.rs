@@ -1,4 +1,4 @@
-//! `render --out` is checked before the scenario is flown (issue 12): a name that is not a
+//! `render --out` is checked before the scenario is flown: a name that is not a
 //! PNG file, or an existing folder, is refused at once with exit code 2 and no file is left.
 
 use std::process::Command;

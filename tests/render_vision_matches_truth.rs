@@ -1,4 +1,4 @@
-//! Rendered pixels measured by the image pipeline agree with the geometry (issue 3).
+//! Rendered pixels measured by the image pipeline agree with the geometry.
 //!
 //! Over a grid of 60 relative poses (ranges 20-250 ft, bearings and elevations across the
 //! field of view where the whole target fits in the image, six target attitudes) at 640x480, 60° field of view, 4x multisampling:

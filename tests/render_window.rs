@@ -3,7 +3,7 @@
 //! view, partly outside the image, on a uniform and on a gradient sky: the same pixels but for
 //! a few samples that lie on an edge (the window's projection moves vertices by a rounding
 //! error, ~1e-5 px, which can put a sample on the other side of an edge). And a frame drawn
-//! and read back only in a region of the image (issue 13) holds exactly the bytes the whole
+//! and read back only in a region of the image holds exactly the bytes the whole
 //! frame holds there.
 
 mod render_support;
@@ -92,7 +92,7 @@ fn windowed_frames_equal_whole_frames() {
     }
 }
 
-/// A frame drawn and read back in a region of the image (issue 13) holds the bytes the whole
+/// A frame drawn and read back in a region of the image holds the bytes the whole
 /// frame holds there, exactly: the region's sky comes from a sky texture drawn by the whole
 /// frame's sky pass, the target's window is planned from the pose alone, and the noise of a
 /// pixel is keyed by its place in the image. Over the 60 poses above, regions around, beside,

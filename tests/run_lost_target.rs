@@ -1,4 +1,4 @@
-//! A run that loses its target does not read as a success (issue 12): once the target has
+//! A run that loses its target does not read as a success: once the target has
 //! gone unmeasured longer than `run.stop_after_lost_s` the run stops with status `lost`,
 //! keeps its telemetry, summary and plots, names the lost frames on its last line and exits
 //! 1. With the limit at 0 the same run goes on to its end.

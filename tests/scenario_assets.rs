@@ -1,4 +1,4 @@
-//! A scenario's assets are part of its input (issue 12): the camera's mesh is found from the
+//! A scenario's assets are part of its input: the camera's mesh is found from the
 //! scenario file's folder (the default one falls back to the shipped mesh, so a shipped
 //! scenario copied anywhere runs); a missing, empty, corrupt, flat, endless or oversized mesh
 //! is a scenario error (exit 2, naming the file, the key and what is wrong) before anything

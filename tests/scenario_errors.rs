@@ -37,7 +37,7 @@ fn assert_rejected(text: &str, extra: &[&str], expected: &[&str]) {
         1,
         "not one line: {stderr}"
     );
-    // A value from a `--set` is blamed on it, never on the file (issue 12).
+    // A value from a `--set` is blamed on it, never on the file.
     if extra.contains(&"--set") {
         assert!(
             stderr.contains("error: --set "),
@@ -61,7 +61,7 @@ fn assert_rejected(text: &str, extra: &[&str], expected: &[&str]) {
 
 #[test]
 fn syntax_error() {
-    // Where as file:line:column (issue 12), then what is wrong.
+    // Where as file:line:column, then what is wrong.
     assert_rejected(
         "[run\nduration_s = 1\n",
         &[],

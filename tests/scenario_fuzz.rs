@@ -1,4 +1,4 @@
-//! Malformed scenarios never hurt (issue 12): mutations of the shipped scenarios (wrong
+//! Malformed scenarios never hurt: mutations of the shipped scenarios (wrong
 //! types, out-of-range, NaN, infinite and huge values, wrong array lengths, missing, unknown
 //! and duplicate keys, truncation, garbage, bad `--set` arguments and bad mesh files) go
 //! through the loader, the pre-run checks and the set-up of the simulation without a panic;

@@ -1,4 +1,4 @@
-//! The seed's Chapter 7 formation through pixels (issue 11):
+//! The seed's Chapter 7 formation through pixels:
 //! `scenarios/seed_ch7_velocity_camera.toml`, the seed's inertial R_c = [32, 8, 0] ft and
 //! Chapter 7 geometry flown by the 6-DOF follower with its camera on a pan/tilt gimbal, the
 //! Kalman estimator and light turbulence.

@@ -1,4 +1,4 @@
-//! The target's trajectory sources fly what they promise (issue 19, item 2; docs/equations.md,
+//! The target's trajectory sources fly what they promise (docs/equations.md,
 //! Trajectory sources for the target): a waypoint track passes every waypoint, in order,
 //! within its reach radius (the turn radius V²/(g tan φ_max) at the faster of the two legs'
 //! speeds, 134 ft at 50 ft/s and 30°) and at its height, inside its bank, climb and

@@ -1,5 +1,5 @@
 //! The Kalman estimator identifies the target's size on pixels whatever the camera's rate and
-//! latency (issue 10): `vision_ch4_formation.toml` with `estimator.kind = "kalman"` and the
+//! latency: `vision_ch4_formation.toml` with `estimator.kind = "kalman"` and the
 //! bearing read at the maximal length's midpoint (as `formation.toml`), at three of the nine
 //! rate/latency settings docs/formation.md tabulates (measured over all nine: b̂ 7.75-7.82 ft).
 //! The adaptive law of the same scenario identifies b only thanks to its 33 ms delay; the

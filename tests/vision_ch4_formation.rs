@@ -1,4 +1,4 @@
-//! The camera in the loop (issue 3): the seed's formation run flown on rendered pixels.
+//! The camera in the loop: the seed's formation run flown on rendered pixels.
 //!
 //! Invariants: (1) the full 140 s run completes without losing the target, writes its frames,
 //! reports frame counts, measurement errors and the apparent size, and ends within 2 ft RMS
@@ -117,7 +117,7 @@ fn body_frame_command_cannot_identify_b() {
     );
 }
 
-/// Issue 11: the seed's inertial command, which takes the target out of a fixed camera's view
+/// The seed's inertial command, which takes the target out of a fixed camera's view
 /// in every turn (3,606 of 4,200 frames lost), loses no frame with the camera on a gimbal.
 #[test]
 fn inertial_command_on_a_gimbal_loses_no_frame() {

@@ -11,6 +11,7 @@ mod gimbal;
 mod navigation;
 pub mod origin;
 mod probe;
+pub mod reference;
 mod sections;
 mod sensor;
 mod target;

@@ -1,4 +1,4 @@
-//! Measuring a large target at the resolution it needs (issue 13, `camera.measure_max_length_px`).
+//! Measuring a large target at the resolution it needs (`camera.measure_max_length_px`).
 //!
 //! Drawing and measuring a silhouette costs in proportion to the pixels it covers: at 1920x1080
 //! the main scenario's target, 32 ft ahead, is about 415 px long and covers nine times the

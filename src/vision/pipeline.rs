@@ -2,8 +2,8 @@
 //! blob selection, centroid and maximal length. [`VisionPipeline`] owns every scratch buffer,
 //! so measuring frames of an unchanged size allocates nothing once the buffers have grown.
 //!
-//! [`VisionPipeline::measure_region`] measures the pixels of a region of the image only (issue
-//! 13: a tracking camera looks where the target is predicted to be), with the background
+//! [`VisionPipeline::measure_region`] measures the pixels of a region of the image only (a
+//! tracking camera looks where the target is predicted to be), with the background
 //! fitted on the region's border, and returns the measurement in the image's coordinates. It
 //! equals the whole image's measurement when the region's border is background like the
 //! image's (noise-free: the same colour surface) and no blob comes within

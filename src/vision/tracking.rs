@@ -1,4 +1,4 @@
-//! The tracking window: where in the next frame to look for the target (issue 13).
+//! The tracking window: where in the next frame to look for the target.
 //!
 //! A tracker predicts the target's silhouette from what it knows, never from the truth: the
 //! last measured silhouette (its centroid, its bounding box and its maximal length) and the

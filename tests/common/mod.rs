@@ -104,7 +104,7 @@ pub fn trim_alpha_deg(airspeed_fps: f64) -> f64 {
     .to_degrees()
 }
 
-/// The seed's Chapter 7 criteria (issue 5) on a 6-DOF run's summary:
+/// The seed's Chapter 7 criteria (seed Section 7.4, Figs 7.1-7.13) on a 6-DOF run's summary:
 /// - R - R_c below 3 ft RMS per axis over the last 20 s;
 /// - no surface command ever clamped at its limit (counted at every tick), and every surface's
 ///   largest deflection inside its limit;
@@ -152,7 +152,7 @@ pub fn assert_seed_ch7_criteria(report: &RunReport) {
 /// The Chapter 6 noisy runs' shared claims: the 140 s run completes, nothing diverges (the
 /// follower's speed and the distance to the command stay under 300 ft/s and 300 ft, b̂ and d̂
 /// inside their projection sets [1, 30] ft and ‖d̂‖ ≤ 20, with Ω_1's margins), b̂ ends within
-/// 10% of 8 ft and R within 3 ft RMS of R_c per axis over the last 20 s (issue bounds).
+/// 10% of 8 ft and R within 3 ft RMS of R_c per axis over the last 20 s.
 pub fn assert_noisy_run_bounded(report: &RunReport) {
     let s = &report.summary;
     assert_eq!(s.status, wingman::output::summary::RunStatus::Completed);
