@@ -130,7 +130,10 @@ impl AirframeTable {
             let i = (x.floor().max(0.0) as usize).min(nodes - 2);
             (i, (x - i as f64).clamp(0.0, 1.0))
         };
-        let (i, fy) = cell((angles.yaw_rad + 0.5 * std::f64::consts::PI) / step, yaw_nodes);
+        let (i, fy) = cell(
+            (angles.yaw_rad + 0.5 * std::f64::consts::PI) / step,
+            yaw_nodes,
+        );
         let (j, fp) = cell(
             (angles.pitch_rad + std::f64::consts::PI) / step,
             self.pitch_nodes,
@@ -163,8 +166,14 @@ mod tests {
             .view(50.0);
             let axis_body = view.attitude().body_from_ned() * Vec3::x();
             let back = ViewAngles::of_line_of_sight(&axis_body).expect("unit");
-            assert!((back.yaw_rad.to_degrees() - yaw_deg).abs() < 1e-9, "{back:?}");
-            assert!((back.pitch_rad.to_degrees() - pitch_deg).abs() < 1e-9, "{back:?}");
+            assert!(
+                (back.yaw_rad.to_degrees() - yaw_deg).abs() < 1e-9,
+                "{back:?}"
+            );
+            assert!(
+                (back.pitch_rad.to_degrees() - pitch_deg).abs() < 1e-9,
+                "{back:?}"
+            );
         }
     }
 
@@ -193,7 +202,10 @@ mod tests {
         // fuselage's 6 sin ψ; between nodes the table is within a chord of cos.
         let n = at(31.0, 0.0);
         assert!((n.length - 31f64.to_radians().cos()).abs() < 1e-3, "{n:?}");
-        assert!((n.per_yaw_rad + 31f64.to_radians().sin()).abs() < 0.03, "{n:?}");
+        assert!(
+            (n.per_yaw_rad + 31f64.to_radians().sin()).abs() < 0.03,
+            "{n:?}"
+        );
         assert!(n.per_pitch_rad.abs() < 1e-6, "{n:?}");
     }
 }

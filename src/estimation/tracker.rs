@@ -171,8 +171,7 @@ impl KalmanTracker {
             + (corrected.b_i_px * relative_sigma).powi(2);
         let mut pixel_covariance = self.pixel_covariance_px2;
         pixel_covariance[(2, 2)] = length_variance_px2 * self.measurement_inflation;
-        let jacobian =
-            scaled_position_jacobian(&corrected, self.focal_px, &record.ned_from_camera);
+        let jacobian = scaled_position_jacobian(&corrected, self.focal_px, &record.ned_from_camera);
         let r = scaled_relative_position(
             &corrected,
             self.focal_px,
@@ -278,7 +277,8 @@ impl TargetTracker for KalmanTracker {
             return;
         };
         if let Some((r, covariance)) = self.airframe_measurement(record, &pixels) {
-            let (position, velocity) = (record.follower_position_ned_ft, *follower_velocity_ned_fps);
+            let (position, velocity) =
+                (record.follower_position_ned_ft, *follower_velocity_ned_fps);
             self.fuse(record.t_s, &r, &covariance, &position, &velocity);
             return;
         }
@@ -372,6 +372,10 @@ impl TargetTracker for KalmanTracker {
 
     /// The airframe model's predicted views since `t_s`.
     fn predicted_views_since(&self, t_s: f64) -> Vec<PredictedView> {
-        self.views.iter().filter(|v| v.t_s >= t_s).copied().collect()
+        self.views
+            .iter()
+            .filter(|v| v.t_s >= t_s)
+            .copied()
+            .collect()
     }
 }

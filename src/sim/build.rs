@@ -16,8 +16,8 @@ use crate::scenario::{
     SizeModel, TargetModelKind, TargetMotion,
 };
 use crate::sensing::camera::load_target_mesh;
-use crate::sensing::{CameraConfig, SensorError};
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
+use crate::sensing::{CameraConfig, SensorError};
 use crate::sensing::{CaptureGeometry, FollowerPose, Sensor};
 use crate::target_aircraft::{TARGET_DRYDEN_SEED_SALT, TargetAircraft};
 use crate::world::target::{TargetModel, TargetMotionModel};
@@ -159,11 +159,14 @@ fn airframe_model(scenario: &Scenario) -> Result<Option<AirframeModel>, SimError
     if scenario.estimator.size_model != SizeModel::Airframe {
         return Ok(None);
     }
-    let mesh = load_target_mesh(&CameraConfig::of(scenario))
-        .map_err(|e| SimError::Sensor(Box::new(e)))?;
-    let table = AirframeTable::of_mesh(&mesh.vertices_ft, scenario.target.size_ft).ok_or_else(
-        || SimError::Sensor(Box::new(SensorError::MeshWithoutExtent(scenario.camera.mesh.clone().into()))),
-    )?;
+    let mesh =
+        load_target_mesh(&CameraConfig::of(scenario)).map_err(|e| SimError::Sensor(Box::new(e)))?;
+    let table =
+        AirframeTable::of_mesh(&mesh.vertices_ft, scenario.target.size_ft).ok_or_else(|| {
+            SimError::Sensor(Box::new(SensorError::MeshWithoutExtent(
+                scenario.camera.mesh.clone().into(),
+            )))
+        })?;
     Ok(Some(AirframeModel::new(&scenario.estimator, table)))
 }
 
