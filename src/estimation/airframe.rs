@@ -6,7 +6,8 @@
 //! lies across the line of sight, the fuselage's 6/8 seen side-on from the wing axis.
 //!
 //! n is precomputed once per run over view directions, with the apparent-size study's
-//! geometry ([`View`]: the target's attitude relative to the camera, here roll 0) and the
+//! geometry ([`CaptureGeometry::on_axis`]: the target's attitude relative to the camera, here
+//! roll 0) and the
 //! truth's maximal length of the projected mesh ([`TruthProjector`]), far enough away that
 //! the projection is orthographic; then interpolated bilinearly. A rotation about the line of
 //! sight turns the image but not its lengths, so two angles describe a view: the line of
@@ -14,9 +15,10 @@
 //! yaw of the target relative to it (90°: side-on, nose to the right) and θ ∈ (-180°, 180°]
 //! the pitch (0: seen from behind, 90°: from above, 180°: from the front).
 
+use crate::frames::EulerAngles;
 use crate::frames::Vec3;
 use crate::render::camera::CameraIntrinsics;
-use crate::study::view::View;
+use crate::sensing::CaptureGeometry;
 use crate::vision::TruthProjector;
 
 /// The table's step in both angles, deg.
@@ -48,14 +50,9 @@ impl ViewAngles {
         })
     }
 
-    /// The apparent-size study's view with these angles at `range_ft`.
-    pub fn view(&self, range_ft: f64) -> View {
-        View {
-            yaw_deg: self.yaw_rad.to_degrees(),
-            pitch_deg: self.pitch_rad.to_degrees(),
-            roll_deg: 0.0,
-            range_ft,
-        }
+    /// The target's attitude relative to the camera for this view (roll 0).
+    pub fn attitude(&self) -> EulerAngles {
+        EulerAngles::new(0.0, self.pitch_rad, self.yaw_rad)
     }
 }
 
@@ -107,7 +104,7 @@ impl AirframeTable {
                     yaw_rad: (-90.0 + i as f64 * STEP_DEG).to_radians(),
                     pitch_rad: (-180.0 + j as f64 * STEP_DEG).to_radians(),
                 };
-                let pose = angles.view(range_ft).geometry().pose();
+                let pose = CaptureGeometry::on_axis(range_ft, angles.attitude()).pose();
                 let truth = projector.image_truth(vertices_ft, &pose, &camera)?;
                 lengths.push(truth.b_i_px * range_ft / (FAR_FOCAL_PX * size_ft));
             }
@@ -154,17 +151,16 @@ impl AirframeTable {
 mod tests {
     use super::*;
 
-    /// The angles are those of the study's view: the camera's optical axis in target-body
-    /// axes, for the attitude (roll 0, pitch θ, yaw ψ) relative to the camera.
+    /// The angles are those of the attitude (roll 0, pitch θ, yaw ψ) relative to the camera:
+    /// the camera's optical axis in target-body axes.
     #[test]
     fn angles_round_trip_through_the_study_view() {
         for (yaw_deg, pitch_deg) in [(0.0, 0.0), (30.0, 40.0), (-75.0, 170.0), (10.0, -120.0)] {
-            let view = ViewAngles {
+            let angles = ViewAngles {
                 yaw_rad: f64::to_radians(yaw_deg),
                 pitch_rad: f64::to_radians(pitch_deg),
-            }
-            .view(50.0);
-            let axis_body = view.attitude().body_from_ned() * Vec3::x();
+            };
+            let axis_body = angles.attitude().body_from_ned() * Vec3::x();
             let back = ViewAngles::of_line_of_sight(&axis_body).expect("unit");
             assert!(
                 (back.yaw_rad.to_degrees() - yaw_deg).abs() < 1e-9,
