@@ -19,15 +19,23 @@
 
 use crate::frames::{GRAVITY_FPS2, Mat3, Vec3};
 
-/// The wing axis ŵ (unit, NED) of an aircraft flying at `velocity_ned_fps` with acceleration
-/// `accel_ned_fps2`, in coordinated flight; `None` when it is not moving.
-pub fn wing_axis_ned(velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<Vec3> {
+/// The body axes of an aircraft flying at `velocity_ned_fps` with acceleration
+/// `accel_ned_fps2` in coordinated flight, as the columns x̂ (nose), ŷ (right wing), ẑ (down)
+/// of NED from body; `None` when it is not moving or its specific force lies along its
+/// velocity.
+pub fn body_axes_ned(velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<Mat3> {
     let forward = velocity_ned_fps.try_normalize(1e-9)?;
     let specific_force = accel_ned_fps2 - Vec3::new(0.0, 0.0, GRAVITY_FPS2);
     let lift = specific_force - forward * specific_force.dot(&forward);
-    let up = lift.try_normalize(1e-9)?;
-    // Body z points down, opposite to the lift: ŵ = ẑ_B × x̂_B = (-up) × forward.
-    Some((-up).cross(&forward))
+    let down = -lift.try_normalize(1e-9)?;
+    // ŷ = ẑ × x̂ completes the right-handed triad.
+    Some(Mat3::from_columns(&[forward, down.cross(&forward), down]))
+}
+
+/// The wing axis ŵ (unit, NED) of an aircraft flying at `velocity_ned_fps` with acceleration
+/// `accel_ned_fps2`, in coordinated flight; `None` when it is not moving.
+pub fn wing_axis_ned(velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<Vec3> {
+    body_axes_ned(velocity_ned_fps, accel_ned_fps2).map(|axes| axes.column(1).into())
 }
 
 /// The aspect factor s of a span along `wing_camera` (unit, camera axes) seen at the image

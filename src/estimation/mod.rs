@@ -7,13 +7,14 @@
 //! - `kalman` ([`tracker`], [`kalman`]): a Kalman filter infers r, d, a and 1/b from the
 //!   measurements and the follower's own velocity; the law flies on its estimate.
 
+pub mod airframe;
 pub mod aspect;
 pub mod hold;
 pub mod kalman;
 pub mod tracker;
 
 pub use hold::{HeldFrame, MeasurementHold, MeasurementSource};
-pub use tracker::KalmanTracker;
+pub use tracker::{AirframeModel, KalmanTracker, PredictedView};
 
 use crate::frames::Vec3;
 use crate::sensing::FrameRecord;
@@ -120,6 +121,10 @@ pub trait TargetTracker: std::fmt::Debug + Send {
     /// or after `t_s` (3 when the filter's model holds: χ² with 3 degrees of freedom); `None`
     /// when none was.
     fn mean_normalised_innovation_since(&self, t_s: f64) -> Option<f64>;
+
+    /// What the airframe size model predicted for the frames it corrected at or after `t_s`
+    /// (none with the other size models).
+    fn predicted_views_since(&self, t_s: f64) -> Vec<PredictedView>;
 }
 
 /// What a run's filter says at one instant, for the outputs.

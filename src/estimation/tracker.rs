@@ -5,12 +5,13 @@
 //! sensor, and answers, for any instant and follower position, the estimate the guidance flies
 //! on. It also records when b became known (σ_b / b̂ below a threshold).
 
-use super::aspect::target_span_aspect;
+use super::airframe::{AirframeTable, ViewAngles};
+use super::aspect::{body_axes_ned, target_span_aspect};
 use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, TargetFilter};
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{EstimatorSection, SizeModel};
-use crate::sensing::{FrameRecord, scaled_position_jacobian};
+use crate::sensing::{FrameRecord, scaled_position_jacobian, scaled_relative_position};
 use crate::vision::ImageMeasurement;
 
 /// With the span model, σ of a frame's maximal length when the span is not the silhouette's
@@ -25,6 +26,8 @@ pub struct KalmanTracker {
     prior: FilterPrior,
     /// diag(σ_y², σ_z², σ_b²) × the inflation, px².
     pixel_covariance_px2: Mat3,
+    /// The inflation on the pixel covariance.
+    measurement_inflation: f64,
     /// The floor of a continuous sensor's variance per axis, scaled units².
     scaled_variance_floor: f64,
     focal_px: f64,
@@ -38,6 +41,52 @@ pub struct KalmanTracker {
     fused: u64,
     /// (capture time, s; νᵀ S⁻¹ ν) of every fused measurement after the first.
     innovations: Vec<(f64, f64)>,
+    /// The airframe model's shape and its length model (`None` with the other models).
+    airframe: Option<AirframeModel>,
+    /// The airframe model's view of every frame it corrected.
+    views: Vec<PredictedView>,
+}
+
+/// The airframe size model's set-up: the shape's table and the vision's length model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AirframeModel {
+    /// n over view directions.
+    pub table: AirframeTable,
+    /// σ of the inferred view direction beyond the filter's heading uncertainty, rad.
+    pub view_sigma_rad: f64,
+    /// How much the measured length reads short, px.
+    pub length_bias_px: f64,
+    /// [s₀, s₁] of σ(bI) = √(s₀² + (s₁ / bI)²), px and px².
+    pub length_sigma_px: [f64; 2],
+}
+
+impl AirframeModel {
+    /// The model of an `[estimator]` section for the shape `table`.
+    pub fn new(section: &EstimatorSection, table: AirframeTable) -> Self {
+        Self {
+            table,
+            view_sigma_rad: section.airframe_view_sigma_deg.to_radians(),
+            length_bias_px: section.airframe_length_bias_px,
+            length_sigma_px: section.airframe_length_sigma_px,
+        }
+    }
+
+    /// σ of a corrected length `b_i_px`, px.
+    fn length_sigma_px(&self, b_i_px: f64) -> f64 {
+        let [s0, s1] = self.length_sigma_px;
+        s0.hypot(s1 / b_i_px.max(1.0))
+    }
+}
+
+/// What the airframe model predicted for one frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PredictedView {
+    /// The frame's capture time, s.
+    pub t_s: f64,
+    /// The view direction inferred from the filter's estimate.
+    pub angles: ViewAngles,
+    /// n there.
+    pub normalised_length: f64,
 }
 
 impl KalmanTracker {
@@ -63,6 +112,7 @@ impl KalmanTracker {
             },
             pixel_covariance_px2: Mat3::from_diagonal(&Vec3::new(sy * sy, sz * sz, sb * sb))
                 * section.measurement_inflation,
+            measurement_inflation: section.measurement_inflation,
             scaled_variance_floor: section.scaled_sigma_floor.powi(2),
             focal_px,
             size_bounds_ft,
@@ -73,7 +123,67 @@ impl KalmanTracker {
             known_since_s: None,
             fused: 0,
             innovations: Vec::new(),
+            airframe: None,
+            views: Vec::new(),
         }
+    }
+
+    /// The tracker with the airframe size model's shape and length model (used when
+    /// `estimator.size_model = "airframe"`).
+    pub fn with_airframe(self, model: AirframeModel) -> Self {
+        Self {
+            airframe: Some(model),
+            ..self
+        }
+    }
+
+    /// With the airframe model once the filter runs: the frame's r* and covariance from its
+    /// length corrected for the vision's short reading and divided by the normalised length
+    /// n of the view the filter's estimate implies, the length's variance widened by n's
+    /// slope times the view's uncertainty (`docs/equations.md`, The airframe's shape).
+    fn airframe_measurement(
+        &mut self,
+        record: &FrameRecord,
+        pixels: &ImageMeasurement,
+    ) -> Option<(Vec3, Mat3)> {
+        let model = self.airframe.as_ref()?;
+        let filter = self.filter.as_mut()?;
+        filter.predict_to(record.t_s, &record.follower_position_ned_ft);
+        let est = filter.posterior();
+        if est.beta_per_ft <= 0.0 {
+            return None;
+        }
+        let ned_from_body = body_axes_ned(
+            &(est.d_per_s / est.beta_per_ft),
+            &(est.a_per_s2 / est.beta_per_ft),
+        )?;
+        let sight_camera = Vec3::new(self.focal_px, pixels.y_i_px, -pixels.z_i_px);
+        let sight_body = ned_from_body.transpose() * record.ned_from_camera * sight_camera;
+        let angles = ViewAngles::of_line_of_sight(&sight_body)?;
+        let n = model.table.at(&angles);
+        let view_sigma_rad = filter.heading_sigma_rad().hypot(model.view_sigma_rad);
+        let corrected = ImageMeasurement {
+            b_i_px: pixels.b_i_px + model.length_bias_px,
+            ..*pixels
+        };
+        let relative_sigma = n.sigma(angles.yaw_rad, view_sigma_rad) / n.length;
+        let length_variance_px2 = model.length_sigma_px(corrected.b_i_px).powi(2)
+            + (corrected.b_i_px * relative_sigma).powi(2);
+        let mut pixel_covariance = self.pixel_covariance_px2;
+        pixel_covariance[(2, 2)] = length_variance_px2 * self.measurement_inflation;
+        let jacobian = scaled_position_jacobian(&corrected, self.focal_px, &record.ned_from_camera);
+        let r = scaled_relative_position(
+            &corrected,
+            self.focal_px,
+            &record.ned_from_camera.transpose(),
+        ) * n.length;
+        let covariance = jacobian * pixel_covariance * jacobian.transpose() * n.length.powi(2);
+        self.views.push(PredictedView {
+            t_s: record.t_s,
+            angles,
+            normalised_length: n.length,
+        });
+        Some((r, covariance))
     }
 
     /// The span's aspect factor in a frame, from the filter predicted to its capture (the
@@ -159,11 +269,19 @@ impl TargetTracker for KalmanTracker {
     /// `follower_velocity_ned_fps` (used only to start the filter). With the span model the
     /// frame's r* is corrected for the target's aspect predicted at its capture
     /// ([`super::aspect`]), or counts for its bearing only where the span is foreshortened
-    /// below `estimator.span_aspect_min`.
+    /// below `estimator.span_aspect_min`; with the airframe model it is corrected for the
+    /// airframe's normalised length and the vision's short reading
+    /// ([`Self::airframe_measurement`]). The filter starts on the uncorrected frame.
     fn fuse_frame(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) {
         let (Some(r_star), Some(pixels)) = (record.r_measured, record.measured) else {
             return;
         };
+        if let Some((r, covariance)) = self.airframe_measurement(record, &pixels) {
+            let (position, velocity) =
+                (record.follower_position_ned_ft, *follower_velocity_ned_fps);
+            self.fuse(record.t_s, &r, &covariance, &position, &velocity);
+            return;
+        }
         let jacobian = scaled_position_jacobian(&pixels, self.focal_px, &record.ned_from_camera);
         let mut r = r_star;
         let mut covariance = jacobian * self.pixel_covariance_px2 * jacobian.transpose();
@@ -250,5 +368,14 @@ impl TargetTracker for KalmanTracker {
             .map(|(_, nis)| *nis)
             .collect();
         (!recent.is_empty()).then(|| recent.iter().sum::<f64>() / recent.len() as f64)
+    }
+
+    /// The airframe model's predicted views since `t_s`.
+    fn predicted_views_since(&self, t_s: f64) -> Vec<PredictedView> {
+        self.views
+            .iter()
+            .filter(|v| v.t_s >= t_s)
+            .copied()
+            .collect()
     }
 }

@@ -2,6 +2,7 @@
 //! driver that steps a simulation while writing them.
 
 pub mod aircraft_figures;
+pub mod airframe_view;
 pub mod columns;
 pub mod figure_set;
 pub mod figures;

@@ -1,6 +1,7 @@
 //! `summary.json`: the numbers a run is judged by (docs/design.md, How a run ends; its keys
 //! are listed in docs/outputs.md).
 
+use super::airframe_view::AirframeView;
 use super::track_check::TrackCheck;
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::GimbalSection;
@@ -125,6 +126,9 @@ pub struct Summary {
     /// The target size the camera saw over the last 20 s (camera runs): see
     /// [`ApparentSize`].
     pub apparent_size_last20s_ft: Option<ApparentSize>,
+    /// The view the airframe size model inferred over the last 20 s and the normalised
+    /// length it predicted, beside the truth (`estimator.size_model = "airframe"`).
+    pub airframe_view_last20s: Option<AirframeView>,
     /// Graphics adapter that rendered the frames (camera runs).
     pub adapter: Option<String>,
     /// Mean wall time per camera frame of each stage, ms (camera runs): render (command
@@ -186,6 +190,7 @@ pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("centroid_vs_silhouette_rms_px", "RMS of the measured centroid minus the exact centroid of the projected mesh's silhouette, px (camera runs)"),
     ("length_rms_px", "RMS of the measured minus the true maximal length, px (camera runs)"),
     ("apparent_size_last20s_ft", "the target size the frames of the last 20 s imply, ‖R‖ / aI, from the measured and from the projected-mesh maximal length (`measured`, `projected`; compare with b̂), ft (camera runs)"),
+    ("airframe_view_last20s", "the airframe size model's view of the target over the last 20 s: `predicted_yaw_deg` and `predicted_pitch_deg` (the target's yaw and pitch relative to the line of sight the filter's estimate implied; 0, 0: from behind, yaw 90: side-on, pitch 90: from above) beside `true_yaw_deg` and `true_pitch_deg`, and the normalised maximal length it predicted there beside the projected mesh's (`predicted_normalised_length`, `true_normalised_length`) (null with the other size models)"),
     ("adapter", "the graphics adapter that rendered (camera runs)"),
     ("per_frame_ms", "mean wall time per frame of render submission, readback, vision, truth, estimator, guidance, flight control, plant and `integration` (the steps as a whole), ms (camera runs)"),
     ("frame_regions", "how the frames were drawn and measured: `windowed` in the tracking window, of which `redrawn_whole` drawn again whole and `binned` binned by `camera.measure_max_length_px`; `whole_untracked` without a track, `whole_saved` to be saved (camera runs)"),
@@ -392,6 +397,15 @@ impl Summary {
             length_rms_px: camera.and_then(|c| c.errors().length_rms_px()),
             apparent_size_last20s_ft: camera.and_then(|c| {
                 ApparentSize::since(logged, c.intrinsics().focal_px, duration_s - 20.0)
+            }),
+            airframe_view_last20s: camera.zip(sim.estimator().filter()).and_then(|(c, f)| {
+                AirframeView::since(
+                    &f.predicted_views_since(duration_s - 20.0),
+                    logged,
+                    c.intrinsics().focal_px,
+                    sim.scenario().target.size_ft,
+                    duration_s - 20.0,
+                )
             }),
             adapter: camera.map(|c| c.adapter().to_string()),
             per_frame_ms,

@@ -30,6 +30,12 @@ pub enum SizeModel {
     /// for the aspect, and count for their bearing only where the span is seen too
     /// obliquely to be the silhouette's longest dimension.
     Span,
+    /// The target's size (its largest dimension), its shape known up to scale from
+    /// `camera.mesh`: each frame's length is divided by the normalised maximal length of that
+    /// shape seen from the view the estimated velocity and acceleration imply
+    /// (`estimation::airframe`), corrected for the vision's short reading, and weighted by
+    /// how steeply that length changes with the view.
+    Airframe,
 }
 
 /// Where the estimator's own-motion displacement ΔR_F comes from (docs/equations.md, Range
@@ -86,7 +92,8 @@ pub struct EstimatorSection {
     /// b counts as known once σ_b / b̂ falls below this (reported as `b_known_time_s`; the
     /// target command frame follows the estimated target velocity from then on).
     pub known_sigma_fraction: f64,
-    /// What b is: the apparent size (the seed's) or the wing span seen through the aspect.
+    /// What b is: the apparent size (the seed's), the wing span seen through the aspect, or
+    /// the airframe's size seen through its shape.
     pub size_model: SizeModel,
     /// With the span model, the smallest aspect factor s (the span's image length over its
     /// length across the optical axis) at which a frame's length is used. Choice: 0.8, the
@@ -96,6 +103,24 @@ pub struct EstimatorSection {
     /// `position` (default) or `inertial`: where the follower's own displacement comes from,
     /// for the filter and the measurement hold alike.
     pub own_motion: OwnMotion,
+    /// With the airframe model, σ of the view direction the target's attitude is inferred
+    /// from beyond the filter's own heading uncertainty (sideslip, angle of attack,
+    /// turbulence), deg: with the slope of the normalised length it widens a frame's length
+    /// variance. Choice: 5°, a light aircraft's angle of attack at formation speeds.
+    pub airframe_view_sigma_deg: f64,
+    /// With the airframe model, how much the measured maximal length reads short, px: each
+    /// frame's length is taken as the measurement plus this. Calibrated from the silhouette
+    /// truth (the telemetry's `b_i_true_px` - `b_i_px`) over formation.toml and its 4 ft,
+    /// 2 ft, 320x240 and [80, 20, 0] ft slot variations, streams 1-2, 4 samples per pixel:
+    /// 2.0-2.4 px at every length from 15 to 200 px (median 2.1, 70,000 frames), 3.2-3.7 px
+    /// below 15 px. One sample per pixel reads short by 3.6 px at 100-140 px and 8-15 px
+    /// below 70 px (a thin wing breaks up): no constant fits it.
+    pub airframe_length_bias_px: f64,
+    /// With the airframe model, σ of the corrected length, px, as [s₀, s₁]:
+    /// σ(bI) = √(s₀² + (s₁ / bI)²). Calibrated as `airframe_length_bias_px`: 0.6-0.9 px above
+    /// 20 px, 1.6-2.1 px below 15 px (frame to frame; the errors stay correlated over
+    /// seconds, which `measurement_inflation` still covers).
+    pub airframe_length_sigma_px: [f64; 2],
 }
 
 impl Default for EstimatorSection {
@@ -115,6 +140,9 @@ impl Default for EstimatorSection {
             size_model: SizeModel::Apparent,
             span_aspect_min: 0.8,
             own_motion: OwnMotion::Position,
+            airframe_view_sigma_deg: 5.0,
+            airframe_length_bias_px: 2.1,
+            airframe_length_sigma_px: [0.8, 16.0],
         }
     }
 }
@@ -168,7 +196,24 @@ impl EstimatorSection {
             1e-6,
             1.0,
         )?;
-        check::in_closed("estimator.span_aspect_min", self.span_aspect_min, 0.0, 1.0)
+        check::in_closed("estimator.span_aspect_min", self.span_aspect_min, 0.0, 1.0)?;
+        check::in_closed(
+            "estimator.airframe_view_sigma_deg",
+            self.airframe_view_sigma_deg,
+            0.0,
+            90.0,
+        )?;
+        check::in_closed(
+            "estimator.airframe_length_bias_px",
+            self.airframe_length_bias_px,
+            -100.0,
+            100.0,
+        )?;
+        for (i, sigma) in self.airframe_length_sigma_px.iter().enumerate() {
+            let key = format!("estimator.airframe_length_sigma_px[{i}]");
+            check::in_closed(&key, *sigma, 0.0, 1e4)?;
+        }
+        Ok(())
     }
 }
 

@@ -72,6 +72,17 @@ impl CaptureGeometry {
         }
     }
 
+    /// A level camera at the origin looking north with exact navigation, the target
+    /// `range_ft` north of it in `target_attitude` (relative to the camera's axes): the
+    /// geometry of one view of the target.
+    pub fn on_axis(range_ft: f64, target_attitude: EulerAngles) -> Self {
+        Self::exact(
+            Vec3::new(range_ft, 0.0, 0.0),
+            target_attitude,
+            FollowerPose::at_origin(EulerAngles::new(0.0, 0.0, 0.0)),
+        )
+    }
+
     /// L_CB L_BE, NED to camera axes, as the follower's navigation knows it: the rotation
     /// sensing turns measurements with.
     pub fn camera_from_ned(&self) -> Mat3 {

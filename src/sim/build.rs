@@ -3,18 +3,21 @@
 //! model, the excitation's cap from the camera's field of view, the camera's mount.
 
 use super::SimError;
-use crate::estimation::{Estimator, KalmanTracker, MeasurementHold, TargetTracker};
+use crate::estimation::airframe::AirframeTable;
+use crate::estimation::{AirframeModel, Estimator, KalmanTracker, MeasurementHold, TargetTracker};
 use crate::follower::aircraft::DRYDEN_SEED_SALT;
 use crate::follower::{AircraftSetupError, Follower, FollowerConfig};
 use crate::frames::{Mat3, Vec3};
 use crate::guidance::command::{CommandInput, FormationCommand};
-use crate::guidance::law::{GuidanceLaw, GuidanceSetupError};
+use crate::guidance::law::GuidanceLaw;
 use crate::guidance::signals::CommandKind;
 use crate::scenario::{
     EstimatorKind, ExcitationUnits, GimbalCue, GimbalKind, GuidanceLawKind, Scenario, SensorMode,
-    TargetModelKind, TargetMotion,
+    SizeModel, TargetModelKind, TargetMotion,
 };
+use crate::sensing::camera::load_target_mesh;
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
+use crate::sensing::{CameraConfig, SensorError};
 use crate::sensing::{CaptureGeometry, FollowerPose, Sensor};
 use crate::target_aircraft::{TARGET_DRYDEN_SEED_SALT, TargetAircraft};
 use crate::world::target::{TargetModel, TargetMotionModel};
@@ -119,16 +122,21 @@ pub(super) fn estimation_stage(
     scenario: &Scenario,
     compensate: bool,
     continuous_sensor: bool,
-) -> Result<(Estimator, GuidanceLaw, Vec<String>), GuidanceSetupError> {
+) -> Result<(Estimator, GuidanceLaw, Vec<String>), SimError> {
     let e = &scenario.estimator;
     let g = &scenario.guidance;
+    let airframe = airframe_model(scenario)?;
     let kalman = || -> Box<dyn TargetTracker> {
-        Box::new(KalmanTracker::new(
+        let tracker = KalmanTracker::new(
             e,
             scenario.camera.focal_length_px(),
             g.b0_ft,
             (g.b_min_ft, g.b_max_ft),
-        ))
+        );
+        Box::new(match airframe.clone() {
+            Some(model) => tracker.with_airframe(model),
+            None => tracker,
+        })
     };
     Ok(match e.kind {
         EstimatorKind::Adaptive => {
@@ -142,6 +150,24 @@ pub(super) fn estimation_stage(
             (Estimator::OnFilter(kalman()), law, Vec::new())
         }
     })
+}
+
+/// The airframe size model of `estimator.size_model = "airframe"`: the table of the
+/// scenario's target mesh (`camera.mesh`, scaled to `target.size_ft`); `None` with the other
+/// size models.
+fn airframe_model(scenario: &Scenario) -> Result<Option<AirframeModel>, SimError> {
+    if scenario.estimator.size_model != SizeModel::Airframe {
+        return Ok(None);
+    }
+    let mesh =
+        load_target_mesh(&CameraConfig::of(scenario)).map_err(|e| SimError::Sensor(Box::new(e)))?;
+    let table =
+        AirframeTable::of_mesh(&mesh.vertices_ft, scenario.target.size_ft).ok_or_else(|| {
+            SimError::Sensor(Box::new(SensorError::MeshWithoutExtent(
+                scenario.camera.mesh.clone().into(),
+            )))
+        })?;
+    Ok(Some(AirframeModel::new(&scenario.estimator, table)))
 }
 
 /// The target `[target]` describes, flying at least the run's duration: its motion (a

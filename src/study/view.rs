@@ -5,7 +5,7 @@
 use super::setting::Setting;
 use crate::frames::{EulerAngles, Vec3};
 use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use crate::sensing::{CaptureGeometry, FollowerPose};
+use crate::sensing::CaptureGeometry;
 
 /// The study-file section of the view keys (`view.yaw_deg`, ...).
 pub const VIEW_SECTION: &str = "view";
@@ -84,11 +84,7 @@ impl View {
     /// The capture geometry of this view: a level camera at the origin looking north, the
     /// target `range_ft` north of it.
     pub fn geometry(&self) -> CaptureGeometry {
-        CaptureGeometry::exact(
-            Vec3::new(self.range_ft, 0.0, 0.0),
-            self.attitude(),
-            FollowerPose::at_origin(EulerAngles::new(0.0, 0.0, 0.0)),
-        )
+        CaptureGeometry::on_axis(self.range_ft, self.attitude())
     }
 }
 
