@@ -607,6 +607,8 @@ pub struct Scenario {
     pub excitation: ExcitationSection,
     /// Camera (sensor `camera`).
     pub camera: super::CameraSection,
+    /// The world behind the target (sensor `camera`).
+    pub scene: super::SceneSection,
     /// The air the 6-DOF follower flies in (`follower.model = "aircraft"`).
     pub atmosphere: super::AtmosphereConfig,
     /// The 6-DOF follower's flight controller (`follower.model = "aircraft"`).
@@ -666,6 +668,7 @@ impl Scenario {
         }
         if self.sensor.mode == super::SensorMode::Camera {
             self.camera.validate(self.run.dt_s)?;
+            self.scene.validate()?;
         }
         self.atmosphere.validate()?;
         self.autopilot.validate()?;
