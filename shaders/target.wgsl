@@ -167,6 +167,9 @@ fn plane_distance(d: vec3<f32>, down_ft: f32) -> f32 {
 
 // The glare around the sun, added towards white.
 fn with_glare(colour: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    if (u.sun.w <= 0.0) {
+        return colour;
+    }
     let angle = acos(clamp(dot(d, u.sun.xyz), -1.0, 1.0));
     let veil = u.sun.w * exp(-pow(angle / 0.10472, 2.0));
     return mix(colour, vec3<f32>(1.0, 1.0, 1.0), veil);
@@ -186,8 +189,8 @@ fn fs_scene(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         let fog = exp(-ground_t / u.haze.x);
         colour = mix(u.sky_bottom.rgb, ground_colour(p), fog);
         distance = ground_t;
-    } else if (acos(clamp(dot(d, u.sun.xyz), -1.0, 1.0)) < 0.00873) {
-        // The sun's disc, half a degree across.
+    } else if (dot(d, u.sun.xyz) > 0.99996) {
+        // The sun's disc, 0.5° in radius (cos 0.5° = 0.99996): twice the real sun's.
         colour = vec3<f32>(1.0, 1.0, 0.97);
     }
     let cloud_t = plane_distance(d, u.clouds.x);
