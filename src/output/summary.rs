@@ -6,7 +6,7 @@ use super::track_check::TrackCheck;
 use crate::follower::{FlightEnvelope, LimitTicks, envelope::ANGLES_FROM_S};
 use crate::scenario::GimbalSection;
 use crate::scenario::{EstimatorKind, GuidanceLawKind};
-use crate::sensing::camera::WindowCounts;
+use crate::sensing::camera::{BackgroundCounts, WindowCounts};
 use crate::sensing::losses::LossEpisode;
 use crate::sim::{GimbalReading, Simulation, Snapshot, StageTimes};
 use crate::vision::BlobStatus;
@@ -139,6 +139,9 @@ pub struct Summary {
     /// (`windowed`, of which `redrawn_whole` were drawn again whole and `binned` binned),
     /// whole without a track (`whole_untracked`) or to be saved (`whole_saved`).
     pub frame_regions: Option<WindowCounts>,
+    /// The frames by what lay behind the target, by the truth (`[scene] kind = "world"`;
+    /// null otherwise): for reporting only.
+    pub background: Option<BackgroundCounts>,
     /// Wall time of the continuous loop's stages over the whole run, s.
     pub stage_wall_s: StageWall,
     /// The 6-DOF follower's flight envelope (aircraft runs).
@@ -194,6 +197,7 @@ pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("adapter", "the graphics adapter that rendered (camera runs)"),
     ("per_frame_ms", "mean wall time per frame of render submission, readback, vision, truth, estimator, guidance, flight control, plant and `integration` (the steps as a whole), ms (camera runs)"),
     ("frame_regions", "how the frames were drawn and measured: `windowed` in the tracking window, of which `redrawn_whole` drawn again whole and `binned` binned by `camera.measure_max_length_px`; `whole_untracked` without a track, `whole_saved` to be saved (camera runs)"),
+    ("background", "the frames by what lay behind the target, by the truth (`scene.kind = \"world\"`; null otherwise): `sky`, `ground`, `horizon` (ground on one side of the target, sky or cloud on another) and `cloud`, each with its `frames`, `lost` frames and `centroid_vs_silhouette_rms_px`"),
     ("stage_wall_s", "wall time of guidance, estimator, control, plant and all steps (`integration`) over the run, s"),
     ("aircraft", "the largest |α| and |β| after the first 5 s, the airspeed and throttle ranges, the largest surface deflections beside their limits, and the ticks at which a command was clamped, per actuator (6-DOF runs)"),
     ("gimbal", "the pan and tilt ranges (°) and the logged rows at which an axis sat within 0.1° of its limit (gimballed cameras)"),
@@ -410,6 +414,7 @@ impl Summary {
             adapter: camera.map(|c| c.adapter().to_string()),
             per_frame_ms,
             frame_regions: camera.map(|c| c.window_counts()),
+            background: camera.and_then(|c| c.background()),
             stage_wall_s: sim.stage_times().into(),
             aircraft,
             gimbal: GimbalSummary::of(logged, &sim.scenario().camera.gimbal),

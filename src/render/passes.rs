@@ -4,6 +4,7 @@
 use wgpu::util::DeviceExt;
 
 use crate::render::pipelines::Pipelines;
+use crate::render::region::ImageRegion;
 use crate::render::settings::{RenderSettings, Sky};
 use crate::render::targets::RenderTargets;
 use crate::render::uniforms::sky_top_bottom_rgb;
@@ -89,13 +90,15 @@ impl Passes {
         pass.draw(0..self.vertex_count, 0..1);
     }
 
-    /// The sky alone, one sample per pixel, over the whole image of `view`, with the whole
-    /// image's `uniforms`.
+    /// The sky alone, one sample per pixel, over the whole image of `view` or only over
+    /// `region` of it (the rest of the image is left as it was), with the whole image's
+    /// `uniforms`.
     pub(super) fn draw_sky(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         view: &wgpu::TextureView,
         uniforms: &wgpu::BindGroup,
+        region: Option<&ImageRegion>,
     ) {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("sky"),
@@ -104,7 +107,10 @@ impl Passes {
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(self.clear_color),
+                    load: match region {
+                        Some(_) => wgpu::LoadOp::Load,
+                        None => wgpu::LoadOp::Clear(self.clear_color),
+                    },
                     store: wgpu::StoreOp::Store,
                 },
             })],
@@ -114,6 +120,9 @@ impl Passes {
             multiview_mask: None,
         });
         if let Some(sky) = &self.pipelines.one_sample_sky {
+            if let Some(r) = region {
+                pass.set_scissor_rect(r.u0_px, r.v0_px, r.width_px, r.height_px);
+            }
             pass.set_bind_group(0, uniforms, &[]);
             pass.set_pipeline(sky);
             pass.draw(0..3, 0..1);

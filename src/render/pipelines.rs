@@ -1,4 +1,5 @@
-//! The render pipelines: the target, and the gradient sky drawn with it or alone.
+//! The render pipelines: the target, and the gradient sky or the world scene drawn with it or
+//! alone.
 
 use crate::render::settings::{RenderSettings, Sky};
 use crate::render::targets::{COLOR_FORMAT, DEPTH_FORMAT};
@@ -9,10 +10,11 @@ use crate::render::vertices::TargetVertex;
 pub(super) struct Pipelines {
     /// The target, `msaa_samples` per pixel, with depth.
     pub(super) target: wgpu::RenderPipeline,
-    /// The gradient sky in the target's pass (none for a uniform sky: the clear colour is
-    /// the sky).
+    /// The gradient sky or the world in the target's pass (none for a uniform sky: the clear
+    /// colour is the sky).
     pub(super) background: Option<wgpu::RenderPipeline>,
-    /// The one-sample sky of a frame whose target is drawn in a window (gradient sky only).
+    /// The one-sample sky of a frame whose target is drawn in a window (gradient sky or
+    /// world only).
     pub(super) one_sample_sky: Option<wgpu::RenderPipeline>,
 }
 
@@ -41,12 +43,16 @@ impl Pipelines {
             Some(depth_state(true, wgpu::CompareFunction::Greater)),
             samples,
         );
-        let needs_background_pass = matches!(settings.background.sky, Sky::VerticalGradient { .. });
+        let (needs_background_pass, program) = match settings.background.sky {
+            Sky::Uniform { .. } => (false, "background"),
+            Sky::VerticalGradient { .. } => (true, "background"),
+            Sky::World(_) => (true, "scene"),
+        };
         // The sky: `samples` per pixel when drawn with the target, one in the sky pass of a
         // windowed frame (no depth there).
         let sky = |sample_count: u32, depth: bool| {
             builder.create(
-                "background",
+                program,
                 &[],
                 depth.then(|| depth_state(false, wgpu::CompareFunction::Always)),
                 sample_count,

@@ -4,7 +4,8 @@
 //!
 //! A frame may be drawn and read back in an [`ImageRegion`] only, so that the camera's cost
 //! follows the target, not the image size: the region's sky is copied from a sky texture drawn
-//! once, the target's window (`render::window`, planned from the pose as for a whole frame) is
+//! once (a world scene, which follows the camera's pose, is drawn in the region alone), the
+//! target's window (`render::window`, planned from the pose as for a whole frame) is
 //! drawn and copied over it where they overlap, and only the region is copied into the staging
 //! buffer, mapped and unpadded. Nothing else of the image is touched, and the region holds the
 //! bytes the whole frame holds there.
@@ -22,7 +23,8 @@ use crate::render::projection::PixelWindow;
 pub use crate::render::readback::ReadbackError;
 use crate::render::readback::{MapReport, Staging};
 use crate::render::region::ImageRegion;
-use crate::render::settings::RenderSettings;
+use crate::render::scene::CameraInWorld;
+use crate::render::settings::{RenderSettings, Sky};
 use crate::render::targets::{RenderTargets, WindowTargetsCache, copy_window, sky_texture};
 use crate::render::uniforms::{UniformSlots, uniform_layout};
 use crate::render::vertices::{TargetVertex, flat_shaded_vertices};
@@ -99,6 +101,8 @@ pub struct Renderer {
     /// The frame [`Renderer::render`] reads back into and returns.
     frame: CameraImage,
     timings: RenderTimings,
+    /// Where the camera is in a world scene (unused under a screen-fixed sky).
+    camera_in_world: CameraInWorld,
 }
 
 impl Renderer {
@@ -167,9 +171,24 @@ impl Renderer {
                 .map(|n| NoiseGenerator::new(n.std_grey_levels, n.seed)),
             frame: CameraImage::filled(cam.width_px, cam.height_px, [0, 0, 0, 255]),
             timings: RenderTimings::default(),
+            camera_in_world: CameraInWorld::default(),
         };
-        renderer.paint_sky_texture();
+        if !renderer.has_world() {
+            renderer.paint_sky_texture();
+        }
         renderer
+    }
+
+    /// Whether the sky is a world scene (drawn per frame from the camera's pose).
+    fn has_world(&self) -> bool {
+        matches!(self.settings.background.sky, Sky::World(_))
+    }
+
+    /// Places the camera in the world scene for the frames begun from now on: the world is
+    /// drawn from this pose (the truth), the target from its pose in the camera's axes.
+    /// Frames under a screen-fixed sky do not depend on it.
+    pub fn set_camera_in_world(&mut self, camera: &CameraInWorld) {
+        self.camera_in_world = *camera;
     }
 
     /// Draws the sky texture, with the pass that draws the sky of a whole frame.
@@ -178,8 +197,12 @@ impl Renderer {
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("sky") });
         let view = self.sky.create_view(&Default::default());
-        self.passes
-            .draw_sky(&mut encoder, &view, self.uniform_slots.bind_group(false));
+        self.passes.draw_sky(
+            &mut encoder,
+            &view,
+            self.uniform_slots.bind_group(false),
+            None,
+        );
         self.queue.submit([encoder.finish()]);
     }
 
@@ -298,7 +321,9 @@ impl Renderer {
         {
             return Err(RenderError::NonFinitePose(*pose));
         }
-        let target_to_body = self.uniform_slots.write_image(&self.queue, pose);
+        let target_to_body =
+            self.uniform_slots
+                .write_image(&self.queue, pose, &self.camera_in_world);
         let cam = self.settings.intrinsics;
         let plan = if self.settings.target_window {
             plan_frame(&self.vertices_ft, pose, &cam)
@@ -340,19 +365,20 @@ impl Renderer {
                 .draw_target(encoder, &self.image, image_uniforms),
             FramePlan::SkyOnly => {
                 self.passes
-                    .draw_sky(encoder, &self.image.resolve_view, image_uniforms)
+                    .draw_sky(encoder, &self.image.resolve_view, image_uniforms, None)
             }
             FramePlan::Window(window) => {
                 self.passes
-                    .draw_sky(encoder, &self.image.resolve_view, image_uniforms);
+                    .draw_sky(encoder, &self.image.resolve_view, image_uniforms, None);
                 self.draw_window(encoder, &window, &whole);
             }
         }
     }
 
     /// The passes and copies of `plan` that leave, in `region` of the image's resolve
-    /// texture, the pixels the whole frame has there: the sky copied from the sky texture and
-    /// the target's window copied over it where they overlap. A plan that draws the target
+    /// texture, the pixels the whole frame has there: the sky copied from the sky texture (a
+    /// world scene drawn in the region) and the target's window copied over it where they
+    /// overlap. A plan that draws the target
     /// over the whole image (a near or large target) draws the whole frame.
     fn encode_region_passes(
         &mut self,
@@ -363,12 +389,18 @@ impl Renderer {
         if plan == FramePlan::Whole {
             return self.encode_passes(encoder, plan);
         }
-        let sky_copy = WindowCopy {
-            from_px: [region.u0_px, region.v0_px],
-            to_px: [region.u0_px, region.v0_px],
-            size_px: [region.width_px, region.height_px],
-        };
-        copy_window(encoder, &self.sky, &self.image.resolve_texture, &sky_copy);
+        if self.has_world() {
+            let uniforms = self.uniform_slots.bind_group(false);
+            self.passes
+                .draw_sky(encoder, &self.image.resolve_view, uniforms, Some(region));
+        } else {
+            let sky_copy = WindowCopy {
+                from_px: [region.u0_px, region.v0_px],
+                to_px: [region.u0_px, region.v0_px],
+                size_px: [region.width_px, region.height_px],
+            };
+            copy_window(encoder, &self.sky, &self.image.resolve_texture, &sky_copy);
+        }
         if let FramePlan::Window(window) = plan {
             self.draw_window(encoder, &window, region);
         }

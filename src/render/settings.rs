@@ -3,6 +3,7 @@
 
 use crate::frames::Vec3;
 use crate::render::camera::CameraIntrinsics;
+use crate::render::scene::WorldScene;
 
 /// Default sky colour (RGB, 0-255): light blue-grey, Rec. 601 luma 196.
 pub const DEFAULT_SKY_RGB: [u8; 3] = [175, 200, 230];
@@ -22,6 +23,10 @@ pub enum Sky {
         /// Colour at the bottom of the image.
         bottom_rgb: [u8; 3],
     },
+    /// The world fixed in NED: sky by elevation, ground, clouds and sun, drawn from the
+    /// camera's true pose ([`crate::render::Renderer::set_camera_in_world`]); the sun lights
+    /// the target in place of [`TargetShading::light_dir_body`].
+    World(WorldScene),
 }
 
 impl Default for Sky {
@@ -122,6 +127,9 @@ impl RenderSettings {
                 noise.std_grey_levels
             ));
         }
+        if let Sky::World(world) = &self.background.sky {
+            validate_world(world)?;
+        }
         let light = self.shading.light_dir_body;
         if !(light.iter().all(|x| x.is_finite()) && light.norm() > 0.0) {
             return bad(format!(
@@ -141,6 +149,46 @@ impl RenderSettings {
             shading: TargetShading::default(),
         }
     }
+}
+
+/// Checks the numbers of a world scene (the scenario's `[scene]` checks them first, with
+/// their keys).
+fn validate_world(world: &WorldScene) -> Result<(), String> {
+    let positive = |name: &str, x: f64| {
+        if x.is_finite() && x > 0.0 {
+            Ok(())
+        } else {
+            Err(format!("scene {name} {x} must be finite and > 0"))
+        }
+    };
+    positive("visibility_ft", world.visibility_ft)?;
+    if let Some(g) = &world.ground {
+        positive("field_ft", g.field_ft)?;
+        positive("road_width_ft", g.road_width_ft)?;
+        if g.road_every_fields == 0 || !g.down_ft.is_finite() {
+            return Err(format!(
+                "scene ground {g:?} needs roads every >= 1 field, a finite height"
+            ));
+        }
+    }
+    if let Some(c) = &world.clouds {
+        positive("cloud cell_ft", c.cell_ft)?;
+        if !((0.0..=1.0).contains(&c.coverage) && c.down_ft.is_finite()) {
+            return Err(format!(
+                "scene clouds {c:?} need coverage in [0, 1], a finite height"
+            ));
+        }
+    }
+    let sun = &world.sun;
+    if !(sun.towards_ned.iter().all(|x| x.is_finite())
+        && sun.towards_ned.norm() > 0.0
+        && (0.0..=1.0).contains(&sun.glare))
+    {
+        return Err(format!(
+            "scene sun {sun:?} needs a finite direction, glare in [0, 1]"
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -10,10 +10,11 @@ use crate::render::camera::TargetPoseInCamera;
 use crate::render::projection::{
     PixelWindow, body_from_target, clip_from_body, clip_from_body_in_window,
 };
+use crate::render::scene::{CameraInWorld, WorldScene, cloud_threshold};
 use crate::render::settings::{RenderSettings, Sky};
 
 /// The per-frame uniform block; layout matches `FrameUniforms` in `shaders/target.wgsl`
-/// (mat3x3 columns padded to vec4, total 192 bytes).
+/// (mat3x3 columns padded to vec4, total 352 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 struct FrameUniforms {
@@ -24,9 +25,17 @@ struct FrameUniforms {
     sky_top: [f32; 4],
     sky_bottom: [f32; 4],
     image: [f32; 4],
+    ned_from_camera: [[f32; 4]; 3],
+    camera_ned_ft: [f32; 4],
+    optics: [f32; 4],
+    ground: [f32; 4],
+    clouds: [f32; 4],
+    sun: [f32; 4],
+    haze: [f32; 4],
+    flags: [u32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 192);
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 352);
 
 /// The uniform buffer's two slots, the whole image's projection and the target window's, a
 /// bind group for each, and the block last written to the first.
@@ -43,6 +52,8 @@ pub(super) struct UniformSlots {
     uniforms: FrameUniforms,
     /// The whole image's projection of camera/body points.
     clip_from_body: Matrix4<f64>,
+    /// The world scene, when the sky is one (its sun lights the target).
+    world: Option<WorldScene>,
 }
 
 impl UniformSlots {
@@ -86,6 +97,10 @@ impl UniformSlots {
             buffer,
             uniforms,
             clip_from_body: clip_from_body(&settings.intrinsics),
+            world: match settings.background.sky {
+                Sky::World(world) => Some(world),
+                _ => None,
+            },
         };
         queue.write_buffer(&slots.buffer, 0, bytemuck::bytes_of(&slots.uniforms));
         slots
@@ -96,19 +111,27 @@ impl UniformSlots {
         if in_window { &self.window } else { &self.whole }
     }
 
-    /// Writes the first slot (the whole image's projection of the target at `pose`) and
-    /// returns the target-to-body transform.
+    /// Writes the first slot (the whole image's projection of the target at `pose`, and the
+    /// world seen from `camera` when the sky is a world) and returns the target-to-body
+    /// transform.
     pub(super) fn write_image(
         &mut self,
         queue: &wgpu::Queue,
         pose: &TargetPoseInCamera,
+        camera: &CameraInWorld,
     ) -> Matrix4<f64> {
+        if let Some(world) = &self.world {
+            let r = &camera.ned_from_camera;
+            self.uniforms.ned_from_camera = columns3_f32(r);
+            let p = camera.position_ned_ft;
+            self.uniforms.camera_ned_ft = [p.x as f32, p.y as f32, p.z as f32, 0.0];
+            let light = r.transpose() * world.sun.towards_ned.normalize();
+            self.uniforms.light_dir_body = [light.x as f32, light.y as f32, light.z as f32, 0.0];
+        }
         let target_to_body = body_from_target(pose);
         let clip_from_target = self.clip_from_body * target_to_body;
         self.uniforms.clip_from_target = columns_f32(&clip_from_target);
-        let r = &pose.body_from_target;
-        self.uniforms.body_from_target =
-            std::array::from_fn(|c| [r[(0, c)] as f32, r[(1, c)] as f32, r[(2, c)] as f32, 0.0]);
+        self.uniforms.body_from_target = columns3_f32(&pose.body_from_target);
         queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(&self.uniforms));
         target_to_body
     }
@@ -126,6 +149,7 @@ impl UniformSlots {
         in_window.clip_from_target =
             columns_f32(&(clip_from_body_in_window(&settings.intrinsics, window) * target_to_body));
         in_window.image[1] = window.v0_px as f32;
+        in_window.image[2] = window.u0_px as f32;
         queue.write_buffer(
             &self.buffer,
             self.window_offset,
@@ -161,7 +185,13 @@ pub(super) fn sky_top_bottom_rgb(sky: &Sky) -> ([u8; 3], [u8; 3]) {
             top_rgb,
             bottom_rgb,
         } => (top_rgb, bottom_rgb),
+        Sky::World(world) => (world.zenith_rgb, world.horizon_rgb),
     }
+}
+
+/// A rotation's columns, each padded to 4 floats (a WGSL mat3x3).
+fn columns3_f32(r: &crate::frames::Mat3) -> [[f32; 4]; 3] {
+    std::array::from_fn(|c| [r[(0, c)] as f32, r[(1, c)] as f32, r[(2, c)] as f32, 0.0])
 }
 
 fn unit_rgb(rgb: [u8; 3]) -> [f32; 4] {
@@ -193,5 +223,41 @@ fn initial_uniforms(settings: &RenderSettings) -> FrameUniforms {
         sky_top: unit_rgb(top),
         sky_bottom: unit_rgb(bottom),
         image: [settings.intrinsics.height_px as f32, 0.0, 0.0, 0.0],
+        ned_from_camera: columns3_f32(&crate::frames::Mat3::identity()),
+        camera_ned_ft: [0.0; 4],
+        optics: [
+            settings.intrinsics.cx() as f32,
+            settings.intrinsics.cy() as f32,
+            settings.intrinsics.focal_px as f32,
+            0.0,
+        ],
+        ..world_uniforms(&settings.background.sky)
     }
+}
+
+/// The blocks' world-scene fields (zero, and off, without a world).
+fn world_uniforms(sky: &Sky) -> FrameUniforms {
+    let mut uniforms = FrameUniforms::zeroed();
+    let Sky::World(world) = sky else {
+        return uniforms;
+    };
+    if let Some(g) = &world.ground {
+        let road_period_ft = g.field_ft * f64::from(g.road_every_fields);
+        uniforms.ground =
+            [g.down_ft, g.field_ft, road_period_ft, g.road_width_ft].map(|x| x as f32);
+    }
+    if let Some(c) = &world.clouds {
+        let threshold = cloud_threshold(c.coverage, world.seed);
+        uniforms.clouds = [c.down_ft as f32, c.cell_ft as f32, threshold, 0.0];
+    }
+    let s = world.sun.towards_ned.normalize();
+    uniforms.sun = [s.x, s.y, s.z, world.sun.glare].map(|x| x as f32);
+    uniforms.haze = [world.visibility_ft as f32, 0.0, 0.0, 0.0];
+    uniforms.flags = [
+        1,
+        u32::from(world.ground.is_some()),
+        u32::from(world.clouds.is_some()),
+        world.seed,
+    ];
+    uniforms
 }

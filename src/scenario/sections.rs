@@ -607,6 +607,8 @@ pub struct Scenario {
     pub excitation: ExcitationSection,
     /// Camera (sensor `camera`).
     pub camera: super::CameraSection,
+    /// The world behind the target (sensor `camera`).
+    pub scene: super::SceneSection,
     /// The air the 6-DOF follower flies in (`follower.model = "aircraft"`).
     pub atmosphere: super::AtmosphereConfig,
     /// The 6-DOF follower's flight controller (`follower.model = "aircraft"`).
@@ -659,6 +661,7 @@ impl Scenario {
         self.sensor
             .validate(self.run.dt_s, self.has_formation_command())?;
         self.camera.validate()?;
+        self.scene.validate()?;
         if self.sensor.mode == super::SensorMode::Camera {
             self.camera.validate_rate(self.run.dt_s)?;
         }

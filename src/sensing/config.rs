@@ -2,7 +2,7 @@
 //! run it needs, derived from a scenario in one place ([`SensorConfig::of`]) so that the
 //! sensors themselves never see the whole scenario.
 
-use crate::scenario::{CameraSection, Scenario, SensorMode, SensorSection};
+use crate::scenario::{CameraSection, Scenario, SceneSection, SensorMode, SensorSection};
 
 /// The camera's configuration.
 #[derive(Debug, Clone, Copy)]
@@ -17,6 +17,10 @@ pub struct CameraConfig<'a> {
     pub dt_s: f64,
     /// Frames whose index is a multiple of this are saved, so drawn whole (0: none).
     pub frames_every: u32,
+    /// `[scene]`: the world behind the target.
+    pub scene: &'a SceneSection,
+    /// The follower's start's NED down coordinate, ft (the scene's heights refer to it).
+    pub start_down_ft: f64,
 }
 
 impl<'a> CameraConfig<'a> {
@@ -28,6 +32,8 @@ impl<'a> CameraConfig<'a> {
             seed: scenario.run.seed,
             dt_s: scenario.run.dt_s,
             frames_every: scenario.output.frames_every,
+            scene: &scenario.scene,
+            start_down_ft: scenario.follower.initial_position_ft[2],
         }
     }
 }

@@ -222,3 +222,45 @@ pub fn cpu_coverage(
     }
     out
 }
+
+/// The world scene of the scene tests: ground 300 ft below the origin (fields of 400 ft, a
+/// road every 4), clouds 600 ft above it covering `cloud_coverage` (none at 0), the sun at
+/// `sun_deg` = [azimuth, elevation] with `glare`, seed `seed`.
+pub fn world_scene(
+    cloud_coverage: f64,
+    sun_deg: [f64; 2],
+    glare: f64,
+    seed: u32,
+) -> wingman::render::WorldScene {
+    use wingman::render::{Clouds, Ground, Sun, WorldScene};
+    WorldScene {
+        zenith_rgb: [70, 110, 190],
+        horizon_rgb: [200, 212, 228],
+        ground: Some(Ground {
+            down_ft: 300.0,
+            field_ft: 400.0,
+            road_every_fields: 4,
+            road_width_ft: 30.0,
+        }),
+        clouds: (cloud_coverage > 0.0).then_some(Clouds {
+            down_ft: -600.0,
+            cell_ft: 500.0,
+            coverage: cloud_coverage,
+        }),
+        sun: Sun::at(sun_deg[0], sun_deg[1], glare),
+        visibility_ft: 8000.0,
+        seed,
+    }
+}
+
+/// A camera at the origin turned by 3-2-1 angles `attitude_deg` (roll, pitch, yaw, deg) from
+/// NED.
+pub fn world_camera(attitude_deg: [f64; 3]) -> wingman::render::CameraInWorld {
+    let [phi, theta, psi] = attitude_deg.map(f64::to_radians);
+    wingman::render::CameraInWorld {
+        ned_from_camera: EulerAngles::new(phi, theta, psi)
+            .body_from_ned()
+            .transpose(),
+        position_ned_ft: Vec3::zeros(),
+    }
+}

@@ -60,6 +60,9 @@ pub(super) struct MeasurementAudit {
     silhouette: SilhouetteCentroid,
     errors: MeasurementErrors,
     last_truth: Option<ImageTruth>,
+    /// The last frame's squared distance from the silhouette's true centroid, px² (None when
+    /// it was not measured or the silhouette is not known).
+    last_silhouette_sq_px2: Option<f64>,
 }
 
 impl MeasurementAudit {
@@ -81,6 +84,7 @@ impl MeasurementAudit {
                 (m.y_i_px - t.y_i_px).powi(2) + (m.z_i_px - t.z_i_px).powi(2);
             self.errors.length_sq_px2 += (m.b_i_px - t.b_i_px).powi(2);
         }
+        self.last_silhouette_sq_px2 = None;
         if frame.ok {
             self.add_silhouette_error(frame, mesh, intrinsics);
         }
@@ -100,8 +104,10 @@ impl MeasurementAudit {
         if let Some((y_true, z_true)) = truth {
             let blob = frame.blob;
             let (y, z) = intrinsics.image_from_pixel(blob.centroid_u_px, blob.centroid_v_px);
+            let sq_px2 = (y - y_true).powi(2) + (z - z_true).powi(2);
             self.errors.silhouette_count += 1;
-            self.errors.silhouette_centroid_sq_px2 += (y - y_true).powi(2) + (z - z_true).powi(2);
+            self.errors.silhouette_centroid_sq_px2 += sq_px2;
+            self.last_silhouette_sq_px2 = Some(sq_px2);
         }
     }
 
@@ -109,6 +115,12 @@ impl MeasurementAudit {
     /// camera).
     pub fn last_truth(&self) -> Option<ImageTruth> {
         self.last_truth
+    }
+
+    /// The last frame's squared distance from the silhouette's true centroid, px² (None when
+    /// it was not measured or the silhouette is not known).
+    pub fn last_silhouette_sq_px2(&self) -> Option<f64> {
+        self.last_silhouette_sq_px2
     }
 
     /// Measurement errors against truth.

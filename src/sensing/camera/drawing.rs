@@ -12,6 +12,7 @@ use crate::render::image::CameraImage;
 use crate::render::mesh::TargetMesh;
 use crate::render::region::ImageRegion;
 use crate::render::renderer::{PendingFrame, Renderer};
+use crate::render::scene::CameraInWorld;
 use crate::render::settings::RenderSettings;
 use crate::scenario::CameraPipeline;
 use crate::sensing::binning::{Binning, binned_intrinsics, binned_region};
@@ -33,6 +34,15 @@ pub struct WindowCounts {
     pub redrawn_whole: u64,
     /// Of the `windowed`, drawn and measured binned (`camera.measure_max_length_px`).
     pub binned: u64,
+}
+
+/// Where the camera truly is when `exposure` is taken: what a world scene is drawn from.
+fn camera_in_world(exposure: &Exposure) -> CameraInWorld {
+    let follower = &exposure.geometry.follower;
+    CameraInWorld {
+        ned_from_camera: follower.camera_from_ned().transpose(),
+        position_ned_ft: follower.position_ned_ft,
+    }
 }
 
 /// A frame in flight: drawn on the GPU, not read back yet, and its number.
@@ -195,7 +205,9 @@ impl FrameDrawing {
         let buffer = buffer_of(exposure.index);
         self.factors[buffer] = factor;
         let pose = self.drawn_pose(exposure);
-        let pending = self.renderer_for(factor)?.begin_frame_in(&pose, region)?;
+        let renderer = self.renderer_for(factor)?;
+        renderer.set_camera_in_world(&camera_in_world(exposure));
+        let pending = renderer.begin_frame_in(&pose, region)?;
         self.windows[buffer] = window;
         Ok(pending)
     }
@@ -214,6 +226,8 @@ impl FrameDrawing {
         let pose = self.drawn_pose(exposure);
         let buffer = buffer_of(exposure.index);
         self.factors[buffer] = 1;
+        self.renderer
+            .set_camera_in_world(&camera_in_world(exposure));
         let redrawn = self.renderer.begin_frame_in(&pose, &whole)?;
         self.finish(&mut Some((redrawn, exposure.index)), timings)?;
         self.windows[buffer] = None;

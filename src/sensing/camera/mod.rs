@@ -24,12 +24,14 @@
 //! ([`CaptureGeometry::navigation`]).
 
 mod audit;
+mod backdrop;
 mod drawing;
 mod metering;
 mod schedule;
 mod setup;
 
 pub use audit::MeasurementErrors;
+pub use backdrop::{BackdropFrames, BackgroundCounts};
 pub use drawing::WindowCounts;
 pub use setup::{SensorError, load_target_mesh};
 
@@ -42,8 +44,10 @@ use crate::render::gpu::GpuContext;
 use crate::render::image::CameraImage;
 use crate::render::region::ImageRegion;
 use crate::render::renderer::RenderTimings;
+use crate::render::settings::Sky;
 use crate::vision::{BlobMeasurement, BlobStatus, ImageMeasurement, ImageTruth, TrackingWindow};
 use audit::{AuditedFrame, MeasurementAudit};
+use backdrop::{BackdropAudit, BackdropFrame};
 use drawing::{DrawingSetup, FrameDrawing, InFlight};
 use metering::{Metering, RegionOutcome};
 use schedule::{Exposure, FrameSchedule};
@@ -120,6 +124,8 @@ pub struct CameraSensor {
     drawing: FrameDrawing,
     metering: Metering,
     audit: MeasurementAudit,
+    /// What lay behind the target in each frame, in a world scene.
+    backdrop: Option<BackdropAudit>,
     /// The last frame measured, its record and its blob.
     last: Option<(FrameRecord, BlobMeasurement)>,
     lost_frames: u64,
@@ -149,7 +155,11 @@ impl CameraSensor {
     pub fn on_gpu(config: &CameraConfig, gpu: &GpuContext) -> Result<Self, SensorError> {
         let camera = config.camera;
         let mesh = load_target_mesh(config)?;
-        let settings = setup::render_settings(camera, config.seed);
+        let settings = setup::render_settings(config);
+        let backdrop = match settings.background.sky {
+            Sky::World(world) => Some(BackdropAudit::new(world)),
+            _ => None,
+        };
         let metering = Metering::new(camera)?;
         let tracker = TrackingWindow::new(
             settings.intrinsics,
@@ -172,6 +182,7 @@ impl CameraSensor {
             drawing: FrameDrawing::new(gpu, mesh, drawing_setup)?,
             metering,
             audit: MeasurementAudit::default(),
+            backdrop,
             last: None,
             lost_frames: 0,
             timings: CameraTimings::default(),
@@ -275,6 +286,15 @@ impl CameraSensor {
             ok,
         };
         let truth = self.audit.audit(&audited, self.drawing.mesh(), &intrinsics);
+        if let (Some(backdrop), Some(truth)) = (&mut self.backdrop, &truth) {
+            let frame = BackdropFrame {
+                truth,
+                follower: &geometry.follower,
+                ok,
+                silhouette_sq_px2: self.audit.last_silhouette_sq_px2(),
+            };
+            backdrop.count(&frame, &intrinsics);
+        }
         let r_measured = match (ok, measured) {
             (true, Some(m)) => Some(scaled_relative_position(
                 &m,
@@ -355,6 +375,12 @@ impl CameraSensor {
     /// Time spent per stage.
     pub fn timings(&self) -> CameraTimings {
         self.timings
+    }
+
+    /// The frames by what lay behind the target (by the truth), in a world scene (None under
+    /// a screen-fixed sky).
+    pub fn background(&self) -> Option<BackgroundCounts> {
+        self.backdrop.as_ref().map(BackdropAudit::counts)
     }
 
     /// How the frames were drawn: in the tracking window or whole, and why.

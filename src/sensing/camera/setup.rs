@@ -5,8 +5,9 @@ use crate::render::camera::CameraIntrinsics;
 use crate::render::gpu::GpuError;
 use crate::render::mesh::{MeshError, TargetMesh};
 use crate::render::renderer::RenderError;
+use crate::render::scene::{Clouds, Ground, Sun, WorldScene};
 use crate::render::settings::{Background, PixelNoise, RenderSettings, Sky, TargetShading};
-use crate::scenario::{CameraSection, DEFAULT_MESH, SkyKind};
+use crate::scenario::{CameraSection, DEFAULT_MESH, SceneKind, SceneSection, SkyKind};
 use crate::sensing::config::CameraConfig;
 use crate::vision::{ImageSizeError, VisionConfigError};
 use std::path::{Path, PathBuf};
@@ -38,20 +39,22 @@ pub enum SensorError {
     Binning(u32),
 }
 
-/// The renderer's settings for a `[camera]` section.
-pub(super) fn render_settings(camera: &CameraSection, seed: u64) -> RenderSettings {
-    let sky = match camera.sky {
-        SkyKind::Uniform => Sky::Uniform {
+/// The renderer's settings for a camera's configuration.
+pub(super) fn render_settings(config: &CameraConfig) -> RenderSettings {
+    let camera = config.camera;
+    let sky = match (config.scene.kind, camera.sky) {
+        (SceneKind::World, _) => Sky::World(world_scene(config.scene, config.start_down_ft)),
+        (SceneKind::Sky, SkyKind::Uniform) => Sky::Uniform {
             rgb: camera.sky_rgb,
         },
-        SkyKind::Gradient => Sky::VerticalGradient {
+        (SceneKind::Sky, SkyKind::Gradient) => Sky::VerticalGradient {
             top_rgb: camera.sky_top_rgb,
             bottom_rgb: camera.sky_bottom_rgb,
         },
     };
     let noise = (camera.noise_std_grey > 0.0).then_some(PixelNoise {
         std_grey_levels: camera.noise_std_grey,
-        seed,
+        seed: config.seed,
     });
     RenderSettings {
         intrinsics: intrinsics(camera),
@@ -59,6 +62,33 @@ pub(super) fn render_settings(camera: &CameraSection, seed: u64) -> RenderSettin
         target_window: true,
         background: Background { sky, noise },
         shading: TargetShading::default(),
+    }
+}
+
+/// The world of a `[scene]` section whose heights refer to a start at NED down
+/// `start_down_ft`.
+pub(super) fn world_scene(scene: &SceneSection, start_down_ft: f64) -> WorldScene {
+    WorldScene {
+        zenith_rgb: scene.zenith_rgb,
+        horizon_rgb: scene.horizon_rgb,
+        ground: scene.ground.then_some(Ground {
+            down_ft: start_down_ft + scene.ground_below_start_ft,
+            field_ft: scene.field_ft,
+            road_every_fields: scene.road_every_fields,
+            road_width_ft: scene.road_width_ft,
+        }),
+        clouds: (scene.cloud_coverage > 0.0).then_some(Clouds {
+            down_ft: start_down_ft - scene.cloud_above_start_ft,
+            cell_ft: scene.cloud_size_ft,
+            coverage: scene.cloud_coverage,
+        }),
+        sun: Sun::at(
+            scene.sun_azimuth_deg,
+            scene.sun_elevation_deg,
+            scene.sun_glare,
+        ),
+        visibility_ft: scene.visibility_ft,
+        seed: scene.seed,
     }
 }
 
