@@ -15,7 +15,7 @@ use wingman::render::mesh::TargetMesh;
 use wingman::scenario::EstimatorSection;
 use wingman::study::results::read_record;
 use wingman::study::view::View;
-use wingman::study::{Plan, Progress, SweepOptions, run_sweep};
+use wingman::study::{Plan, run_sweep};
 
 const VIEWS: usize = 50;
 const RANGE_FT: f64 = 120.0;
@@ -64,12 +64,7 @@ fn table_matches_rendered_silhouettes() {
     std::fs::write(&path, study).unwrap();
     let plan = Plan::load(&path).unwrap_or_else(|e| panic!("{e}"));
     let out = dir.path().join("out");
-    let options = SweepOptions {
-        out_dir: out.clone(),
-        jobs: 1,
-        shard: None,
-        progress: Progress::Quiet,
-    };
+    let options = common::quiet_sweep_into(&out);
     run_sweep(&plan, &options).unwrap_or_else(|e| panic!("{e}"));
 
     let unscaled = TargetMesh::target_aircraft(1.0).unwrap();

@@ -13,9 +13,11 @@
 //! pipeline locates to a fraction of a pixel: within 1.5 px. The implied size is
 //! R bI / √(l² + yI² + zI²) with the measured centroid on the axis within a pixel.
 
+mod common;
+
 use std::path::Path;
 use wingman::study::results::{CaseRecord, read_record};
-use wingman::study::{Plan, Progress, SweepOptions, run_sweep};
+use wingman::study::{Plan, run_sweep};
 
 const LENGTH_FT: f64 = 4.0;
 const WIDTH_FT: f64 = 8.0;
@@ -79,12 +81,7 @@ fn box_face_on_and_edge_on_match_closed_forms() {
     let study = setup(dir.path());
     let plan = Plan::load(&study).unwrap_or_else(|e| panic!("{e}"));
     let out = dir.path().join("out");
-    let options = SweepOptions {
-        out_dir: out.clone(),
-        jobs: 1,
-        shard: None,
-        progress: Progress::Quiet,
-    };
+    let options = common::quiet_sweep_into(&out);
     let report = run_sweep(&plan, &options).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(
         (report.cases, report.tally.counts.as_str()),

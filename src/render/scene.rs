@@ -178,6 +178,25 @@ fn plane_distance_ft(from_ned_ft: &Vec3, dir_ned: &Vec3, down_ft: f64) -> Option
 }
 
 impl WorldScene {
+    /// A test scene: black sky, fields and roads 300 ft below, no cloud, the sun 30° up.
+    #[cfg(test)]
+    pub(crate) fn ground_300_ft_below() -> Self {
+        Self {
+            zenith_rgb: [0; 3],
+            horizon_rgb: [0; 3],
+            ground: Some(Ground {
+                down_ft: 300.0,
+                field_ft: 400.0,
+                road_every_fields: 4,
+                road_width_ft: 30.0,
+            }),
+            clouds: None,
+            sun: Sun::at(0.0, 30.0, 0.0),
+            visibility_ft: 1e4,
+            seed: 1,
+        }
+    }
+
     /// What lies along the ray `dir_ned` (NED, any length) from a camera at `from_ned_ft`:
     /// the nearer of the ground and a cloudy part of the sheet, else sky. `threshold` is
     /// [`cloud_threshold`] of the clouds' coverage.
@@ -243,20 +262,7 @@ mod tests {
     /// Level rays see sky above and ground below; a cloudy sheet overhead hides the sky.
     #[test]
     fn backdrop_follows_the_ray() {
-        let mut scene = WorldScene {
-            zenith_rgb: [0; 3],
-            horizon_rgb: [0; 3],
-            ground: Some(Ground {
-                down_ft: 300.0,
-                field_ft: 400.0,
-                road_every_fields: 4,
-                road_width_ft: 30.0,
-            }),
-            clouds: None,
-            sun: Sun::at(0.0, 30.0, 0.0),
-            visibility_ft: 1e4,
-            seed: 1,
-        };
+        let mut scene = WorldScene::ground_300_ft_below();
         let origin = Vec3::zeros();
         assert_eq!(
             scene.backdrop(&origin, &Vec3::new(1.0, 0.0, 0.1), 0.0),

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 use wingman::output::{RunReport, run_to_directory};
 use wingman::scenario::Scenario;
+use wingman::study::{Progress, SweepOptions};
 
 /// The repository root (where `scenarios/` lives).
 pub fn repo_root() -> PathBuf {
@@ -273,4 +274,14 @@ pub fn file_names(dir: &Path) -> Vec<String> {
         .unwrap_or_default();
     names.sort();
     names
+}
+
+/// A sweep into `out` on one worker, without a progress line.
+pub fn quiet_sweep_into(out: &Path) -> SweepOptions {
+    SweepOptions {
+        out_dir: out.to_path_buf(),
+        jobs: 1,
+        shard: None,
+        progress: Progress::Quiet,
+    }
 }

@@ -170,23 +170,9 @@ impl BackdropAudit {
 mod tests {
     use super::*;
     use crate::frames::EulerAngles;
-    use crate::render::scene::{Ground, Sun};
 
     fn audit() -> BackdropAudit {
-        BackdropAudit::new(WorldScene {
-            zenith_rgb: [0; 3],
-            horizon_rgb: [0; 3],
-            ground: Some(Ground {
-                down_ft: 300.0,
-                field_ft: 400.0,
-                road_every_fields: 4,
-                road_width_ft: 30.0,
-            }),
-            clouds: None,
-            sun: Sun::at(0.0, 30.0, 0.0),
-            visibility_ft: 1e4,
-            seed: 1,
-        })
+        BackdropAudit::new(WorldScene::ground_300_ft_below())
     }
 
     /// A level camera 300 ft above the plane sees its horizon on the image's centre row: a
