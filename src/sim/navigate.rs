@@ -146,13 +146,27 @@ impl Simulation {
         self.own.nominal_mount * self.navigated_attitude(follower_x).body_from_ned()
     }
 
-    /// A delivered frame as the estimator gets it: stamped with the exposure clock's jitter.
-    pub(super) fn stamped(&mut self, record: &FrameRecord) -> FrameRecord {
+    /// A delivered frame as the estimator gets it: stamped with the exposure clock's jitter,
+    /// and with the follower's navigated position looked up at that stamp, as the follower's
+    /// own software does (its position then, brought along its navigated velocity
+    /// `follower_velocity_ned_fps`; the attitude's change over a few milliseconds is left
+    /// out). A stamp error so moves the frame's time and its own-motion reference together,
+    /// and only the relative motion over the error reaches the estimator.
+    pub(super) fn stamped(
+        &mut self,
+        record: &FrameRecord,
+        follower_velocity_ned_fps: &Vec3,
+    ) -> FrameRecord {
         match self.own.sensors.camera_mut() {
-            Some(camera) => FrameRecord {
-                t_s: camera.stamp_s(record.t_s),
-                ..*record
-            },
+            Some(camera) => {
+                let t_s = camera.stamp_s(record.t_s);
+                FrameRecord {
+                    t_s,
+                    follower_position_ned_ft: record.follower_position_ned_ft
+                        + follower_velocity_ned_fps * (t_s - record.t_s),
+                    ..*record
+                }
+            }
             None => *record,
         }
     }

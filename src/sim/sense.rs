@@ -29,7 +29,7 @@ impl Simulation {
                 if let Some(on_target) = record.on_target() {
                     self.false_locks.record(record.t_s, on_target);
                 }
-                let stamped = self.stamped(&record);
+                let stamped = self.stamped(&record, &velocity);
                 self.estimator.deliver(&stamped, &velocity)
             }
             None => {
