@@ -47,8 +47,10 @@ fn assert_rejected(text: &str, extra: &[&str], expected: &[&str]) {
         assert!(stderr.contains("bad.toml"), "file not named: {stderr}");
     }
     assert!(stderr.len() < 200, "{} characters: {stderr}", stderr.len());
+    // The temporary folder's random name may hold "u8" or "f64" itself.
+    let message = stderr.replace(&path.display().to_string(), "bad.toml");
     for rust_name in ["f64", "u32", "u64", "u8", "struct "] {
-        assert!(!stderr.contains(rust_name), "Rust type name: {stderr}");
+        assert!(!message.contains(rust_name), "Rust type name: {stderr}");
     }
     for fragment in expected {
         assert!(
