@@ -103,6 +103,8 @@ impl KalmanTracker {
             noise: FilterNoise {
                 jerk_psd: section.jerk_psd,
                 inverse_size_psd: section.inverse_size_psd,
+                gust_sigma_fps: section.target_gust_sigma_fps,
+                gust_time_s: section.target_gust_time_s,
             },
             prior: FilterPrior {
                 size_ft: b0_ft,

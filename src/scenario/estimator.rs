@@ -70,6 +70,15 @@ pub struct EstimatorSection {
     /// (seed 8.2) by a few percent over tens of seconds: choice 1e-7 (σ_β grows by
     /// 1e-7^½ · √30 s ≈ 0.0017/ft, 1.4% of 1/8 ft, in 30 s without information).
     pub inverse_size_psd: f64,
+    /// σ_g, the stationary σ per axis of the target's gust velocity about its path, ft/s
+    /// (docs/equations.md, The target's gust velocity): 0 (default) leaves it out, as for the
+    /// seed's kinematic target, which has none. An aircraft target in light turbulence
+    /// wanders about its path by about 1-2 ft/s (measured in docs/findings.md, The realistic
+    /// world).
+    pub target_gust_sigma_fps: f64,
+    /// τ_g, the gust velocity's correlation time, s: the time over which the target's
+    /// response to a gust fades (its phugoid and its autopilot's speed hold; choice 2 s).
+    pub target_gust_time_s: f64,
     /// σ of the image measurements (yI, zI, bI), px, that the measurement covariance maps
     /// through the Jacobian of (3.3)-(3.12). Choice: the vision pipeline's centroid is within
     /// 0.2 px of the silhouette's, and the silhouette's centroid moves by a few pixels from
@@ -130,6 +139,8 @@ impl Default for EstimatorSection {
             log_kalman: false,
             jerk_psd: 0.01,
             inverse_size_psd: 1e-7,
+            target_gust_sigma_fps: 0.0,
+            target_gust_time_s: 2.0,
             pixel_sigma_px: [1.0, 1.0, 2.0],
             measurement_inflation: 2.0,
             scaled_sigma_floor: 1e-4,
@@ -156,6 +167,18 @@ impl EstimatorSection {
             self.inverse_size_psd,
             0.0,
             1.0,
+        )?;
+        check::in_closed(
+            "estimator.target_gust_sigma_fps",
+            self.target_gust_sigma_fps,
+            0.0,
+            1e3,
+        )?;
+        check::in_closed(
+            "estimator.target_gust_time_s",
+            self.target_gust_time_s,
+            0.01,
+            1e4,
         )?;
         for (i, sigma) in self.pixel_sigma_px.iter().enumerate() {
             check::in_closed(&format!("estimator.pixel_sigma_px[{i}]"), *sigma, 1e-3, 1e3)?;
