@@ -1,10 +1,37 @@
 //! Intelligent excitation (4.31, 2.28): R*_c = R_c + a(t) sin(ωt) E, with an amplitude that
-//! grows with the recent tracking error and fades to k3 once the error is small.
+//! grows with the recent tracking error and fades to k3 once the error is small. With a camera
+//! the amplitude may be bounded by the field of view ([`ViewBound`]), in feet and degrees at
+//! the target's estimated size, whatever units it is set in.
 
 use super::signals::{ExcitationErrors, ExcitationOffset};
 use crate::frames::Vec3;
 use crate::scenario::{ExcitationError, ExcitationMode, ExcitationSection, ExcitationUnits};
 use std::collections::VecDeque;
+
+/// What the camera's field of view allows the excitation (`excitation.fov_fraction`): the
+/// bearing swing a/L of an offset a at the commanded range L plus the half angle the target
+/// subtends there, atan(b̂ / 2L), stays within `fraction` of the half field of view θ along the
+/// excitation's direction: a ≤ L tan(f θ - atan(b̂ / 2L)) ft (0 when the target alone fills
+/// that much). In scaled units that is divided by b̂, so a target larger than the prior is not
+/// swung further in feet: the bound follows the estimate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ViewBound {
+    /// f, in (0, 1].
+    pub fraction: f64,
+    /// L, the commanded range, ft.
+    pub range_ft: f64,
+    /// tan θ, the half field of view along the excitation's direction.
+    pub tan_half_fov: f64,
+}
+
+impl ViewBound {
+    /// The largest offset, ft, for a target of size `size_ft`.
+    pub fn max_offset_ft(&self, size_ft: f64) -> f64 {
+        let target_half_rad = (0.5 * size_ft / self.range_ft).atan();
+        let swing_rad = self.fraction * self.tan_half_fov.atan() - target_half_rad;
+        self.range_ft * swing_rad.max(0.0).tan()
+    }
+}
 
 /// Amplitude state of the intelligent excitation. Fed once per tick with eᵀe; evaluated at
 /// any time within the next step.
@@ -31,17 +58,25 @@ pub struct Excitation {
     period_index: u64,
     amplitude: f64,
     amplitude_rate: f64,
+    /// The field of view's bound, if any.
+    view: Option<ViewBound>,
+    /// b̂ the bound is taken at, ft (the prior until the estimator has one).
+    size_ft: f64,
 }
 
 impl Excitation {
     /// Excitation from its scenario section for a simulation with step `dt_s`, its amplitude
-    /// capped at `cap` (in its units; the field of view's, see
-    /// [`ExcitationSection::fov_fraction`]) when given.
-    pub fn new(section: &ExcitationSection, dt_s: f64, cap: Option<f64>) -> Self {
+    /// bounded by the field of view `view` (when given) at b̂ = `size_ft` until the estimator
+    /// reports one.
+    pub fn new(
+        section: &ExcitationSection,
+        dt_s: f64,
+        view: Option<ViewBound>,
+        size_ft: f64,
+    ) -> Self {
         let direction = Vec3::from(section.direction);
-        let k1 = cap.map_or(section.k1, |c| section.k1.min(c));
-        let k3 = section.k3.min(k1);
-        Self {
+        let (k1, k3) = (section.k1, section.k3);
+        let mut excitation = Self {
             mode: section.mode,
             units: section.units,
             error: section.error,
@@ -63,30 +98,60 @@ impl Excitation {
                 k1
             },
             amplitude_rate: 0.0,
+            view,
+            size_ft,
+        };
+        excitation.apply_view_bound();
+        excitation
+    }
+
+    /// The field of view's bound at b̂, in the excitation's units (infinite without one).
+    fn view_cap(&self) -> f64 {
+        self.view.map_or(f64::INFINITY, |view| {
+            let cap_ft = view.max_offset_ft(self.size_ft);
+            match self.units {
+                ExcitationUnits::Ft => cap_ft,
+                ExcitationUnits::Scaled => cap_ft / self.size_ft,
+            }
+        })
+    }
+
+    /// Holds a(t) within the field of view's bound (ȧ = 0 while it holds it there).
+    fn apply_view_bound(&mut self) {
+        let cap = self.view_cap();
+        if self.amplitude > cap {
+            self.amplitude = cap;
+            self.amplitude_rate = 0.0;
         }
     }
 
     /// Records what the amplitude follows at the end of the step that ends at `t_end_s`: the
     /// energy eᵀe of the error the section asks for (measured or estimated), or the
-    /// estimator's σ_b, ft (`uncertainty` mode; none before the filter starts: a = k1).
+    /// estimator's σ_b, ft (`uncertainty` mode; none before the filter starts: a = k1); and
+    /// the estimator's (b̂, σ_b), ft, when it has them, which the field of view's bound
+    /// follows.
     pub fn record_errors(
         &mut self,
         t_end_s: f64,
         errors: &ExcitationErrors,
-        size_sigma_ft: Option<f64>,
+        size_ft: Option<(f64, f64)>,
     ) {
+        if let Some((b_hat_ft, _)) = size_ft {
+            self.size_ft = b_hat_ft;
+        }
         if self.mode == ExcitationMode::Uncertainty {
-            self.amplitude = size_sigma_ft.map_or(self.k1, |sigma| {
+            self.amplitude = size_ft.map_or(self.k1, |(_, sigma)| {
                 (self.k_sigma * sigma).min(self.k1 - self.k3) + self.k3
             });
             self.amplitude_rate = 0.0;
-            return;
+        } else {
+            let error = match self.error {
+                ExcitationError::Measured => errors.measured,
+                ExcitationError::Estimated => errors.estimated,
+            };
+            self.record(t_end_s, error.norm_squared());
         }
-        let error = match self.error {
-            ExcitationError::Measured => errors.measured,
-            ExcitationError::Estimated => errors.estimated,
-        };
-        self.record(t_end_s, error.norm_squared());
+        self.apply_view_bound();
     }
 
     /// Records eᵀe over the step that ends at `t_end_s` and updates a(t) and ȧ(t).
@@ -188,10 +253,68 @@ mod tests {
         }
     }
 
+    /// The field of view's bound: formation.toml's geometry (L = 33 ft, 60° horizontal field
+    /// of view, f = 0.7) allows the 8 ft target L tan(21° - 6.9°) ≈ 8.3 ft and the 20 ft
+    /// one L tan(21° - 16.9°) ≈ 2.4 ft; a target filling the view gets none.
+    #[test]
+    fn view_bound_shrinks_with_the_target() {
+        let view = ViewBound {
+            fraction: 0.7,
+            range_ft: 32.0f64.hypot(8.0),
+            tan_half_fov: 30f64.to_radians().tan(),
+        };
+        assert!(
+            (view.max_offset_ft(8.0) - 8.3).abs() < 0.1,
+            "{}",
+            view.max_offset_ft(8.0)
+        );
+        assert!(
+            (view.max_offset_ft(20.0) - 2.4).abs() < 0.1,
+            "{}",
+            view.max_offset_ft(20.0)
+        );
+        assert_eq!(view.max_offset_ft(40.0), 0.0);
+    }
+
+    /// In scaled units the bound follows b̂: the amplitude in feet, a b̂, never exceeds the
+    /// view's offset, however large the estimate grows.
+    #[test]
+    fn scaled_amplitude_is_bounded_in_feet() {
+        let view = ViewBound {
+            fraction: 0.7,
+            range_ft: 33.0,
+            tan_half_fov: 30f64.to_radians().tan(),
+        };
+        let uncertain = ExcitationSection {
+            mode: ExcitationMode::Uncertainty,
+            k1: 0.4,
+            k3: 0.0,
+            k_sigma: 1.0,
+            ..ExcitationSection::default()
+        };
+        let mut ex = Excitation::new(&uncertain, 0.01, Some(view), 4.0);
+        let errors = ExcitationErrors::default();
+        ex.record_errors(0.01, &errors, Some((8.0, 1.0)));
+        assert_eq!(
+            ex.amplitude(),
+            0.4,
+            "3.2 ft is inside the 8 ft target's bound"
+        );
+        for b_hat_ft in [16.0, 20.0, 25.0] {
+            ex.record_errors(0.02, &errors, Some((b_hat_ft, 1.0)));
+            let offset_ft = ex.amplitude() * b_hat_ft;
+            assert!(
+                offset_ft <= view.max_offset_ft(b_hat_ft) + 1e-12,
+                "{b_hat_ft}"
+            );
+            assert!(offset_ft < 0.4 * b_hat_ft, "{b_hat_ft}: bound not applied");
+        }
+    }
+
     /// During the first period the amplitude is k1.
     #[test]
     fn first_period_is_k1() {
-        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), 0.01, None);
+        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), 0.01, None, 8.0);
         for i in 1..290 {
             ex.record(i as f64 * 0.01, 0.0);
             assert_eq!(ex.amplitude(), 0.5);
@@ -202,7 +325,7 @@ mod tests {
     #[test]
     fn continuous_amplitude_follows_window_integral() {
         let dt = 0.001;
-        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), dt, None);
+        let mut ex = Excitation::new(&section(ExcitationMode::Continuous), dt, None, 8.0);
         let c = 0.01;
         for i in 1..=5000 {
             ex.record(i as f64 * dt, c);
@@ -229,7 +352,7 @@ mod tests {
     #[test]
     fn per_period_amplitude_is_held() {
         let dt = 0.01;
-        let mut ex = Excitation::new(&section(ExcitationMode::PerPeriod), dt, None);
+        let mut ex = Excitation::new(&section(ExcitationMode::PerPeriod), dt, None, 8.0);
         let mut values = Vec::new();
         for i in 1..=900 {
             ex.record(i as f64 * dt, 0.001);
@@ -248,7 +371,7 @@ mod tests {
     /// The offset's derivative is the time derivative of the offset (a held).
     #[test]
     fn offset_rate_is_derivative() {
-        let ex = Excitation::new(&section(ExcitationMode::Continuous), 0.001, None);
+        let ex = Excitation::new(&section(ExcitationMode::Continuous), 0.001, None, 8.0);
         let t = 1.3;
         let h = 1e-6;
         let fd = (ex.offset(t + h).0 - ex.offset(t - h).0) / (2.0 * h);

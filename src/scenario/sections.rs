@@ -528,9 +528,12 @@ pub struct ExcitationSection {
     /// `mode = "uncertainty"`: amplitude per ft of the estimator's σ_b, in the excitation's
     /// units per ft.
     pub k_sigma: f64,
-    /// With a camera, the amplitude is also capped at this fraction of the half field of view
-    /// along the excitation's direction at the commanded range (the target must stay in
-    /// view); 0 turns the cap off.
+    /// With a camera, the amplitude is also bounded in feet and degrees by the field of view
+    /// (`guidance::excitation::ViewBound`): at the commanded range L the bearing swing plus
+    /// the half angle the target subtends at its estimated size b̂, atan(b̂ / 2L), stays
+    /// within this fraction of the half field of view along the excitation's direction, so a
+    /// large target is swung less (in scaled units the bound is divided by b̂); 0 (default)
+    /// turns the bound off.
     pub fov_fraction: f64,
 }
 

@@ -9,11 +9,12 @@ use crate::follower::aircraft::DRYDEN_SEED_SALT;
 use crate::follower::{AircraftSetupError, Follower, FollowerConfig};
 use crate::frames::{Mat3, Vec3};
 use crate::guidance::command::{CommandInput, FormationCommand};
+use crate::guidance::excitation::ViewBound;
 use crate::guidance::law::GuidanceLaw;
 use crate::guidance::signals::CommandKind;
 use crate::scenario::{
-    EstimatorKind, ExcitationUnits, GimbalCue, GimbalKind, GuidanceLawKind, Scenario, SensorMode,
-    SizeModel, TargetModelKind, TargetMotion,
+    EstimatorKind, GimbalCue, GimbalKind, GuidanceLawKind, Scenario, SensorMode, SizeModel,
+    TargetModelKind, TargetMotion,
 };
 use crate::sensing::camera::load_target_mesh;
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
@@ -26,10 +27,10 @@ use crate::world::trajectory::{
 };
 use std::path::Path;
 
-/// The cap the field of view puts on the excitation's amplitude with a camera
-/// (`excitation.fov_fraction` of the half field of view along the excitation's direction at
-/// the commanded range), in the excitation's units.
-pub(super) fn excitation_cap(scenario: &Scenario) -> Option<f64> {
+/// The bound the field of view puts on the excitation with a camera
+/// (`excitation.fov_fraction`; [`ViewBound`]): the commanded range and the tangent of the
+/// half field of view the excitation's direction moves the target across.
+pub(super) fn excitation_view_bound(scenario: &Scenario) -> Option<ViewBound> {
     let e = &scenario.excitation;
     if scenario.sensor.mode != SensorMode::Camera || e.fov_fraction <= 0.0 {
         return None;
@@ -43,15 +44,15 @@ pub(super) fn excitation_cap(scenario: &Scenario) -> Option<f64> {
     let tan_half_horizontal = f64::from(camera.width_px) * 0.5 / focal_px;
     let vertical = direction.z.abs();
     let level = direction.x.hypot(direction.y);
-    let tan_allowed = [(vertical, tan_half_vertical), (level, tan_half_horizontal)]
+    let tan_half_fov = [(vertical, tan_half_vertical), (level, tan_half_horizontal)]
         .iter()
         .filter(|(part, _)| *part > 1e-9)
         .map(|(part, tan_half)| tan_half / part)
         .fold(f64::INFINITY, f64::min);
-    let cap_ft = e.fov_fraction * scenario.guidance.command_length_ft() * tan_allowed;
-    Some(match e.units {
-        ExcitationUnits::Ft => cap_ft,
-        ExcitationUnits::Scaled => cap_ft / scenario.guidance.b0_ft,
+    Some(ViewBound {
+        fraction: e.fov_fraction,
+        range_ft: scenario.guidance.command_length_ft(),
+        tan_half_fov,
     })
 }
 

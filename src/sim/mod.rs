@@ -26,7 +26,7 @@ mod sense;
 pub use record::{GimbalReading, Snapshot, StageTimes};
 
 use build::{
-    capture_geometry, estimation_stage, excitation_cap, first_r, follower_of, gimbal_of,
+    capture_geometry, estimation_stage, excitation_view_bound, first_r, follower_of, gimbal_of,
     mounted_camera, target_of,
 };
 use evaluate::Evaluation;
@@ -213,7 +213,8 @@ impl Simulation {
             excitation: Excitation::new(
                 &scenario.excitation,
                 scenario.run.dt_s,
-                excitation_cap(scenario),
+                excitation_view_bound(scenario),
+                scenario.guidance.b0_ft,
             ),
             sensor,
             own,
@@ -467,13 +468,13 @@ impl Simulation {
         if let (Some(envelope), Some(aircraft)) = (self.envelope.as_mut(), actuation.aircraft()) {
             envelope.record(t_end_s, aircraft);
         }
-        let size_sigma_ft = self
+        let size_ft = self
             .estimator
             .filter()
             .and_then(|t| t.posterior())
-            .map(|e| e.b_sigma_ft);
+            .map(|e| (e.b_hat_ft, e.b_sigma_ft));
         self.excitation
-            .record_errors(t_end_s, &out.excitation_errors, size_sigma_ft);
+            .record_errors(t_end_s, &out.excitation_errors, size_ft);
         let g = &self.scenario.guidance;
         if g.mission == Mission::Intercept && range_ft < g.intercept_radius_ft {
             self.intercept_time_s = Some(t_end_s);
