@@ -38,8 +38,19 @@ pub struct GimbalSection {
     pub kind: GimbalKind,
     /// Pan range [min, max], deg, positive right.
     pub pan_limits_deg: [f64; 2],
-    /// Tilt range [min, max], deg, positive up.
+    /// Tilt range [min, max], deg, positive up, within ±180°. Beyond -90° (+90°) the camera
+    /// tilts through nadir (zenith), and the pointing law takes whichever angle pair that
+    /// looks along the line of sight its servos reach sooner: a target passing under the
+    /// follower is followed by the tilt instead of by half a turn of the pan (see
+    /// `keyhole_deg`).
     pub tilt_limits_deg: [f64; 2],
+    /// With a tilt range beyond ±90°, the half angle of the cone about nadir and zenith in
+    /// which the pan holds and the tilt alone points the camera, deg, in [0, 45]. Near the
+    /// pole a line of sight passing a little to one side turns the exact pan by up to 180°
+    /// within a few degrees of travel (the keyhole); holding the pan there leaves the target
+    /// at most this far off the image centre. Choice: 10°, inside the half field of view of
+    /// any camera wider than 20°.
+    pub keyhole_deg: f64,
     /// Largest rate of each axis, deg/s.
     pub rate_limit_dps: f64,
     /// Time constant of each axis' servo, s.
@@ -75,6 +86,7 @@ impl Default for GimbalSection {
             search_growth_dps: 10.0,
             search_max_deg: 20.0,
             search_period_s: 1.5,
+            keyhole_deg: 10.0,
             cue: GimbalCue::None,
             cue_deg: [0.0, 0.0],
         }
@@ -86,7 +98,7 @@ impl GimbalSection {
     pub fn validate(&self) -> Check {
         for (key, [min, max], outer) in [
             ("camera.gimbal.pan_limits_deg", self.pan_limits_deg, 180.0),
-            ("camera.gimbal.tilt_limits_deg", self.tilt_limits_deg, 90.0),
+            ("camera.gimbal.tilt_limits_deg", self.tilt_limits_deg, 180.0),
         ] {
             check::require(
                 min.is_finite()
@@ -100,6 +112,7 @@ impl GimbalSection {
                 format!("[min, max] with -{outer} <= min <= 0 <= max <= {outer}"),
             )?;
         }
+        check::in_closed("camera.gimbal.keyhole_deg", self.keyhole_deg, 0.0, 45.0)?;
         check::in_closed(
             "camera.gimbal.rate_limit_dps",
             self.rate_limit_dps,

@@ -21,6 +21,7 @@
 
 use crate::frames::{EulerAngles, Mat3, Vec3, wrap_angle_rad};
 use crate::scenario::GimbalSection;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Length of the gimbal's state: `[ψ_g, θ_g]`.
 pub const GIMBAL_STATE_LEN: usize = 2;
@@ -71,6 +72,8 @@ pub struct Gimbal {
     search_growth_rps: f64,
     search_max_rad: f64,
     search_omega_rps: f64,
+    /// Half angle of the cone about the poles in which the pan holds (tilt beyond ±90°), rad.
+    keyhole_rad: f64,
     /// The line of sight NED the camera points along until the target is first seen.
     cue_ned: Option<Vec3>,
 }
@@ -89,6 +92,7 @@ impl Gimbal {
             search_growth_rps: section.search_growth_dps.to_radians(),
             search_max_rad: section.search_max_deg.to_radians(),
             search_omega_rps: std::f64::consts::TAU / section.search_period_s,
+            keyhole_rad: section.keyhole_deg.to_radians(),
             cue_ned,
         }
     }
@@ -117,14 +121,7 @@ impl Gimbal {
         let now = GimbalAngles::of(x);
         let searching_s = missing_s - self.search_after_s;
         let mut angles = match line_of_sight_ned.or(self.cue_ned) {
-            Some(los) => {
-                let mut angles = GimbalAngles::pointing_along(&(body_from_ned * los));
-                // The pan nearest the present one: a target crossing behind the camera's pan
-                // range holds the pan at the limit on its side instead of swinging the long
-                // way round.
-                angles.pan_rad = now.pan_rad + wrap_angle_rad(angles.pan_rad - now.pan_rad);
-                angles
-            }
+            Some(los) => self.nearest_pointing(&(body_from_ned * los), &now),
             None if searching_s > 0.0 => GimbalAngles::default(),
             None => return now,
         };
@@ -136,6 +133,52 @@ impl Gimbal {
         }
         let [pan_rad, tilt_rad] = self.clamped(&angles);
         GimbalAngles { pan_rad, tilt_rad }
+    }
+
+    /// The angles that point along `direction_body` nearest the present angles `now`. The
+    /// pan is taken nearest the present one: a target crossing behind the camera's pan range
+    /// holds the pan at the limit on its side instead of swinging the long way round. With a
+    /// tilt range beyond ±90° the camera can also look along the direction over the pole,
+    /// (ψ + π, ±180° - θ): the pair the servos reach sooner is taken, and within the keyhole
+    /// cone about the pole the pan holds while the tilt points the camera as near the
+    /// direction as the held pan allows. So a line of sight passing under (or over) the
+    /// follower is followed by the tilt through nadir (zenith) instead of by half a turn of
+    /// the pan.
+    fn nearest_pointing(&self, direction_body: &Vec3, now: &GimbalAngles) -> GimbalAngles {
+        let near_pan = |a: GimbalAngles| GimbalAngles {
+            pan_rad: now.pan_rad + wrap_angle_rad(a.pan_rad - now.pan_rad),
+            ..a
+        };
+        let direct = near_pan(GimbalAngles::pointing_along(direction_body));
+        let [tilt_min, tilt_max] = self.tilt_limits_rad;
+        if tilt_min >= -FRAC_PI_2 && tilt_max <= FRAC_PI_2 {
+            return direct;
+        }
+        let d = direction_body;
+        let from_pole_rad = d.x.hypot(d.y).atan2(d.z.abs());
+        if from_pole_rad < self.keyhole_rad {
+            let (sin_pan, cos_pan) = now.pan_rad.sin_cos();
+            return GimbalAngles {
+                pan_rad: now.pan_rad,
+                tilt_rad: (-d.z).atan2(d.x * cos_pan + d.y * sin_pan),
+            };
+        }
+        let over = near_pan(GimbalAngles {
+            pan_rad: direct.pan_rad + PI,
+            tilt_rad: PI.copysign(direct.tilt_rad) - direct.tilt_rad,
+        });
+        let slew_rad = |a: &GimbalAngles| {
+            let reachable = self.clamped(a) == [a.pan_rad, a.tilt_rad];
+            let slew = (a.pan_rad - now.pan_rad)
+                .abs()
+                .max((a.tilt_rad - now.tilt_rad).abs());
+            (!reachable, slew)
+        };
+        if slew_rad(&over) < slew_rad(&direct) {
+            over
+        } else {
+            direct
+        }
     }
 
     /// The servos' rates toward `command`: (θ_c - θ)/τ within ±rate, zero at a limit.
@@ -246,6 +289,59 @@ mod tests {
             0.0,
         );
         assert_eq!(right.pan_rad, pan_max);
+    }
+
+    /// A line of sight passing under the follower, from ahead and below to behind and below:
+    /// a gimbal whose tilt stops at nadir swings its pan to its limit (the keyhole), one that
+    /// tilts through nadir follows it with the tilt, the pan held within the keyhole cone,
+    /// and centres it again beyond.
+    #[test]
+    fn a_line_of_sight_under_the_follower_is_followed_through_nadir() {
+        let level = Mat3::identity();
+        let sweep = |section: &GimbalSection| {
+            let g = Gimbal::new(section, None);
+            let mut x = [0.0, -0.5];
+            let mut largest_pan_rad: f64 = 0.0;
+            for k in 0..=160 {
+                let elevation = (-10.0 - k as f64).to_radians(); // below, ahead to behind
+                let los = Vec3::new(elevation.cos(), 0.02, -elevation.sin());
+                let a = g.command(&x, Some(los), &level, 0.0, 0.0);
+                largest_pan_rad = largest_pan_rad.max(a.pan_rad.abs());
+                let in_camera = a.camera_from_body() * los;
+                let centred = in_camera.x > 0.0 && in_camera.y.hypot(in_camera.z) < 1e-9;
+                x = [a.pan_rad, a.tilt_rad];
+                if k == 160 {
+                    return (
+                        largest_pan_rad.to_degrees(),
+                        centred,
+                        a.tilt_rad.to_degrees(),
+                    );
+                }
+            }
+            unreachable!()
+        };
+        let stops_at_nadir = GimbalSection::default();
+        let (pan_deg, _, _) = sweep(&stops_at_nadir);
+        assert!(pan_deg > 160.0, "the keyhole: pan {pan_deg}°");
+        let through_nadir = GimbalSection {
+            tilt_limits_deg: [-180.0, 30.0],
+            ..GimbalSection::default()
+        };
+        let (pan_deg, centred, tilt_deg) = sweep(&through_nadir);
+        assert!(pan_deg < 10.0, "pan {pan_deg}°");
+        assert!(
+            centred && (tilt_deg + 170.0).abs() < 1.0,
+            "tilt {tilt_deg}°"
+        );
+        let no_keyhole = GimbalSection {
+            keyhole_deg: 0.0,
+            ..through_nadir
+        };
+        let (pan_deg, _, _) = sweep(&no_keyhole);
+        assert!(
+            pan_deg > 45.0,
+            "exact pointing swings the pan near nadir: {pan_deg}°"
+        );
     }
 
     /// Missing the target, the camera circles about the prediction, wider with time, up to
