@@ -12,6 +12,7 @@ pub mod aspect;
 pub mod hold;
 pub mod kalman;
 pub mod tracker;
+pub mod trim_alpha;
 
 pub use hold::{HeldFrame, MeasurementHold, MeasurementSource};
 pub use tracker::{AirframeModel, KalmanTracker, PredictedView};

@@ -6,8 +6,9 @@
 //! on. It also records when b became known (σ_b / b̂ below a threshold).
 
 use super::airframe::{AirframeTable, ViewAngles};
-use super::aspect::{body_axes_ned, target_span_aspect};
+use super::aspect::{body_axes_ned, pitched_by_alpha, target_span_aspect};
 use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, TargetFilter};
+use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{EstimatorSection, SizeModel};
@@ -58,6 +59,12 @@ pub struct AirframeModel {
     pub length_bias_px: f64,
     /// [s₀, s₁] of σ(bI) = √(s₀² + (s₁ / bI)²), px and px².
     pub length_sigma_px: [f64; 2],
+    /// The angle of attack the inferred attitude is pitched up by (`None`: zero).
+    pub alpha: Option<AlphaSchedule>,
+    /// σ of n's relative error beyond the view's slope.
+    pub shape_sigma: f64,
+    /// The correlation time of n's error, s (0: white).
+    pub error_correlation_s: f64,
 }
 
 impl AirframeModel {
@@ -68,6 +75,40 @@ impl AirframeModel {
             view_sigma_rad: section.airframe_view_sigma_deg.to_radians(),
             length_bias_px: section.airframe_length_bias_px,
             length_sigma_px: section.airframe_length_sigma_px,
+            alpha: None,
+            shape_sigma: section.airframe_shape_sigma,
+            error_correlation_s: section.airframe_error_correlation_s,
+        }
+    }
+
+    /// The model with the inferred attitude pitched up by `alpha`'s angle of attack.
+    pub fn with_alpha(self, alpha: AlphaSchedule) -> Self {
+        Self {
+            alpha: Some(alpha),
+            ..self
+        }
+    }
+
+    /// The body axes (NED from body) of a target flying at `velocity_ned_fps` with
+    /// `accel_ned_fps2`: coordinated flight, pitched up by the angle of attack if known.
+    fn body_axes_ned(&self, velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<Mat3> {
+        let wind_axes = body_axes_ned(velocity_ned_fps, accel_ned_fps2)?;
+        Some(match &self.alpha {
+            Some(alpha) => pitched_by_alpha(
+                &wind_axes,
+                alpha.alpha_rad(velocity_ned_fps, accel_ned_fps2),
+            ),
+            None => wind_axes,
+        })
+    }
+
+    /// The factor on n's relative variance for a frame `dt_s` after the previous one: its
+    /// error is correlated over `error_correlation_s`, so the frame is worth Δt/τ of an
+    /// independent sample (1 when white or at the first frame).
+    fn correlation_inflation(&self, dt_s: Option<f64>) -> f64 {
+        match dt_s {
+            Some(dt) if dt > 0.0 => (self.error_correlation_s / dt).max(1.0),
+            _ => 1.0,
         }
     }
 
@@ -153,7 +194,7 @@ impl KalmanTracker {
         if est.beta_per_ft <= 0.0 {
             return None;
         }
-        let ned_from_body = body_axes_ned(
+        let ned_from_body = model.body_axes_ned(
             &(est.d_per_s / est.beta_per_ft),
             &(est.a_per_s2 / est.beta_per_ft),
         )?;
@@ -166,9 +207,11 @@ impl KalmanTracker {
             b_i_px: pixels.b_i_px + model.length_bias_px,
             ..*pixels
         };
-        let relative_sigma = n.sigma(angles.yaw_rad, view_sigma_rad) / n.length;
+        let relative_variance = (n.sigma(angles.yaw_rad, view_sigma_rad) / n.length).powi(2)
+            + model.shape_sigma.powi(2);
+        let inflation = model.correlation_inflation(self.views.last().map(|v| record.t_s - v.t_s));
         let length_variance_px2 = model.length_sigma_px(corrected.b_i_px).powi(2)
-            + (corrected.b_i_px * relative_sigma).powi(2);
+            + corrected.b_i_px.powi(2) * relative_variance * inflation;
         let mut pixel_covariance = self.pixel_covariance_px2;
         pixel_covariance[(2, 2)] = length_variance_px2 * self.measurement_inflation;
         let jacobian = scaled_position_jacobian(&corrected, self.focal_px, &record.ned_from_camera);

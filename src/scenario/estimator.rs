@@ -38,6 +38,18 @@ pub enum SizeModel {
     Airframe,
 }
 
+/// Where the airframe size model's inferred attitude takes the target's angle of attack from
+/// (`estimation::trim_alpha`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AirframeAlpha {
+    /// None: the nose along the estimated velocity (a kinematic target's attitude).
+    Zero,
+    /// The trim α of the target's aircraft data (`target.aircraft`) at the estimated airspeed
+    /// and load factor.
+    Trim,
+}
+
 /// Where the estimator's own-motion displacement ΔR_F comes from (docs/equations.md, Range
 /// and size from the follower's own motion). Both are the truth under perfect navigation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -121,6 +133,24 @@ pub struct EstimatorSection {
     /// 20 px, 1.6-2.1 px below 15 px (frame to frame; the errors stay correlated over
     /// seconds, which `measurement_inflation` still covers).
     pub airframe_length_sigma_px: [f64; 2],
+    /// With the airframe model, `zero` (default: the nose along the estimated velocity, as a
+    /// kinematic target flies) or `trim` (pitched up by the trim α of `target.aircraft` at the
+    /// estimated airspeed, ground velocity less `atmosphere.wind_ned_fps`, and load factor):
+    /// the angle of attack of the attitude the view is inferred from. `trim` moves the
+    /// inferred view of a kinematic target off its true one (formation.toml streams 1-5 in
+    /// docs/findings.md, The airframe size model).
+    pub airframe_angle_of_attack: AirframeAlpha,
+    /// With the airframe model, σ of the relative error of the normalised length n that the
+    /// view's slope does not give (the mesh drawn in perspective against the table's
+    /// orthographic views, the length's short reading changing with the aspect, the view
+    /// inferred from the estimate), in [0, 1]. Choice and measurement: docs/findings.md, The
+    /// airframe size model.
+    pub airframe_shape_sigma: f64,
+    /// With the airframe model, the correlation time of n's error, s, in [0, 1000]: it
+    /// changes with the geometry, not from frame to frame, so a frame carries only its share
+    /// Δt/τ of an independent sample and n's relative variance (slope and shape) is inflated
+    /// by τ/Δt, Δt the time since the previous frame (0: white, no inflation).
+    pub airframe_error_correlation_s: f64,
 }
 
 impl Default for EstimatorSection {
@@ -143,6 +173,9 @@ impl Default for EstimatorSection {
             airframe_view_sigma_deg: 5.0,
             airframe_length_bias_px: 2.1,
             airframe_length_sigma_px: [0.8, 16.0],
+            airframe_angle_of_attack: AirframeAlpha::Zero,
+            airframe_shape_sigma: 0.0,
+            airframe_error_correlation_s: 0.0,
         }
     }
 }
@@ -213,6 +246,18 @@ impl EstimatorSection {
             let key = format!("estimator.airframe_length_sigma_px[{i}]");
             check::in_closed(&key, *sigma, 0.0, 1e4)?;
         }
+        check::in_closed(
+            "estimator.airframe_shape_sigma",
+            self.airframe_shape_sigma,
+            0.0,
+            1.0,
+        )?;
+        check::in_closed(
+            "estimator.airframe_error_correlation_s",
+            self.airframe_error_correlation_s,
+            0.0,
+            1000.0,
+        )?;
         Ok(())
     }
 }
