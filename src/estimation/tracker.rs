@@ -61,10 +61,10 @@ pub struct AirframeModel {
     pub length_sigma_px: [f64; 2],
     /// The angle of attack the inferred attitude is pitched up by (`None`: zero).
     pub alpha: Option<AlphaSchedule>,
-    /// σ of n's relative error beyond the view's slope.
+    /// σ of the relative error of n that no averaging removes (docs/equations.md, The
+    /// airframe's shape): b̂ is off by that fraction whatever the frames, so σ_b has the floor
+    /// b̂ times it.
     pub shape_sigma: f64,
-    /// The correlation time of n's error, s (0: white).
-    pub error_correlation_s: f64,
 }
 
 impl AirframeModel {
@@ -77,7 +77,6 @@ impl AirframeModel {
             length_sigma_px: section.airframe_length_sigma_px,
             alpha: None,
             shape_sigma: section.airframe_shape_sigma,
-            error_correlation_s: section.airframe_error_correlation_s,
         }
     }
 
@@ -102,14 +101,11 @@ impl AirframeModel {
         })
     }
 
-    /// The factor on n's relative variance for a frame `dt_s` after the previous one: its
-    /// error is correlated over `error_correlation_s`, so the frame is worth Δt/τ of an
-    /// independent sample (1 when white or at the first frame).
-    fn correlation_inflation(&self, dt_s: Option<f64>) -> f64 {
-        match dt_s {
-            Some(dt) if dt > 0.0 => (self.error_correlation_s / dt).max(1.0),
-            _ => 1.0,
-        }
+    /// The floor of σ_b at b̂ = `b_hat_ft`, ft: n's systematic error, added to the filter's
+    /// own σ_b as a consider parameter (the filter cannot learn it, so it is not one of its
+    /// states).
+    fn size_sigma_floor_ft(&self, b_hat_ft: f64) -> f64 {
+        b_hat_ft * self.shape_sigma
     }
 
     /// σ of a corrected length `b_i_px`, px.
@@ -207,11 +203,9 @@ impl KalmanTracker {
             b_i_px: pixels.b_i_px + model.length_bias_px,
             ..*pixels
         };
-        let relative_variance = (n.sigma(angles.yaw_rad, view_sigma_rad) / n.length).powi(2)
-            + model.shape_sigma.powi(2);
-        let inflation = model.correlation_inflation(self.views.last().map(|v| record.t_s - v.t_s));
+        let relative_sigma = n.sigma(angles.yaw_rad, view_sigma_rad) / n.length;
         let length_variance_px2 = model.length_sigma_px(corrected.b_i_px).powi(2)
-            + corrected.b_i_px.powi(2) * relative_variance * inflation;
+            + (corrected.b_i_px * relative_sigma).powi(2);
         let mut pixel_covariance = self.pixel_covariance_px2;
         pixel_covariance[(2, 2)] = length_variance_px2 * self.measurement_inflation;
         let jacobian = scaled_position_jacobian(&corrected, self.focal_px, &record.ned_from_camera);
@@ -291,12 +285,22 @@ impl KalmanTracker {
         } else {
             max
         };
+        let filter_sigma_ft = est.beta_sigma_per_ft * b_hat_ft * b_hat_ft;
+        let floor_ft = self
+            .airframe
+            .as_ref()
+            .map_or(0.0, |model| model.size_sigma_floor_ft(b_hat_ft));
         TargetEstimate {
             r: est.r,
             d_per_s: est.d_per_s,
             a_per_s2: est.a_per_s2,
             b_hat_ft,
-            b_sigma_ft: est.beta_sigma_per_ft * b_hat_ft * b_hat_ft,
+            b_sigma_ft: if floor_ft > 0.0 {
+                filter_sigma_ft.hypot(floor_ft)
+            } else {
+                filter_sigma_ft
+            },
+            b_sigma_floor_ft: floor_ft,
         }
     }
 
