@@ -43,7 +43,8 @@ pub enum SizeModel {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum AirframeAlpha {
-    /// None: the nose along the estimated velocity (a kinematic target's attitude).
+    /// No angle of attack: the nose along the estimated velocity (a kinematic target's
+    /// attitude).
     Zero,
     /// The trim α of the target's aircraft data (`target.aircraft`) at the estimated airspeed
     /// and load factor.
