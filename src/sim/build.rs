@@ -23,7 +23,7 @@ use crate::sensing::{CameraConfig, SensorError};
 use crate::sensing::{CaptureGeometry, FollowerPose, Sensor};
 use crate::target_aircraft::{TARGET_DRYDEN_SEED_SALT, TargetAircraft};
 use crate::world::aircraft::{Aircraft, AircraftParams};
-use crate::world::atmosphere::Atmosphere;
+use crate::world::atmosphere::{Atmosphere, AtmosphereSample};
 use crate::world::target::{TargetModel, TargetMotionModel};
 use crate::world::trajectory::{
     RANDOM_TRACK_SEED_SALT, TrackError, random_track, read_track, waypoint_track,
@@ -185,9 +185,14 @@ fn target_alpha_schedule(scenario: &Scenario) -> Result<AlphaSchedule, SimError>
         .map_err(AircraftSetupError::from)?;
     let aircraft = Aircraft::new(params).map_err(AircraftSetupError::from)?;
     let start = Vec3::from(scenario.target.initial_position_ft);
-    let air = Atmosphere::new(&scenario.atmosphere, 0)
-        .map_err(AircraftSetupError::from)?
-        .steady_sample(&start);
+    // As the aircraft's own trims: the steady wind and density, no drag or moment bias.
+    let air = AtmosphereSample {
+        drag_factor: 1.0,
+        moment_bias_body_lbf_ft: Vec3::zeros(),
+        ..Atmosphere::new(&scenario.atmosphere, 0)
+            .map_err(AircraftSetupError::from)?
+            .steady_sample(&start)
+    };
     AlphaSchedule::of_aircraft(&aircraft, &air, &start).ok_or_else(|| {
         SimError::Follower(AircraftSetupError::Invalid(InvalidValue {
             key: "target.aircraft".to_string(),
