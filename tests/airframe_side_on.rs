@@ -6,7 +6,11 @@
 //! fuselage, 6/8 of the size:
 //! - with `size_model = "airframe"` the filter reads the view from its estimate and b̂ ends
 //!   within 2% of 8 ft, the truth inside ±3σ_b;
-//! - with the seed's `apparent` model b̂ ends near the fuselage's 6 ft (below 6.5 ft).
+//! - with the seed's `apparent` model b̂ ends near the fuselage's 6 ft (below 6.5 ft);
+//! - when every length reads 4% long (a systematic error no averaging removes, as the
+//!   vision's short reading changing with the aspect), b̂ ends about 4% high, and the floor
+//!   `estimator.airframe_shape_sigma` keeps the truth inside ±3σ_b, which the filter's own
+//!   σ_b (the floor at 0) does not.
 
 use wingman::estimation::airframe::AirframeTable;
 use wingman::estimation::{AirframeModel, KalmanTracker, TargetTracker};
@@ -16,7 +20,7 @@ use wingman::render::mesh::TargetMesh;
 use wingman::scenario::{EstimatorSection, SizeModel};
 use wingman::sensing::transform::scaled_relative_position;
 use wingman::sensing::{CaptureGeometry, FollowerPose, FrameRecord};
-use wingman::vision::{BlobStatus, TruthProjector};
+use wingman::vision::{BlobStatus, ImageMeasurement, TruthProjector};
 
 const SIZE_FT: f64 = 8.0;
 const SPEED_FPS: f64 = 50.0;
@@ -27,12 +31,14 @@ fn mesh() -> TargetMesh {
     unscaled.scaled(factor)
 }
 
-/// Flies the pass for 60 s at 30 frames/s and returns the final (b̂, σ_b).
-fn fly(size_model: SizeModel) -> (f64, f64) {
+/// Flies the pass for 60 s at 30 frames/s, every measured length `length_factor` times the
+/// exact one, and returns the final (b̂, σ_b).
+fn fly(size_model: SizeModel, length_factor: f64, shape_sigma: f64) -> (f64, f64) {
     let mesh = mesh();
     let section = EstimatorSection {
         size_model,
         airframe_length_bias_px: 0.0,
+        airframe_shape_sigma: shape_sigma,
         jerk_psd: 1e-4,
         ..EstimatorSection::default()
     };
@@ -64,14 +70,18 @@ fn fly(size_model: SizeModel) -> (f64, f64) {
             .image_truth(&mesh.vertices_ft, &geometry.pose(), &camera)
             .expect("in front of the camera")
             .image_measurement();
+        let measured = ImageMeasurement {
+            b_i_px: truth.b_i_px * length_factor,
+            ..truth
+        };
         let record = FrameRecord {
             index,
             t_s,
             status: BlobStatus::Ok,
-            measured: Some(truth),
+            measured: Some(measured),
             truth: Some(truth),
             r_measured: Some(scaled_relative_position(
-                &truth,
+                &measured,
                 focal,
                 &ned_from_camera.transpose(),
             )),
@@ -88,12 +98,26 @@ fn fly(size_model: SizeModel) -> (f64, f64) {
 
 #[test]
 fn airframe_model_reads_the_size_side_on() {
-    let (b_hat, sigma) = fly(SizeModel::Airframe);
+    let shape_sigma = EstimatorSection::default().airframe_shape_sigma;
+    let (b_hat, sigma) = fly(SizeModel::Airframe, 1.0, shape_sigma);
     assert!((b_hat / SIZE_FT - 1.0).abs() < 0.02, "b̂ = {b_hat} ft");
     assert!(
         (b_hat - SIZE_FT).abs() < 3.0 * sigma,
         "b̂ = {b_hat} ± {sigma} ft"
     );
-    let (apparent, _) = fly(SizeModel::Apparent);
+    let (apparent, _) = fly(SizeModel::Apparent, 1.0, shape_sigma);
     assert!(apparent < 6.5, "apparent b̂ = {apparent} ft");
+}
+
+#[test]
+fn shape_floor_covers_a_systematic_length_error() {
+    let shape_sigma = EstimatorSection::default().airframe_shape_sigma;
+    let (b_hat, sigma) = fly(SizeModel::Airframe, 1.04, shape_sigma);
+    assert!((b_hat / SIZE_FT - 1.04).abs() < 0.02, "b̂ = {b_hat} ft");
+    assert!(sigma >= shape_sigma * b_hat, "σ_b = {sigma} ft");
+    let z = (b_hat - SIZE_FT) / sigma;
+    assert!(z.abs() < 3.0, "b̂ = {b_hat} ± {sigma} ft");
+    let (b_white, sigma_white) = fly(SizeModel::Airframe, 1.04, 0.0);
+    let z_white = (b_white - SIZE_FT) / sigma_white;
+    assert!(z_white.abs() > 3.0, "b̂ = {b_white} ± {sigma_white} ft");
 }

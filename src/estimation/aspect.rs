@@ -32,6 +32,24 @@ pub fn body_axes_ned(velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<M
     Some(Mat3::from_columns(&[forward, down.cross(&forward), down]))
 }
 
+/// The body axes `ned_from_wind` (as [`body_axes_ned`] gives them: the nose along the
+/// velocity) pitched nose up by the angle of attack `alpha_rad` about the wing axis: the nose
+/// x̂ cos α - ẑ sin α, the down axis x̂ sin α + ẑ cos α, so that the velocity has body
+/// components (V cos α, 0, V sin α).
+pub fn pitched_by_alpha(ned_from_wind: &Mat3, alpha_rad: f64) -> Mat3 {
+    let (forward, wing, down) = (
+        ned_from_wind.column(0),
+        ned_from_wind.column(1),
+        ned_from_wind.column(2),
+    );
+    let (sin, cos) = alpha_rad.sin_cos();
+    Mat3::from_columns(&[
+        forward * cos - down * sin,
+        wing.into_owned(),
+        forward * sin + down * cos,
+    ])
+}
+
 /// The wing axis ŵ (unit, NED) of an aircraft flying at `velocity_ned_fps` with acceleration
 /// `accel_ned_fps2`, in coordinated flight; `None` when it is not moving.
 pub fn wing_axis_ned(velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<Vec3> {
@@ -80,6 +98,24 @@ mod tests {
         let bank = (a / GRAVITY_FPS2).atan();
         assert!((turning - Vec3::new(0.0, bank.cos(), bank.sin())).norm() < 1e-12);
         assert!(wing_axis_ned(&Vec3::zeros(), &Vec3::zeros()).is_none());
+    }
+
+    /// Level flight north at the shipped airframe's 50 ft/s trim (α = 4.48°): the nose is
+    /// 4.48° above the horizon, the wing still east, and the velocity lies at α below the
+    /// nose in the body's x-z plane.
+    #[test]
+    fn alpha_pitches_the_nose_above_the_velocity() {
+        let v = Vec3::new(50.0, 0.0, 0.0);
+        let alpha = 4.48f64.to_radians();
+        let axes = pitched_by_alpha(&body_axes_ned(&v, &Vec3::zeros()).expect("moving"), alpha);
+        let nose: Vec3 = axes.column(0).into();
+        assert!((nose - Vec3::new(alpha.cos(), 0.0, -alpha.sin())).norm() < 1e-12);
+        assert!((Vec3::from(axes.column(1)) - Vec3::y()).norm() < 1e-12);
+        let v_body = axes.transpose() * v;
+        assert!((v_body.z.atan2(v_body.x) - alpha).abs() < 1e-12, "{v_body}");
+        assert!(v_body.y.abs() < 1e-12);
+        let euler = crate::frames::EulerAngles::from_body_from_ned(&axes.transpose());
+        assert!((euler.theta_rad - alpha).abs() < 1e-12, "{euler:?}");
     }
 
     /// Seen from behind on the optical axis the span is whole (s = 1); seen ψ off the tail

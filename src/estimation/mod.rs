@@ -12,6 +12,7 @@ pub mod aspect;
 pub mod hold;
 pub mod kalman;
 pub mod tracker;
+pub mod trim_alpha;
 
 pub use hold::{HeldFrame, MeasurementHold, MeasurementSource};
 pub use tracker::{AirframeModel, KalmanTracker, PredictedView};
@@ -75,6 +76,23 @@ pub struct TargetEstimate {
     pub b_hat_ft: f64,
     /// σ of b̂, ft.
     pub b_sigma_ft: f64,
+    /// The part of σ_b no measurement reduces, ft (the airframe model's shape floor,
+    /// `estimator.airframe_shape_sigma`; 0 otherwise).
+    pub b_sigma_floor_ft: f64,
+}
+
+impl TargetEstimate {
+    /// σ of b̂ without its floor, ft: what more measurements can still reduce (the
+    /// excitation's measure of uncertainty).
+    pub fn reducible_b_sigma_ft(&self) -> f64 {
+        if self.b_sigma_floor_ft > 0.0 {
+            (self.b_sigma_ft.powi(2) - self.b_sigma_floor_ft.powi(2))
+                .max(0.0)
+                .sqrt()
+        } else {
+            self.b_sigma_ft
+        }
+    }
 }
 
 /// A filter that infers the target's relative position, motion and size from the

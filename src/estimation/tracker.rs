@@ -6,8 +6,9 @@
 //! on. It also records when b became known (σ_b / b̂ below a threshold).
 
 use super::airframe::{AirframeTable, ViewAngles};
-use super::aspect::{body_axes_ned, target_span_aspect};
+use super::aspect::{body_axes_ned, pitched_by_alpha, target_span_aspect};
 use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, TargetFilter};
+use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{EstimatorSection, SizeModel};
@@ -58,6 +59,12 @@ pub struct AirframeModel {
     pub length_bias_px: f64,
     /// [s₀, s₁] of σ(bI) = √(s₀² + (s₁ / bI)²), px and px².
     pub length_sigma_px: [f64; 2],
+    /// The angle of attack the inferred attitude is pitched up by (`None`: zero).
+    pub alpha: Option<AlphaSchedule>,
+    /// σ of the relative error of n that no averaging removes (docs/equations.md, The
+    /// airframe's shape): b̂ is off by that fraction whatever the frames, so σ_b has the floor
+    /// b̂ times it.
+    pub shape_sigma: f64,
 }
 
 impl AirframeModel {
@@ -68,7 +75,37 @@ impl AirframeModel {
             view_sigma_rad: section.airframe_view_sigma_deg.to_radians(),
             length_bias_px: section.airframe_length_bias_px,
             length_sigma_px: section.airframe_length_sigma_px,
+            alpha: None,
+            shape_sigma: section.airframe_shape_sigma,
         }
+    }
+
+    /// The model with the inferred attitude pitched up by `alpha`'s angle of attack.
+    pub fn with_alpha(self, alpha: AlphaSchedule) -> Self {
+        Self {
+            alpha: Some(alpha),
+            ..self
+        }
+    }
+
+    /// The body axes (NED from body) of a target flying at `velocity_ned_fps` with
+    /// `accel_ned_fps2`: coordinated flight, pitched up by the angle of attack if known.
+    fn body_axes_ned(&self, velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<Mat3> {
+        let wind_axes = body_axes_ned(velocity_ned_fps, accel_ned_fps2)?;
+        Some(match &self.alpha {
+            Some(alpha) => pitched_by_alpha(
+                &wind_axes,
+                alpha.alpha_rad(velocity_ned_fps, accel_ned_fps2),
+            ),
+            None => wind_axes,
+        })
+    }
+
+    /// The floor of σ_b at b̂ = `b_hat_ft`, ft: n's systematic error, added to the filter's
+    /// own σ_b as a consider parameter (the filter cannot learn it, so it is not one of its
+    /// states).
+    fn size_sigma_floor_ft(&self, b_hat_ft: f64) -> f64 {
+        b_hat_ft * self.shape_sigma
     }
 
     /// σ of a corrected length `b_i_px`, px.
@@ -155,7 +192,7 @@ impl KalmanTracker {
         if est.beta_per_ft <= 0.0 {
             return None;
         }
-        let ned_from_body = body_axes_ned(
+        let ned_from_body = model.body_axes_ned(
             &(est.d_per_s / est.beta_per_ft),
             &(est.a_per_s2 / est.beta_per_ft),
         )?;
@@ -250,12 +287,22 @@ impl KalmanTracker {
         } else {
             max
         };
+        let filter_sigma_ft = est.beta_sigma_per_ft * b_hat_ft * b_hat_ft;
+        let floor_ft = self
+            .airframe
+            .as_ref()
+            .map_or(0.0, |model| model.size_sigma_floor_ft(b_hat_ft));
         TargetEstimate {
             r: est.r,
             d_per_s: est.d_per_s,
             a_per_s2: est.a_per_s2,
             b_hat_ft,
-            b_sigma_ft: est.beta_sigma_per_ft * b_hat_ft * b_hat_ft,
+            b_sigma_ft: if floor_ft > 0.0 {
+                filter_sigma_ft.hypot(floor_ft)
+            } else {
+                filter_sigma_ft
+            },
+            b_sigma_floor_ft: floor_ft,
         }
     }
 

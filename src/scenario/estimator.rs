@@ -38,6 +38,19 @@ pub enum SizeModel {
     Airframe,
 }
 
+/// Where the airframe size model's inferred attitude takes the target's angle of attack from
+/// (`estimation::trim_alpha`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AirframeAlpha {
+    /// No angle of attack: the nose along the estimated velocity (a kinematic target's
+    /// attitude).
+    Zero,
+    /// The trim α of the target's aircraft data (`target.aircraft`) at the estimated airspeed
+    /// and load factor.
+    Trim,
+}
+
 /// Where the estimator's own-motion displacement ΔR_F comes from (docs/equations.md, Range
 /// and size from the follower's own motion). Both are the truth under perfect navigation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -130,6 +143,24 @@ pub struct EstimatorSection {
     /// 20 px, 1.6-2.1 px below 15 px (frame to frame; the errors stay correlated over
     /// seconds, which `measurement_inflation` still covers).
     pub airframe_length_sigma_px: [f64; 2],
+    /// With the airframe model, `zero` (default: the nose along the estimated velocity, as a
+    /// kinematic target flies) or `trim` (pitched up by the trim α of `target.aircraft` at the
+    /// estimated airspeed, ground velocity less `atmosphere.wind_ned_fps`, and load factor):
+    /// the angle of attack of the attitude the view is inferred from. `trim` moves the
+    /// inferred view of a kinematic target off its true one (formation.toml streams 1-5 in
+    /// docs/findings.md, The airframe size model).
+    pub airframe_angle_of_attack: AirframeAlpha,
+    /// With the airframe model, σ of the relative error of the normalised length n (and of
+    /// the corrected length) that averaging over frames does not remove, in [0, 1]: it
+    /// changes with the geometry over tens of seconds, not from frame to frame (the table's
+    /// orthographic views against the perspective drawing, the short reading's change with
+    /// the aspect, the view inferred from the estimate), so b̂ is off by it whatever the
+    /// number of frames, and σ_b is reported no smaller than b̂ times it. Choice: 0.025
+    /// (docs/findings.md, The airframe size model: over the last 20 s of
+    /// seed_ch7_velocity_camera.toml streams 1-5 n is predicted 0.9-1.0% low and the
+    /// corrected length reads up to 1% long; inflating each frame's variance instead let b̂
+    /// run 14-40% high).
+    pub airframe_shape_sigma: f64,
 }
 
 impl Default for EstimatorSection {
@@ -154,6 +185,8 @@ impl Default for EstimatorSection {
             airframe_view_sigma_deg: 5.0,
             airframe_length_bias_px: 2.1,
             airframe_length_sigma_px: [0.8, 16.0],
+            airframe_angle_of_attack: AirframeAlpha::Zero,
+            airframe_shape_sigma: 0.025,
         }
     }
 }
@@ -236,6 +269,12 @@ impl EstimatorSection {
             let key = format!("estimator.airframe_length_sigma_px[{i}]");
             check::in_closed(&key, *sigma, 0.0, 1e4)?;
         }
+        check::in_closed(
+            "estimator.airframe_shape_sigma",
+            self.airframe_shape_sigma,
+            0.0,
+            1.0,
+        )?;
         Ok(())
     }
 }

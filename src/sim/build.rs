@@ -4,6 +4,7 @@
 
 use super::SimError;
 use crate::estimation::airframe::AirframeTable;
+use crate::estimation::trim_alpha::AlphaSchedule;
 use crate::estimation::{AirframeModel, Estimator, KalmanTracker, MeasurementHold, TargetTracker};
 use crate::follower::aircraft::DRYDEN_SEED_SALT;
 use crate::follower::{AircraftSetupError, Follower, FollowerConfig};
@@ -12,15 +13,18 @@ use crate::guidance::command::{CommandInput, FormationCommand};
 use crate::guidance::excitation::ViewBound;
 use crate::guidance::law::GuidanceLaw;
 use crate::guidance::signals::CommandKind;
+use crate::scenario::check::InvalidValue;
 use crate::scenario::{
-    EstimatorKind, GimbalCue, GimbalKind, GuidanceLawKind, Scenario, SensorMode, SizeModel,
-    TargetModelKind, TargetMotion,
+    AirframeAlpha, EstimatorKind, GimbalCue, GimbalKind, GuidanceLawKind, Scenario, SensorMode,
+    SizeModel, TargetModelKind, TargetMotion,
 };
 use crate::sensing::camera::load_target_mesh;
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
 use crate::sensing::{CameraConfig, SensorError};
 use crate::sensing::{CaptureGeometry, FollowerPose, Sensor};
 use crate::target_aircraft::{TARGET_DRYDEN_SEED_SALT, TargetAircraft};
+use crate::world::aircraft::{Aircraft, AircraftParams};
+use crate::world::atmosphere::{Atmosphere, AtmosphereSample};
 use crate::world::target::{TargetModel, TargetMotionModel};
 use crate::world::trajectory::{
     RANDOM_TRACK_SEED_SALT, TrackError, random_track, read_track, waypoint_track,
@@ -168,7 +172,35 @@ fn airframe_model(scenario: &Scenario) -> Result<Option<AirframeModel>, SimError
                 scenario.camera.mesh.clone().into(),
             )))
         })?;
-    Ok(Some(AirframeModel::new(&scenario.estimator, table)))
+    let model = AirframeModel::new(&scenario.estimator, table);
+    Ok(Some(match scenario.estimator.airframe_angle_of_attack {
+        AirframeAlpha::Zero => model,
+        AirframeAlpha::Trim => model.with_alpha(target_alpha_schedule(scenario)?),
+    }))
+}
+
+/// The trim α over airspeed of the target's aircraft data (`target.aircraft`) in the steady
+/// air of `[atmosphere]` at the target's starting point.
+fn target_alpha_schedule(scenario: &Scenario) -> Result<AlphaSchedule, SimError> {
+    let params = AircraftParams::from_scenario_path(&scenario.target.aircraft)
+        .map_err(AircraftSetupError::from)?;
+    let aircraft = Aircraft::new(params).map_err(AircraftSetupError::from)?;
+    let start = Vec3::from(scenario.target.initial_position_ft);
+    // As the aircraft's own trims: the steady wind and density, no drag or moment bias.
+    let air = AtmosphereSample {
+        drag_factor: 1.0,
+        moment_bias_body_lbf_ft: Vec3::zeros(),
+        ..Atmosphere::new(&scenario.atmosphere, 0)
+            .map_err(AircraftSetupError::from)?
+            .steady_sample(&start)
+    };
+    AlphaSchedule::of_aircraft(&aircraft, &air, &start).ok_or_else(|| {
+        SimError::Follower(AircraftSetupError::Invalid(InvalidValue {
+            key: "target.aircraft".to_string(),
+            value: scenario.target.aircraft.clone(),
+            allowed: "an airframe that trims in level flight at 20-200 ft/s (estimator.airframe_angle_of_attack = \"trim\")".to_string(),
+        }))
+    })
 }
 
 /// The target `[target]` describes, flying at least the run's duration: its motion (a
