@@ -194,87 +194,68 @@ impl Default for EstimatorSection {
 impl EstimatorSection {
     /// Checks every value.
     pub fn validate(&self) -> Check {
-        check::in_closed("estimator.jerk_psd", self.jerk_psd, 0.0, 1e6)?;
-        check::in_closed(
-            "estimator.inverse_size_psd",
-            self.inverse_size_psd,
-            0.0,
-            1.0,
-        )?;
-        check::in_closed(
-            "estimator.target_gust_sigma_fps",
-            self.target_gust_sigma_fps,
-            0.0,
-            1e3,
-        )?;
-        check::in_closed(
-            "estimator.target_gust_time_s",
-            self.target_gust_time_s,
-            0.01,
-            1e4,
-        )?;
+        // (key, value, allowed [min, max]) of every scalar.
+        let scalars = [
+            ("jerk_psd", self.jerk_psd, 0.0, 1e6),
+            ("inverse_size_psd", self.inverse_size_psd, 0.0, 1.0),
+            (
+                "target_gust_sigma_fps",
+                self.target_gust_sigma_fps,
+                0.0,
+                1e3,
+            ),
+            ("target_gust_time_s", self.target_gust_time_s, 0.01, 1e4),
+            (
+                "measurement_inflation",
+                self.measurement_inflation,
+                0.01,
+                1e4,
+            ),
+            ("scaled_sigma_floor", self.scaled_sigma_floor, 1e-9, 10.0),
+            (
+                "initial_inverse_size_sigma_per_ft",
+                self.initial_inverse_size_sigma_per_ft,
+                1e-6,
+                100.0,
+            ),
+            (
+                "initial_relative_velocity_sigma_fps",
+                self.initial_relative_velocity_sigma_fps,
+                0.0,
+                1e4,
+            ),
+            (
+                "initial_acceleration_sigma_fps2",
+                self.initial_acceleration_sigma_fps2,
+                0.0,
+                1e4,
+            ),
+            ("known_sigma_fraction", self.known_sigma_fraction, 1e-6, 1.0),
+            ("span_aspect_min", self.span_aspect_min, 0.0, 1.0),
+            (
+                "airframe_view_sigma_deg",
+                self.airframe_view_sigma_deg,
+                0.0,
+                90.0,
+            ),
+            (
+                "airframe_length_bias_px",
+                self.airframe_length_bias_px,
+                -100.0,
+                100.0,
+            ),
+            ("airframe_shape_sigma", self.airframe_shape_sigma, 0.0, 1.0),
+        ];
+        for (key, value, min, max) in scalars {
+            check::in_closed(&format!("estimator.{key}"), value, min, max)?;
+        }
         for (i, sigma) in self.pixel_sigma_px.iter().enumerate() {
             check::in_closed(&format!("estimator.pixel_sigma_px[{i}]"), *sigma, 1e-3, 1e3)?;
         }
-        check::in_closed(
-            "estimator.measurement_inflation",
-            self.measurement_inflation,
-            0.01,
-            1e4,
-        )?;
-        check::in_closed(
-            "estimator.scaled_sigma_floor",
-            self.scaled_sigma_floor,
-            1e-9,
-            10.0,
-        )?;
-        check::in_closed(
-            "estimator.initial_inverse_size_sigma_per_ft",
-            self.initial_inverse_size_sigma_per_ft,
-            1e-6,
-            100.0,
-        )?;
-        check::in_closed(
-            "estimator.initial_relative_velocity_sigma_fps",
-            self.initial_relative_velocity_sigma_fps,
-            0.0,
-            1e4,
-        )?;
-        check::in_closed(
-            "estimator.initial_acceleration_sigma_fps2",
-            self.initial_acceleration_sigma_fps2,
-            0.0,
-            1e4,
-        )?;
-        check::in_closed(
-            "estimator.known_sigma_fraction",
-            self.known_sigma_fraction,
-            1e-6,
-            1.0,
-        )?;
-        check::in_closed("estimator.span_aspect_min", self.span_aspect_min, 0.0, 1.0)?;
-        check::in_closed(
-            "estimator.airframe_view_sigma_deg",
-            self.airframe_view_sigma_deg,
-            0.0,
-            90.0,
-        )?;
-        check::in_closed(
-            "estimator.airframe_length_bias_px",
-            self.airframe_length_bias_px,
-            -100.0,
-            100.0,
-        )?;
         for (i, sigma) in self.airframe_length_sigma_px.iter().enumerate() {
             let key = format!("estimator.airframe_length_sigma_px[{i}]");
             check::in_closed(&key, *sigma, 0.0, 1e4)?;
         }
-        check::in_closed(
-            "estimator.airframe_shape_sigma",
-            self.airframe_shape_sigma,
-            0.0,
-            1.0,
-        )?;
         Ok(())
     }
 }
