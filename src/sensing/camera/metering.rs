@@ -5,12 +5,14 @@
 use super::CameraTimings;
 use super::drawing::DrawnFrame;
 use super::setup::SensorError;
+use crate::frames::Mat3;
 use crate::render::camera::CameraIntrinsics;
 use crate::render::region::ImageRegion;
-use crate::scenario::{BearingPoint, BlobChoice, CameraSection};
+use crate::scenario::{BearingPoint, BlobChoice, CameraSection, SegmentationKind};
 use crate::sensing::binning::{binned_selection, unbinned_measurement};
 use crate::vision::{
-    BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, VisionConfig, VisionPipeline,
+    BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ViewGeometry, VisionConfig,
+    VisionPipeline,
 };
 use std::time::Instant;
 
@@ -33,6 +35,10 @@ pub(super) struct Metering {
     previous_centroid_px: Option<(f64, f64)>,
     /// A window's pixels cut from a whole frame (a frame drawn whole to be saved).
     window_pixels: Vec<u8>,
+    /// The camera's orientation by navigation for the frame being measured (L_CB L_BE).
+    camera_from_ned: Option<Mat3>,
+    /// The last `Ok` frame's maximal length, px.
+    previous_length_px: Option<f64>,
 }
 
 /// Copies the pixels of `window` out of `rgba`, the pixels of `drawn` (which contains it),
@@ -57,18 +63,38 @@ impl Metering {
         };
         vision_config.segmentation.mask_coverage = camera.mask_coverage;
         vision_config.link_radius_px = camera.link_radius_px as usize;
+        vision_config.motion_reference = camera.segmentation == SegmentationKind::Motion;
         Ok(Self {
             vision: VisionPipeline::new(vision_config)?,
             selection: camera.selection,
             bearing_point: camera.bearing_point,
             previous_centroid_px: None,
             window_pixels: Vec::new(),
+            camera_from_ned: None,
+            previous_length_px: None,
         })
     }
 
     /// The clearance the pipeline needs around the target in a window, px.
     pub fn region_clearance_px(&self) -> u32 {
         self.vision.region_clearance_px()
+    }
+
+    /// Sets the camera's orientation by navigation, L_CB L_BE, for the frames measured next.
+    pub fn orient(&mut self, camera_from_ned: Mat3) {
+        self.camera_from_ned = Some(camera_from_ned);
+    }
+
+    /// Tells the image pipeline how `frame`'s pixels look into the world.
+    fn set_view(&mut self, frame: &DrawnFrame) {
+        let geometry = self.camera_from_ned.map(|camera_from_ned| ViewGeometry {
+            intrinsics: frame.intrinsics,
+            camera_from_ned,
+        });
+        self.vision.set_view_geometry(geometry);
+        let factor = f64::from(frame.factor);
+        self.vision
+            .expect_length_px(self.previous_length_px.map(|l| l / factor));
     }
 
     /// The blob to measure in the next frame: the largest, or the one nearest the last
@@ -96,6 +122,7 @@ impl Metering {
             ));
         };
         let vision_started = Instant::now();
+        self.set_view(frame);
         let pixels = if frame.drawn == window {
             &frame.pixels.rgba
         } else {
@@ -136,6 +163,7 @@ impl Metering {
         timings: &mut CameraTimings,
     ) -> Result<BlobMeasurement, SensorError> {
         let vision_started = Instant::now();
+        self.set_view(frame);
         let image = frame.pixels;
         let blob = self
             .vision
@@ -157,6 +185,8 @@ impl Metering {
     /// Remembers a measured frame's blob for the next frame's selection.
     pub fn remember(&mut self, blob: &BlobMeasurement) {
         let ok = blob.status == BlobStatus::Ok;
+        self.vision.commit_frame();
+        self.previous_length_px = ok.then_some(blob.max_length_px);
         self.previous_centroid_px = ok.then_some((blob.centroid_u_px, blob.centroid_v_px));
     }
 }

@@ -250,6 +250,7 @@ impl CameraSensor {
         in_flight: &mut InFlight,
     ) -> Result<FrameRecord, SensorError> {
         let selection = self.metering.selection();
+        self.metering.orient(exposure.geometry.camera_from_ned());
         let frame = self.drawing.frame(exposure.index)?;
         let blob = match self
             .metering

@@ -1,0 +1,274 @@
+//! The background each pixel is explained by, for a textured world behind the target
+//! (`camera.segmentation = "motion"`): a per-pixel reference colour the segmenter measures
+//! colour distances against instead of a smooth surface fitted to the border.
+//!
+//! A pixel's reference is whichever of two explanations is nearest its colour:
+//! 1. The previous frame at the same direction. The background at infinity (sky, cloud, the
+//!    distant ground) maps between frames by the homography K' R K⁻¹, R the camera's rotation
+//!    between the frames, taken from the follower's navigation attitude and gimbal angles
+//!    (the orientations the sensing path already uses; never the truth). Pixels within
+//!    [`TARGET_MARGIN_PX`] of the previous frame's target (its blob, measured `Ok`) explain
+//!    nothing; after a frame that measured nothing `Ok`, every pixel explains (a target
+//!    missed then and still in the image at rest is missed again, until it moves).
+//! 2. The nearest colour on a ring of [`RING_POINTS`] pixels around the pixel, of a radius
+//!    beyond the target's half length (from the last measurement): the local colour model.
+//!    Around a pixel of a compact target the ring lies on background, whose colours it does
+//!    not match; a pixel of a field, a road, a cloud or the sky has pixels of its own kind
+//!    on the ring (along the road, the edge, the horizon), and is explained.
+//!
+//! Assumptions, and where it breaks (docs/findings.md, The scene and the vision against it):
+//! the background is far away, so that the camera's rotation alone moves it (ground at a
+//! finite distance moves by parallax, f v sin²δ / h per second for ground seen δ below the
+//! horizon from height h at speed v); the target's colour differs from the colours of the
+//! background around it; background features smaller than the ring (a field corner, a
+//! patch of cloud) that the previous frame does not explain are taken for target, and a
+//! part of the target whose colour is on its ring (a grey wing over a grey road) is lost.
+
+use super::image_view::RgbaView;
+use crate::frames::Mat3;
+use crate::render::camera::CameraIntrinsics;
+
+/// Pixels around the previous frame's target mask that explain nothing either (its
+/// anti-aliased edge, and the target's motion in the image between frames).
+pub(crate) const TARGET_MARGIN_PX: usize = 3;
+/// Pixels on the ring of the local colour model.
+const RING_POINTS: usize = 16;
+/// The ring's radius before any target was measured, px.
+pub(crate) const DEFAULT_RING_RADIUS_PX: f64 = 24.0;
+
+/// How a frame's pixels look into the world: the camera (binned or not) and its orientation
+/// as the follower's navigation knows it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ViewGeometry {
+    /// The camera the pixels are of (image coordinates of the view's origin included).
+    pub intrinsics: CameraIntrinsics,
+    /// L_CB L_BE: camera axes (x along the optical axis, y right, z down) from NED.
+    pub camera_from_ned: Mat3,
+}
+
+/// A measured frame kept for the next: its colours, which pixels may explain the next
+/// frame's, where it lies in its image and how it looked.
+#[derive(Debug, Clone, Default)]
+struct StoredFrame {
+    rgb: Vec<[f32; 3]>,
+    usable: Vec<bool>,
+    origin: [usize; 2],
+    width: usize,
+    height: usize,
+    geometry: Option<ViewGeometry>,
+}
+
+impl StoredFrame {
+    /// The colour at image position (u, v) (pixel centres at i + 0.5), bilinear, when the
+    /// four pixels around it are inside the frame and usable.
+    fn sample(&self, u_px: f64, v_px: f64) -> Option<[f32; 3]> {
+        let x = u_px - 0.5 - self.origin[0] as f64;
+        let y = v_px - 0.5 - self.origin[1] as f64;
+        if !(x >= 0.0 && y >= 0.0) {
+            return None;
+        }
+        let (i, j) = (x.floor() as usize, y.floor() as usize);
+        if i + 1 >= self.width || j + 1 >= self.height {
+            return None;
+        }
+        let (fx, fy) = ((x - i as f64) as f32, (y - j as f64) as f32);
+        let k = j * self.width + i;
+        let corners = [k, k + 1, k + self.width, k + self.width + 1];
+        if corners.iter().any(|&c| !self.usable[c]) {
+            return None;
+        }
+        let weights = [
+            (1.0 - fx) * (1.0 - fy),
+            fx * (1.0 - fy),
+            (1.0 - fx) * fy,
+            fx * fy,
+        ];
+        let mut out = [0.0f32; 3];
+        for (&c, w) in corners.iter().zip(weights) {
+            for (o, p) in out.iter_mut().zip(self.rgb[c]) {
+                *o += w * p;
+            }
+        }
+        Some(out)
+    }
+}
+
+/// The per-pixel background references of the frame being measured, and the frame before.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct MotionReference {
+    /// The last committed frame (the one the guidance measured last).
+    previous: StoredFrame,
+    /// The frame measured last, committed by [`Self::commit`].
+    pending: StoredFrame,
+    /// Offsets of the ring's pixels, (du, dv).
+    ring: Vec<(isize, isize)>,
+    /// Reference colour of each pixel of the frame being measured, row-major.
+    pub reference: Vec<[f32; 3]>,
+    /// The geometry of the next frame to be measured.
+    geometry: Option<ViewGeometry>,
+}
+
+fn distance2(a: [f32; 3], b: [f32; 3]) -> f32 {
+    (0..3).map(|c| (a[c] - b[c]) * (a[c] - b[c])).sum()
+}
+
+fn rgb_f32(frame: &RgbaView<'_>, idx: usize) -> [f32; 3] {
+    frame.rgb(idx).map(|x| x as f32)
+}
+
+impl MotionReference {
+    /// Sets how the next frame measured looks into the world (None: unknown, the previous
+    /// frame then explains nothing).
+    pub fn set_geometry(&mut self, geometry: Option<ViewGeometry>) {
+        self.geometry = geometry;
+    }
+
+    /// Fills `reference` for `frame`; returns the background's noise σ per channel, grey
+    /// levels: the robust scale of the pixels' distances to the previous frame where it
+    /// explains them (their difference holds two frames' noise), else `floor`.
+    pub fn build(&mut self, frame: &RgbaView<'_>, floor: f64, explained: f64) -> f64 {
+        let explained2 = (explained * explained) as f32;
+        if self.ring.is_empty() {
+            self.set_ring_radius(DEFAULT_RING_RADIUS_PX);
+        }
+        let to_previous = self.rotation_to_previous();
+        let (w, h) = (frame.width, frame.height);
+        self.reference.clear();
+        self.reference.reserve(w * h);
+        let mut differences = Vec::new();
+        for v in 0..h {
+            for u in 0..w {
+                let p = rgb_f32(frame, v * w + u);
+                let warped = to_previous.and_then(|(m, k)| {
+                    let (iu, iv) = (u + frame.origin[0], v + frame.origin[1]);
+                    self.warp(&m, &k, iu as f64 + 0.5, iv as f64 + 0.5)
+                });
+                let explained = warped.is_some_and(|a| distance2(p, a) < explained2);
+                let nearest = if explained {
+                    None
+                } else {
+                    self.nearest_on_ring(frame, u, v, p)
+                };
+                let reference = match (warped, nearest) {
+                    (Some(a), Some(b)) if distance2(p, a) <= distance2(p, b) => a,
+                    (Some(a), None) => a,
+                    (_, Some(b)) => b,
+                    (None, None) => p,
+                };
+                if let Some(a) = warped {
+                    differences.push(distance2(p, a));
+                }
+                self.reference.push(reference);
+            }
+        }
+        noise_sigma(&mut differences, floor)
+    }
+
+    /// The rotation from the frame being measured's camera axes to the previous frame's,
+    /// and the previous camera, when both orientations are known.
+    fn rotation_to_previous(&self) -> Option<(Mat3, CameraIntrinsics)> {
+        let now = self.geometry?;
+        let before = self.previous.geometry?;
+        Some((
+            before.camera_from_ned * now.camera_from_ned.transpose(),
+            before.intrinsics,
+        ))
+    }
+
+    /// The previous frame's colour in the direction of image position (u, v) of the frame
+    /// being measured.
+    fn warp(&self, rotation: &Mat3, before: &CameraIntrinsics, u: f64, v: f64) -> Option<[f32; 3]> {
+        let now = self.geometry?.intrinsics;
+        let ray = crate::frames::Vec3::new(now.focal_px, u - now.cx(), v - now.cy());
+        let r = rotation * ray;
+        if r.x <= 0.0 {
+            return None;
+        }
+        let u_before = before.cx() + before.focal_px * r.y / r.x;
+        let v_before = before.cy() + before.focal_px * r.z / r.x;
+        self.previous.sample(u_before, v_before)
+    }
+
+    /// The colour among the pixels on a ring of radius `ring_radius_px` around (u, v) (those
+    /// inside the frame) nearest `p`.
+    fn nearest_on_ring(
+        &self,
+        frame: &RgbaView<'_>,
+        u: usize,
+        v: usize,
+        p: [f32; 3],
+    ) -> Option<[f32; 3]> {
+        let mut best: Option<([f32; 3], f32)> = None;
+        for &(du, dv) in &self.ring {
+            let (uu, vv) = (u as isize + du, v as isize + dv);
+            if uu < 0 || vv < 0 || uu as usize >= frame.width || vv as usize >= frame.height {
+                continue;
+            }
+            let q = rgb_f32(frame, vv as usize * frame.width + uu as usize);
+            let d = distance2(p, q);
+            if best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((q, d));
+            }
+        }
+        best.map(|(q, _)| q)
+    }
+
+    /// Sets the ring's radius, px of the frames measured next: beyond the target's half
+    /// length, so that the ring around a target pixel lies on background.
+    pub fn set_ring_radius(&mut self, radius_px: f64) {
+        let r = radius_px.max(2.0);
+        self.ring = (0..RING_POINTS)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / RING_POINTS as f64;
+                (
+                    (r * a.cos()).round() as isize,
+                    (r * a.sin()).round() as isize,
+                )
+            })
+            .collect();
+    }
+
+    /// Keeps `frame` as the candidate previous frame, its pixels within [`TARGET_MARGIN_PX`]
+    /// of the `target` pixels (the measured blob's mask, when it was measured `Ok`)
+    /// unusable.
+    pub fn keep(&mut self, frame: &RgbaView<'_>, target: impl Iterator<Item = usize>) {
+        let (w, h) = (frame.width, frame.height);
+        let kept = &mut self.pending;
+        kept.rgb.clear();
+        kept.rgb.extend((0..w * h).map(|i| rgb_f32(frame, i)));
+        kept.usable.clear();
+        kept.usable.resize(w * h, true);
+        kept.origin = frame.origin;
+        (kept.width, kept.height) = (w, h);
+        kept.geometry = self.geometry;
+        let m = TARGET_MARGIN_PX;
+        for i in target {
+            let (u, v) = (i % w, i / w);
+            for vv in v.saturating_sub(m)..(v + m + 1).min(h) {
+                kept.usable[vv * w + u.saturating_sub(m)..vv * w + (u + m + 1).min(w)].fill(false);
+            }
+        }
+    }
+
+    /// Whether the frame being measured has a previous frame to be explained by (its
+    /// orientation and the previous one's known).
+    pub fn has_previous(&self) -> bool {
+        self.rotation_to_previous().is_some()
+    }
+
+    /// Makes the frame kept last the previous frame of the next one measured.
+    pub fn commit(&mut self) {
+        std::mem::swap(&mut self.previous, &mut self.pending);
+    }
+}
+
+/// Per-channel σ from squared RGB distances between two noisy frames: the median distance
+/// over √2 χ₃'s median (1.538), at least `floor`.
+fn noise_sigma(differences: &mut [f32], floor: f64) -> f64 {
+    if differences.is_empty() {
+        return floor;
+    }
+    let mid = differences.len() / 2;
+    let (_, median, _) = differences.select_nth_unstable_by(mid, f32::total_cmp);
+    (f64::from(median.sqrt()) / (1.538 * std::f64::consts::SQRT_2)).max(floor)
+}
