@@ -345,7 +345,7 @@ mod tests {
             BackgroundFitter::default().fit(&frame, BackgroundSource::BorderFit { border_px: 2 });
         let mut seg = Segmenter::default();
         let model = seg
-            .segment(&frame, bg, &SegmentationConfig::default())
+            .segment(&frame, bg, None, &SegmentationConfig::default())
             .unwrap();
         let cov = |u: usize, v: usize| model.coverage(&frame, v * 64 + u, u, v);
         assert!((cov(30, 24) - 0.25).abs() < 0.01, "{}", cov(30, 24));
