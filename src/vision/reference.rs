@@ -303,7 +303,7 @@ mod tests {
                 let tile = 8f64.to_radians();
                 let az = (d.y.atan2(d.x) / tile).floor() as i64;
                 let el = ((-d.z).atan2(d.x.hypot(d.y)) / tile).floor() as i64;
-                let hash = (az * 73_856_093 ^ el * 19_349_663).rem_euclid(997) as u8;
+                let hash = ((az * 73_856_093) ^ (el * 19_349_663)).rem_euclid(997) as u8;
                 let mut rgb = [80 + hash % 100, 110 + hash % 90, 70 + (hash / 3) % 60];
                 if let Some((du, dv)) = disc
                     && (uc - du).hypot(vc - dv) < 6.0
@@ -369,7 +369,7 @@ mod tests {
         assert!(off_px < 0.3, "centroid {off_px} px off");
         let fails = |m: &crate::vision::BlobMeasurement| {
             let off_px = (m.centroid_u_px - CENTRE.0).hypot(m.centroid_v_px - CENTRE.1);
-            m.status != BlobStatus::Ok || !(off_px < 1.0)
+            m.status != BlobStatus::Ok || off_px.is_nan() || off_px >= 1.0
         };
         let unturned = measure_pair(&before());
         assert!(fails(&unturned), "told no rotation: {unturned:?}");
