@@ -6,12 +6,13 @@
 //! 1. The previous frame at the same direction. The background at infinity (sky, cloud, the
 //!    distant ground) maps between frames by the homography K' R K⁻¹, R the camera's rotation
 //!    between the frames, taken from the follower's navigation attitude and gimbal angles
-//!    (the orientations the sensing path already uses; never the truth). Pixels within
-//!    [`TARGET_MARGIN_PX`] of the previous frame's target (its blob, measured `Ok`) explain
+//!    (the orientations the sensing path already uses; never the truth). Pixels within the
+//!    ring's radius (below) of the previous frame's target (its blob, measured `Ok`) explain
 //!    nothing; after a frame that measured nothing `Ok`, every pixel explains (a target
 //!    missed then and still in the image at rest is missed again, until it moves).
 //! 2. The nearest colour on a ring of [`RING_POINTS`] pixels around the pixel, of a radius
-//!    beyond the target's half length (from the last measurement): the local colour model.
+//!    beyond the target's half length (from the last measurement), or mixture of two of them
+//!    (a pixel an edge cuts): the local colour model.
 //!    Around a pixel of a compact target the ring lies on background, whose colours it does
 //!    not match; a pixel of a field, a road, a cloud or the sky has pixels of its own kind
 //!    on the ring (along the road, the edge, the horizon), and is explained.
@@ -28,7 +29,7 @@ use super::image_view::RgbaView;
 use crate::frames::Mat3;
 use crate::render::camera::CameraIntrinsics;
 
-/// Pixels around the previous frame's target mask that explain nothing either (its
+/// Pixels around the previous frame's target mask that explain nothing at least (its
 /// anti-aliased edge, and the target's motion in the image between frames).
 pub(crate) const TARGET_MARGIN_PX: usize = 3;
 /// Pixels on the ring of the local colour model.
@@ -102,6 +103,10 @@ pub(crate) struct MotionReference {
     pending: StoredFrame,
     /// Offsets of the ring's pixels, (du, dv).
     ring: Vec<(isize, isize)>,
+    /// The ring's radius, px.
+    ring_radius_px: usize,
+    /// The colours on the ring around the pixel being explained.
+    ring_colours: Vec<[f32; 3]>,
     /// Reference colour of each pixel of the frame being measured, row-major.
     pub reference: Vec<[f32; 3]>,
     /// The geometry of the next frame to be measured.
@@ -110,6 +115,17 @@ pub(crate) struct MotionReference {
 
 fn distance2(a: [f32; 3], b: [f32; 3]) -> f32 {
     (0..3).map(|c| (a[c] - b[c]) * (a[c] - b[c])).sum()
+}
+
+/// The point of the segment from `a` to `b` nearest `p` (colours).
+fn nearest_on_segment(p: [f32; 3], a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    let ab: [f32; 3] = std::array::from_fn(|c| b[c] - a[c]);
+    let length2: f32 = ab.iter().map(|x| x * x).sum();
+    if length2 <= f32::EPSILON {
+        return a;
+    }
+    let t = ((0..3).map(|c| (p[c] - a[c]) * ab[c]).sum::<f32>() / length2).clamp(0.0, 1.0);
+    std::array::from_fn(|c| a[c] + t * ab[c])
 }
 
 fn rgb_f32(frame: &RgbaView<'_>, idx: usize) -> [f32; 3] {
@@ -189,25 +205,32 @@ impl MotionReference {
         self.previous.sample(u_before, v_before)
     }
 
-    /// The colour among the pixels on a ring of radius `ring_radius_px` around (u, v) (those
-    /// inside the frame) nearest `p`.
+    /// The colour nearest `p` among the pixels on a ring of radius `ring_radius_px` around
+    /// (u, v) (those inside the frame) and their pairwise mixtures: a pixel an edge between
+    /// two fields cuts is a mixture of the two, and the ring crosses both.
     fn nearest_on_ring(
-        &self,
+        &mut self,
         frame: &RgbaView<'_>,
         u: usize,
         v: usize,
         p: [f32; 3],
     ) -> Option<[f32; 3]> {
-        let mut best: Option<([f32; 3], f32)> = None;
+        self.ring_colours.clear();
         for &(du, dv) in &self.ring {
             let (uu, vv) = (u as isize + du, v as isize + dv);
-            if uu < 0 || vv < 0 || uu as usize >= frame.width || vv as usize >= frame.height {
-                continue;
+            if uu >= 0 && vv >= 0 && (uu as usize) < frame.width && (vv as usize) < frame.height {
+                let q = rgb_f32(frame, vv as usize * frame.width + uu as usize);
+                self.ring_colours.push(q);
             }
-            let q = rgb_f32(frame, vv as usize * frame.width + uu as usize);
-            let d = distance2(p, q);
-            if best.is_none_or(|(_, bd)| d < bd) {
-                best = Some((q, d));
+        }
+        let mut best: Option<([f32; 3], f32)> = None;
+        for (k, &a) in self.ring_colours.iter().enumerate() {
+            for &b in &self.ring_colours[k..] {
+                let q = nearest_on_segment(p, a, b);
+                let d = distance2(p, q);
+                if best.is_none_or(|(_, bd)| d < bd) {
+                    best = Some((q, d));
+                }
             }
         }
         best.map(|(q, _)| q)
@@ -217,6 +240,7 @@ impl MotionReference {
     /// length, so that the ring around a target pixel lies on background.
     pub fn set_ring_radius(&mut self, radius_px: f64) {
         let r = radius_px.max(2.0);
+        self.ring_radius_px = r.ceil() as usize;
         self.ring = (0..RING_POINTS)
             .map(|k| {
                 let a = std::f64::consts::TAU * k as f64 / RING_POINTS as f64;
@@ -228,9 +252,10 @@ impl MotionReference {
             .collect();
     }
 
-    /// Keeps `frame` as the candidate previous frame, its pixels within [`TARGET_MARGIN_PX`]
-    /// of the `target` pixels (the measured blob's mask, when it was measured `Ok`)
-    /// unusable.
+    /// Keeps `frame` as the candidate previous frame, the pixels of the `target` pixels'
+    /// bounding box (the measured blob's mask, when it was measured `Ok`) grown by the ring's
+    /// radius unusable: the measured blob may be a part of the target, and what is left of it
+    /// must not explain itself in the next frame.
     pub fn keep(&mut self, frame: &RgbaView<'_>, target: impl Iterator<Item = usize>) {
         let (w, h) = (frame.width, frame.height);
         let kept = &mut self.pending;
@@ -241,12 +266,19 @@ impl MotionReference {
         kept.origin = frame.origin;
         (kept.width, kept.height) = (w, h);
         kept.geometry = self.geometry;
-        let m = TARGET_MARGIN_PX;
-        for i in target {
+        let bounds = target.fold(None, |b: Option<[usize; 4]>, i| {
             let (u, v) = (i % w, i / w);
-            for vv in v.saturating_sub(m)..(v + m + 1).min(h) {
-                kept.usable[vv * w + u.saturating_sub(m)..vv * w + (u + m + 1).min(w)].fill(false);
-            }
+            Some(b.map_or([u, v, u, v], |[u0, v0, u1, v1]| {
+                [u0.min(u), v0.min(v), u1.max(u), v1.max(v)]
+            }))
+        });
+        let Some([u0, v0, u1, v1]) = bounds else {
+            return;
+        };
+        let m = self.ring_radius_px.max(TARGET_MARGIN_PX);
+        let (u0, u1) = (u0.saturating_sub(m), (u1 + m + 1).min(w));
+        for v in v0.saturating_sub(m)..(v1 + m + 1).min(h) {
+            kept.usable[v * w + u0..v * w + u1].fill(false);
         }
     }
 
