@@ -39,6 +39,11 @@ pub(super) struct Metering {
     camera_from_ned: Option<Mat3>,
     /// The last `Ok` frame's maximal length, px.
     previous_length_px: Option<f64>,
+    /// The camera's orientation by navigation when the last frame was measured.
+    previous_camera_from_ned: Option<Mat3>,
+    /// Whether the segmentation is `motion` (which also follows the last centroid turned by
+    /// the camera's rotation since).
+    motion: bool,
 }
 
 /// Copies the pixels of `window` out of `rgba`, the pixels of `drawn` (which contains it),
@@ -72,6 +77,8 @@ impl Metering {
             window_pixels: Vec::new(),
             camera_from_ned: None,
             previous_length_px: None,
+            previous_camera_from_ned: None,
+            motion: camera.segmentation == SegmentationKind::Motion,
         })
     }
 
@@ -98,12 +105,38 @@ impl Metering {
     }
 
     /// The blob to measure in the next frame: the largest, or the one nearest the last
-    /// measured centroid (`camera.selection = "nearest"`).
-    pub fn selection(&self) -> BlobSelection {
+    /// measured centroid (`camera.selection = "nearest"`); with `camera.segmentation =
+    /// "motion"`, the last centroid turned by the camera's rotation since (K R K⁻¹ of the
+    /// camera of `intrinsics`, the orientations by navigation), where the target at rest
+    /// against the world is now.
+    pub fn selection(&self, intrinsics: &CameraIntrinsics) -> BlobSelection {
         match (self.selection, self.previous_centroid_px) {
-            (BlobChoice::Nearest, Some((u_px, v_px))) => BlobSelection::NearestTo { u_px, v_px },
+            (BlobChoice::Nearest, Some((u_px, v_px))) => {
+                let (u_px, v_px) = self.turned(intrinsics, u_px, v_px).unwrap_or((u_px, v_px));
+                BlobSelection::NearestTo { u_px, v_px }
+            }
             _ => BlobSelection::Largest,
         }
+    }
+
+    /// Pixel (u, v) of the last frame turned into the frame being measured (motion only).
+    fn turned(&self, intrinsics: &CameraIntrinsics, u_px: f64, v_px: f64) -> Option<(f64, f64)> {
+        let (before, now) = (self.previous_camera_from_ned?, self.camera_from_ned?);
+        if !self.motion {
+            return None;
+        }
+        let ray = crate::frames::Vec3::new(
+            intrinsics.focal_px,
+            u_px - intrinsics.cx(),
+            v_px - intrinsics.cy(),
+        );
+        let r = now * before.transpose() * ray;
+        (r.x > 0.0).then(|| {
+            (
+                intrinsics.cx() + intrinsics.focal_px * r.y / r.x,
+                intrinsics.cy() + intrinsics.focal_px * r.z / r.x,
+            )
+        })
     }
 
     /// Measures a read-back frame: in its tracking window (binned or not), or the whole image;
@@ -187,6 +220,7 @@ impl Metering {
         let ok = blob.status == BlobStatus::Ok;
         self.vision.commit_frame();
         self.previous_length_px = ok.then_some(blob.max_length_px);
+        self.previous_camera_from_ned = self.camera_from_ned;
         self.previous_centroid_px = ok.then_some((blob.centroid_u_px, blob.centroid_v_px));
     }
 }
