@@ -9,7 +9,9 @@
 //!    (the orientations the sensing path already uses; never the truth). Pixels within the
 //!    ring's radius (below) of the previous frame's target (its blob, measured `Ok`) explain
 //!    nothing; after a frame that measured nothing `Ok`, every pixel explains (a target
-//!    missed then and still in the image at rest is missed again, until it moves).
+//!    missed then and still in the image at rest is missed again, until it moves). A pixel
+//!    within the ring's radius of the frame's edge that the previous frame did not see (a
+//!    strip the camera's turn brought into view) is taken for background.
 //! 2. The nearest colour on a ring of [`RING_POINTS`] pixels around the pixel, of a radius
 //!    beyond the target's half length (from the last measurement), or mixture of two of them
 //!    (a pixel an edge cuts): the local colour model.
@@ -62,21 +64,21 @@ struct StoredFrame {
 impl StoredFrame {
     /// The colour at image position (u, v) (pixel centres at i + 0.5), bilinear, when the
     /// four pixels around it are inside the frame and usable.
-    fn sample(&self, u_px: f64, v_px: f64) -> Option<[f32; 3]> {
+    fn sample(&self, u_px: f64, v_px: f64) -> Seen {
         let x = u_px - 0.5 - self.origin[0] as f64;
         let y = v_px - 0.5 - self.origin[1] as f64;
         if !(x >= 0.0 && y >= 0.0) {
-            return None;
+            return Seen::Outside;
         }
         let (i, j) = (x.floor() as usize, y.floor() as usize);
         if i + 1 >= self.width || j + 1 >= self.height {
-            return None;
+            return Seen::Outside;
         }
         let (fx, fy) = ((x - i as f64) as f32, (y - j as f64) as f32);
         let k = j * self.width + i;
         let corners = [k, k + 1, k + self.width, k + self.width + 1];
         if corners.iter().any(|&c| !self.usable[c]) {
-            return None;
+            return Seen::Unusable;
         }
         let weights = [
             (1.0 - fx) * (1.0 - fy),
@@ -90,8 +92,19 @@ impl StoredFrame {
                 *o += w * p;
             }
         }
-        Some(out)
+        Seen::Colour(out)
     }
+}
+
+/// What the previous frame saw in a direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Seen {
+    /// Nothing: the direction was outside it (or behind its camera, or it is unknown).
+    Outside,
+    /// Its target, or what lay around it.
+    Unusable,
+    /// This background colour.
+    Colour([f32; 3]),
 }
 
 /// The per-pixel background references of the frame being measured, and the frame before.
@@ -155,10 +168,21 @@ impl MotionReference {
         for v in 0..h {
             for u in 0..w {
                 let p = rgb_f32(frame, v * w + u);
-                let warped = to_previous.and_then(|(m, k)| {
+                let seen = to_previous.map_or(Seen::Outside, |(m, k)| {
                     let (iu, iv) = (u + frame.origin[0], v + frame.origin[1]);
                     self.warp(&m, &k, iu as f64 + 0.5, iv as f64 + 0.5)
                 });
+                // A strip the camera's turn brought into view at the frame's edge holds no
+                // target yet: the previous frame did not see it and the ring lies half outside.
+                let edge = u.min(v).min(w - 1 - u).min(h - 1 - v) < self.ring_radius_px;
+                if seen == Seen::Outside && edge && to_previous.is_some() {
+                    self.reference.push(p);
+                    continue;
+                }
+                let warped = match seen {
+                    Seen::Colour(c) => Some(c),
+                    _ => None,
+                };
                 let explained = warped.is_some_and(|a| distance2(p, a) < explained2);
                 let nearest = if explained {
                     None
@@ -193,12 +217,14 @@ impl MotionReference {
 
     /// The previous frame's colour in the direction of image position (u, v) of the frame
     /// being measured.
-    fn warp(&self, rotation: &Mat3, before: &CameraIntrinsics, u: f64, v: f64) -> Option<[f32; 3]> {
-        let now = self.geometry?.intrinsics;
+    fn warp(&self, rotation: &Mat3, before: &CameraIntrinsics, u: f64, v: f64) -> Seen {
+        let Some(now) = self.geometry.map(|g| g.intrinsics) else {
+            return Seen::Outside;
+        };
         let ray = crate::frames::Vec3::new(now.focal_px, u - now.cx(), v - now.cy());
         let r = rotation * ray;
         if r.x <= 0.0 {
-            return None;
+            return Seen::Outside;
         }
         let u_before = before.cx() + before.focal_px * r.y / r.x;
         let v_before = before.cy() + before.focal_px * r.z / r.x;
