@@ -128,8 +128,12 @@ fn cloud_density(p: vec2<f32>) -> f32 {
     return 0.65 * value_noise(p, 1u) + 0.35 * value_noise(detail, 2u);
 }
 
-// Fields of four crops, each shaded by its own hash, with roads along every k-th edge.
-fn ground_colour(p: vec2<f32>) -> vec3<f32> {
+// Fields of four crops, each shaded by its own hash, with roads along every k-th edge, as a
+// pixel whose footprint on the ground is `footprint_ft` across sees them: fields smaller than
+// the footprint fade to the crops' mean colour and a road narrower than it to its share of
+// the pixel (a camera's pixel integrates what it sees; point samples of fields and roads
+// finer than a pixel alias, and the pattern then changes from frame to frame).
+fn ground_colour(p: vec2<f32>, footprint_ft: f32) -> vec3<f32> {
     let cell = floor(p / u.ground.y);
     let i = i32(cell.x);
     let j = i32(cell.y);
@@ -143,10 +147,14 @@ fn ground_colour(p: vec2<f32>) -> vec3<f32> {
         colour = vec3<f32>(0.42, 0.32, 0.22);
     }
     colour = colour * (0.85 + 0.3 * lattice(i, j, 4u));
+    let crops_mean = vec3<f32>(0.4525, 0.485, 0.2675);
+    colour = mix(colour, crops_mean, smoothstep(0.2, 1.0, footprint_ft / u.ground.y));
     let period = u.ground.z;
     let off_road = abs(p - period * round(p / period));
-    if (min(off_road.x, off_road.y) < 0.5 * u.ground.w) {
-        colour = vec3<f32>(0.47, 0.47, 0.47);
+    let road_ft = u.ground.w;
+    if (min(off_road.x, off_road.y) < 0.5 * max(road_ft, footprint_ft)) {
+        let share = min(1.0, road_ft / max(footprint_ft, 1e-6));
+        colour = mix(colour, vec3<f32>(0.47, 0.47, 0.47), share);
     }
     return colour;
 }
@@ -184,10 +192,13 @@ fn fs_scene(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         colour = u.sky_bottom.rgb;
     }
     let ground_t = plane_distance(d, u.ground.x);
+    // Where the ray meets the ground, and the pixel's footprint there (derivatives are taken
+    // before any branch: they need every pixel of the quad).
+    let p = u.camera_ned_ft.xy + ground_t * d.xy;
+    let footprint_ft = max(length(dpdx(p)), length(dpdy(p)));
     if (u.flags.y == 1u && ground_t > 0.0) {
-        let p = u.camera_ned_ft.xy + ground_t * d.xy;
         let fog = exp(-ground_t / u.haze.x);
-        colour = mix(u.sky_bottom.rgb, ground_colour(p), fog);
+        colour = mix(u.sky_bottom.rgb, ground_colour(p, footprint_ft), fog);
         distance = ground_t;
     } else if (dot(d, u.sun.xyz) > 0.99996) {
         // The sun's disc, 0.5° in radius (cos 0.5° = 0.99996): twice the real sun's.

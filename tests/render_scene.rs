@@ -1,7 +1,8 @@
 //! The world scene (`Sky::World`) is a function of the camera's pose and the scene's seed only:
 //! the same pose and seed give the same bytes, another seed other fields; a frame drawn in a
 //! region of the image (the tracking window's path) holds, there, the whole frame's pixels;
-//! a camera looking straight up at the cloud sheet sees about the stated fraction of cloud.
+//! a camera looking straight up at the cloud sheet sees about the stated fraction of cloud;
+//! the distant ground does not shimmer under a sub-pixel turn.
 
 mod render_support;
 
@@ -144,5 +145,39 @@ fn clouds_cover_the_stated_fraction() {
     assert!(
         (fraction - 0.3).abs() < 0.06,
         "cloud fraction {fraction:.3}"
+    );
+}
+
+/// Mean colour change, grey levels, between a frame and one whose camera yawed by 0.1°
+/// (half a pixel), over rows `rows` of the image.
+fn change_under_a_small_turn(rows: std::ops::Range<u32>) -> f64 {
+    let mut r = renderer(settings(0.0, 5, 4));
+    let hidden = TargetPoseInCamera::hidden();
+    let before = frame(&mut r, &world_camera([0.0, 0.0, 0.0]), &hidden, None);
+    let after = frame(&mut r, &world_camera([0.0, 0.0, 0.1]), &hidden, None);
+    let width = before.width_px as usize;
+    let (mut sum, mut count) = (0.0, 0usize);
+    for v in rows {
+        let row = v as usize * width * 4;
+        for i in (row..row + width * 4).filter(|i| i % 4 != 3) {
+            sum += (f64::from(before.rgba[i]) - f64::from(after.rgba[i])).abs();
+            count += 1;
+        }
+    }
+    sum / count as f64
+}
+
+/// The distant ground is drawn as a pixel integrates it: just below the horizon the fields are
+/// finer than a pixel, and a turn of half a pixel changes those rows by no more than it
+/// changes the near ground (point-sampled fields there alias, and their colours change
+/// wholesale with any sub-pixel motion).
+#[test]
+fn distant_ground_does_not_shimmer() {
+    let level = 120; // the horizon's row, 320x240 looking level
+    let distant = change_under_a_small_turn(level + 1..level + 9);
+    let near = change_under_a_small_turn(200..240);
+    assert!(
+        distant <= near,
+        "distant rows change by {distant:.2} grey levels, the near ground by {near:.2}"
     );
 }

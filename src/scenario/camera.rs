@@ -52,6 +52,22 @@ pub enum CameraPipeline {
     Whole,
 }
 
+/// How the image pipeline tells target pixels from background pixels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SegmentationKind {
+    /// A colour distance to a smooth colour surface fitted to the border of the measured
+    /// pixels: exact on a uniform or gradient sky, not on textured ground or cloud.
+    Threshold,
+    /// A colour distance to the background each pixel is explained by: the previous frame's
+    /// pixel at the same direction (the background at infinity maps between frames by
+    /// K R K⁻¹, R the camera's rotation between them from the follower's navigation attitude
+    /// and gimbal angles), away from the previous frame's target, or the nearest colour of the
+    /// measured pixels' border (`vision::reference`, docs/findings.md, The scene and the
+    /// vision against it).
+    Motion,
+}
+
 /// The default `camera.mesh`: the seed's target, shipped in `assets/` and built into the
 /// program.
 pub const DEFAULT_MESH: &str = "assets/target_aircraft.obj";
@@ -128,6 +144,10 @@ pub struct CameraSection {
     /// growing with the target's size beyond this length, at the accuracy of a 1/k-resolution
     /// camera for those frames; with `pipeline = "window"` only.
     pub measure_max_length_px: f64,
+    /// How target pixels are told from background: `threshold` (default: against a colour
+    /// surface fitted to the border) or `motion` (against the rotation-compensated previous
+    /// frame and the border's colours, for a textured world behind the target).
+    pub segmentation: SegmentationKind,
     /// An occlusion: frames taken in [start, end) s show no target (as if a cloud or the
     /// follower's own airframe hid it), to force a loss; [0, 0] for none.
     pub occlusion_s: [f64; 2],
@@ -160,6 +180,7 @@ impl Default for CameraSection {
             pipeline: CameraPipeline::Window,
             measure_max_length_px: 0.0,
             occlusion_s: [0.0, 0.0],
+            segmentation: SegmentationKind::Threshold,
         }
     }
 }

@@ -15,7 +15,7 @@ use super::image_view::RgbaView;
 /// a pixel with independent N(0, σ²) noise per channel is this times σ.
 const CHI3_MEDIAN: f64 = 1.538;
 /// Standard deviation of rounding to integer grey levels, 1/√12: the noise floor of 8-bit data.
-const QUANTISATION_SIGMA: f64 = 0.289;
+pub(crate) const QUANTISATION_SIGMA: f64 = 0.289;
 /// Border samples farther than `TRIM_SCALES` robust scales (+ `TRIM_FLOOR` grey levels) from
 /// the fit are outliers. For pure noise, 3 medians of χ3 ≈ 4.6σ keeps 99.99% of samples.
 const TRIM_SCALES: f64 = 3.0;

@@ -109,6 +109,10 @@ pub struct VisionConfig {
     /// 8-connectivity; ≥ 1). Thin parts of a distant target seen edge-on rasterise as broken
     /// lines; 2 keeps them with the body they belong to.
     pub link_radius_px: usize,
+    /// Measure colour distances against each pixel's own background, from the previous frame
+    /// turned by the camera's rotation and the border's colours (`super::reference`), instead
+    /// of a colour surface fitted to the border.
+    pub motion_reference: bool,
 }
 
 impl Default for VisionConfig {
@@ -117,6 +121,7 @@ impl Default for VisionConfig {
             segmentation: SegmentationConfig::default(),
             min_pixel_count: 4,
             link_radius_px: 1,
+            motion_reference: false,
         }
     }
 }

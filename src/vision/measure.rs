@@ -94,7 +94,7 @@ pub(crate) struct BlobToMeasure<'a> {
     /// Bounding box of the blob's mask pixels.
     pub bbox: PixelBox,
     /// Coverage of any pixel.
-    pub coverage: &'a CoverageModel,
+    pub coverage: &'a CoverageModel<'a>,
     /// Edge points need at least this coverage (above the noise).
     pub edge_min_coverage: f64,
     /// How far a corner model's predicted coverage may be from a measured one.

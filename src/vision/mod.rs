@@ -33,6 +33,7 @@ mod image_view;
 mod measure;
 pub mod overlay;
 mod pipeline;
+mod reference;
 mod segment;
 pub mod silhouette;
 mod subpixel_edge;
@@ -52,5 +53,6 @@ pub use feret::{FeretDiameter, FeretFinder, PixelPoint, convex_hull_into, max_fe
 pub use image_measurement::ImageMeasurement;
 pub use image_view::ImageSizeError;
 pub use pipeline::{BlobMeasurement, BlobStatus, RegionMeasurement, VisionPipeline};
+pub use reference::ViewGeometry;
 pub use tracking::TrackingWindow;
 pub use truth::{ImageTruth, TruthProjector, image_truth};

@@ -15,18 +15,28 @@ use crate::render::camera::CameraIntrinsics;
 use crate::render::region::ImageRegion;
 use crate::scenario::BearingPoint;
 
-use super::background::BackgroundFitter;
+use super::background::{BackgroundFitter, QUANTISATION_SIGMA};
 use super::components::{BlobSummary, ComponentLabeller, PixelBox};
 use super::config::{BlobSelection, VisionConfig, VisionConfigError};
 use super::feret::FeretDiameter;
 use super::image_view::{ImageSizeError, RgbaView};
 use super::measure::{BlobMeasurer, BlobToMeasure};
+use super::reference::{DEFAULT_RING_RADIUS_PX, MotionReference, ViewGeometry};
 use super::segment::{CoverageModel, Segmenter};
 
 /// Edge points need a coverage of at least this many noise standard deviations of the coverage
 /// (σ / contrast): the debiased coverage of a background pixel exceeds 3.6 σ/contrast with
 /// probability 1e-3 (χ²(3) quantile 16.3, minus the 3 subtracted).
 const EDGE_MIN_COVERAGE_SIGMAS: f64 = 4.0;
+/// A pixel within this colour distance of the previous frame's pixel in its direction is
+/// background without looking further (`motion_reference`), grey levels: half the default
+/// detection floor.
+const EXPLAINED_GREY: f64 = 4.0;
+/// The local colour model's ring radius per expected maximal length: beyond half the length,
+/// with room for the target to grow or turn between frames.
+const RING_PER_LENGTH: f64 = 0.65;
+/// And beyond the anti-aliased edge, px.
+const RING_MARGIN_PX: f64 = 4.0;
 /// Bounds of the edge-point coverage cut: at least 0.1 (a pixel can be 10% covered by noise-free
 /// rounding artefacts of the renderer), at most 0.5.
 const EDGE_MIN_COVERAGE_RANGE: (f64, f64) = (0.1, 0.5);
@@ -150,6 +160,8 @@ pub struct VisionPipeline {
     segmenter: Segmenter,
     labeller: ComponentLabeller,
     measurer: BlobMeasurer,
+    /// Per-pixel backgrounds, with `config.motion_reference`.
+    motion: Option<MotionReference>,
 }
 
 impl VisionPipeline {
@@ -162,12 +174,40 @@ impl VisionPipeline {
             segmenter: Segmenter::default(),
             labeller: ComponentLabeller::default(),
             measurer: BlobMeasurer::default(),
+            motion: config.motion_reference.then(MotionReference::default),
         })
     }
 
     /// The configuration in use.
     pub fn config(&self) -> &VisionConfig {
         &self.config
+    }
+
+    /// How the next frame measured looks into the world, for the previous frame to explain
+    /// its background by (`motion_reference` only; None: not known).
+    pub fn set_view_geometry(&mut self, geometry: Option<ViewGeometry>) {
+        if let Some(motion) = &mut self.motion {
+            motion.set_geometry(geometry);
+        }
+    }
+
+    /// The target's expected maximal length in the next frame's pixels (`motion_reference`
+    /// only; None: not known): the local colour model's ring lies beyond it, and never
+    /// nearer than the default radius (a blob measured short must not shrink the ring onto
+    /// the target itself).
+    pub fn expect_length_px(&mut self, length_px: Option<f64>) {
+        if let Some(motion) = &mut self.motion {
+            let beyond = length_px.map_or(0.0, |l| RING_PER_LENGTH * l + RING_MARGIN_PX);
+            motion.set_ring_radius(beyond.max(DEFAULT_RING_RADIUS_PX));
+        }
+    }
+
+    /// Makes the frame measured last the one the next frame's background is explained by
+    /// (`motion_reference` only): call once per frame, after its final measurement.
+    pub fn commit_frame(&mut self) {
+        if let Some(motion) = &mut self.motion {
+            motion.commit();
+        }
     }
 
     /// Every blob of the last measured frame (mask pixels, 8-connected), in raster order of
@@ -202,10 +242,25 @@ impl VisionPipeline {
             return Ok(BlobMeasurement::not_found(0, f64::NAN));
         }
         let seg = &self.config.segmentation;
-        let background = self.background.fit(&frame, seg.background);
+        let mut background = self.background.fit(&frame, seg.background);
+        let reference = match &mut self.motion {
+            Some(motion) if !motion.has_previous() => {
+                // A first frame only sets up the next frame's background: without one, the
+                // local colour model alone takes every unexplained texture for target.
+                self.labeller.label(&[], frame.width, frame.height);
+                motion.keep(&frame, std::iter::empty());
+                return Ok(BlobMeasurement::not_found(0, background.noise_sigma));
+            }
+            Some(motion) => {
+                background.noise_sigma = motion.build(&frame, QUANTISATION_SIGMA, EXPLAINED_GREY);
+                Some(motion.reference.as_slice())
+            }
+            None => None,
+        };
         let sigma = background.noise_sigma;
-        let Some(coverage) = self.segmenter.segment(&frame, background, seg) else {
+        let Some(coverage) = self.segmenter.segment(&frame, background, reference, seg) else {
             self.labeller.label(&[], frame.width, frame.height);
+            self.keep_frame(&frame, None);
             return Ok(BlobMeasurement::not_found(0, sigma));
         };
         self.labeller.label_linked(
@@ -217,6 +272,7 @@ impl VisionPipeline {
         let blobs = &self.labeller.blobs;
         let Some((index, too_small)) = select_blob(blobs, self.config.min_pixel_count, selection)
         else {
+            self.keep_frame(&frame, None);
             return Ok(BlobMeasurement::not_found(0, sigma));
         };
         let summary = blobs[index];
@@ -240,6 +296,8 @@ impl VisionPipeline {
         } else {
             BlobStatus::Ok
         };
+        let target = (status == BlobStatus::Ok).then_some(index as u32 + 1);
+        self.keep_frame(&frame, target);
         Ok(BlobMeasurement {
             status,
             centroid_u_px: geometry.centroid_u_px,
@@ -256,6 +314,17 @@ impl VisionPipeline {
 }
 
 impl VisionPipeline {
+    /// Keeps `frame` for the next frame's background (`motion_reference` only), the pixels
+    /// around the mask of blob `label` (the target measured `Ok`) excluded.
+    fn keep_frame(&mut self, frame: &RgbaView<'_>, label: Option<u32>) {
+        if let Some(motion) = &mut self.motion {
+            let label = label.unwrap_or(0);
+            let target = self.segmenter.mask.iter().map(|&i| i as usize);
+            let labels = &self.labeller.labels;
+            motion.keep(frame, target.filter(|&i| label != 0 && labels[i] == label));
+        }
+    }
+
     /// How close to an inner edge of a region a blob may come, px, before the region's
     /// measurement may differ from the whole image's: a blob takes in mask pixels up to
     /// `link_radius_px` away, and its measurement reads the coverage of pixels up to 2 px
@@ -360,9 +429,7 @@ struct CoverageNoise {
 
 impl CoverageNoise {
     fn at(coverage: &CoverageModel, blob: &BlobSummary) -> Self {
-        let b = coverage
-            .background
-            .colour_at(blob.mean_u_px, blob.mean_v_px);
+        let b = coverage.background_near(blob.mean_u_px, blob.mean_v_px);
         let contrast = (0..3)
             .map(|c| (coverage.target_rgb[c] - b[c]).powi(2))
             .sum::<f64>()

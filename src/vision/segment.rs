@@ -25,20 +25,46 @@ pub(crate) const MASK: u8 = 4;
 
 /// Turns a pixel's colour into the fraction of it covered by the target.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct CoverageModel {
+pub(crate) struct CoverageModel<'a> {
     /// Background colour model of the frame.
     pub background: BackgroundModel,
+    /// Each pixel's own background colour, row-major (`camera.segmentation = "motion"`,
+    /// `super::reference`); the model's surface when None.
+    pub reference: Option<&'a [[f32; 3]]>,
+    /// Width of the frame, px (to index `reference`).
+    pub width: usize,
     /// Colour of a fully covered target pixel, grey levels.
     pub target_rgb: [f64; 3],
     /// Candidate threshold (Euclidean RGB distance), grey levels.
     pub threshold: f64,
 }
 
-impl CoverageModel {
+impl CoverageModel<'_> {
+    /// The background colour of pixel (u, v) = index `idx`.
+    pub fn background_at(&self, idx: usize, u: usize, v: usize) -> [f64; 3] {
+        match self.reference {
+            Some(reference) => reference[idx].map(f64::from),
+            None => self.background.colour_at(u as f64 + 0.5, v as f64 + 0.5),
+        }
+    }
+
+    /// The background colour at pixel position (u, v) (the pixel holding it).
+    pub fn background_near(&self, u_px: f64, v_px: f64) -> [f64; 3] {
+        match self.reference {
+            Some(_) => {
+                let (u, v) = (u_px.max(0.0) as usize, v_px.max(0.0) as usize);
+                let height = self.reference.map_or(0, |r| r.len() / self.width.max(1));
+                let (u, v) = (u.min(self.width - 1), v.min(height.max(1) - 1));
+                self.background_at(v * self.width + u, u, v)
+            }
+            None => self.background.colour_at(u_px, v_px),
+        }
+    }
+
     /// Coverage α in [0, 1] of pixel (u, v) = index `idx` of `frame`.
     pub fn coverage(&self, frame: &RgbaView<'_>, idx: usize, u: usize, v: usize) -> f64 {
         let p = frame.rgb(idx);
-        let b = self.background.colour_at(u as f64 + 0.5, v as f64 + 0.5);
+        let b = self.background_at(idx, u, v);
         let mut d2 = 0.0;
         let mut contrast2 = 0.0;
         for c in 0..3 {
@@ -125,30 +151,52 @@ fn median_colour(
 impl Segmenter {
     /// Fills `class`, `candidates` and `mask` for `frame`; returns the coverage model, or
     /// `None` when no pixel is a candidate.
-    pub fn segment(
+    pub fn segment<'a>(
         &mut self,
         frame: &RgbaView<'_>,
         background: BackgroundModel,
+        reference: Option<&'a [[f32; 3]]>,
         config: &SegmentationConfig,
-    ) -> Option<CoverageModel> {
+    ) -> Option<CoverageModel<'a>> {
         let threshold = detection_threshold(config.detection, background.noise_sigma);
-        self.find_candidates(frame, &background, threshold);
+        let mut model = CoverageModel {
+            background,
+            reference,
+            width: frame.width,
+            target_rgb: [0.0; 3],
+            threshold,
+        };
+        match reference {
+            Some(reference) => self.find_candidates_in(frame, reference, threshold),
+            None => self.find_candidates(frame, &background, threshold),
+        }
         if self.candidates.is_empty() {
             self.mask.clear();
             return None;
         }
         let core_count = self.mark_core(frame.width, frame.height);
-        let target_rgb = match config.target_colour {
+        model.target_rgb = match config.target_colour {
             TargetColour::Fixed { rgb } => rgb.map(f64::from),
-            TargetColour::Estimated => self.estimate_target_colour(frame, &background, core_count),
-        };
-        let model = CoverageModel {
-            background,
-            target_rgb,
-            threshold,
+            TargetColour::Estimated => self.estimate_target_colour(frame, &model, core_count),
         };
         self.mark_mask(frame, &model, config.mask_coverage);
         Some(model)
+    }
+
+    /// Flags and lists the candidates against each pixel's own background colour.
+    fn find_candidates_in(&mut self, frame: &RgbaView<'_>, reference: &[[f32; 3]], threshold: f64) {
+        self.class.clear();
+        self.candidates.clear();
+        let threshold2 = (threshold * threshold) as f32;
+        for (i, b) in reference.iter().enumerate() {
+            let p = frame.rgb(i);
+            let d2: f32 = (0..3).map(|c| (p[c] as f32 - b[c]).powi(2)).sum();
+            let candidate = d2 >= threshold2;
+            self.class.push(u8::from(candidate));
+            if candidate {
+                self.candidates.push(i as u32);
+            }
+        }
     }
 
     /// Pass over every pixel: flags and lists the candidates.
@@ -223,7 +271,7 @@ impl Segmenter {
     fn estimate_target_colour(
         &mut self,
         frame: &RgbaView<'_>,
-        background: &BackgroundModel,
+        model: &CoverageModel<'_>,
         core_count: usize,
     ) -> [f64; 3] {
         if core_count > 0 {
@@ -240,7 +288,7 @@ impl Segmenter {
         self.distances.extend(self.candidates.iter().map(|&i| {
             let i = i as usize;
             let p = frame.rgb(i);
-            let b = background.colour_at((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+            let b = model.background_at(i, i % w, i / w);
             (0..3).map(|c| (p[c] - b[c]).powi(2)).sum::<f64>()
         }));
         self.scratch.clear();
@@ -297,7 +345,7 @@ mod tests {
             BackgroundFitter::default().fit(&frame, BackgroundSource::BorderFit { border_px: 2 });
         let mut seg = Segmenter::default();
         let model = seg
-            .segment(&frame, bg, &SegmentationConfig::default())
+            .segment(&frame, bg, None, &SegmentationConfig::default())
             .unwrap();
         let cov = |u: usize, v: usize| model.coverage(&frame, v * 64 + u, u, v);
         assert!((cov(30, 24) - 0.25).abs() < 0.01, "{}", cov(30, 24));

@@ -323,6 +323,7 @@ fn explicit_threshold_configuration() {
         },
         min_pixel_count: 4,
         link_radius_px: 1,
+        motion_reference: false,
     };
     let mut p = VisionPipeline::new(config).unwrap();
     let m = p

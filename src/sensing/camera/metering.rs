@@ -5,12 +5,14 @@
 use super::CameraTimings;
 use super::drawing::DrawnFrame;
 use super::setup::SensorError;
+use crate::frames::Mat3;
 use crate::render::camera::CameraIntrinsics;
 use crate::render::region::ImageRegion;
-use crate::scenario::{BearingPoint, BlobChoice, CameraSection};
+use crate::scenario::{BearingPoint, BlobChoice, CameraSection, SegmentationKind};
 use crate::sensing::binning::{binned_selection, unbinned_measurement};
 use crate::vision::{
-    BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, VisionConfig, VisionPipeline,
+    BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ViewGeometry, VisionConfig,
+    VisionPipeline,
 };
 use std::time::Instant;
 
@@ -33,6 +35,15 @@ pub(super) struct Metering {
     previous_centroid_px: Option<(f64, f64)>,
     /// A window's pixels cut from a whole frame (a frame drawn whole to be saved).
     window_pixels: Vec<u8>,
+    /// The camera's orientation by navigation for the frame being measured (L_CB L_BE).
+    camera_from_ned: Option<Mat3>,
+    /// The last `Ok` frame's maximal length, px.
+    previous_length_px: Option<f64>,
+    /// The camera's orientation by navigation when the last frame was measured.
+    previous_camera_from_ned: Option<Mat3>,
+    /// Whether the segmentation is `motion` (which also follows the last centroid turned by
+    /// the camera's rotation since).
+    motion: bool,
 }
 
 /// Copies the pixels of `window` out of `rgba`, the pixels of `drawn` (which contains it),
@@ -57,12 +68,17 @@ impl Metering {
         };
         vision_config.segmentation.mask_coverage = camera.mask_coverage;
         vision_config.link_radius_px = camera.link_radius_px as usize;
+        vision_config.motion_reference = camera.segmentation == SegmentationKind::Motion;
         Ok(Self {
             vision: VisionPipeline::new(vision_config)?,
             selection: camera.selection,
             bearing_point: camera.bearing_point,
             previous_centroid_px: None,
             window_pixels: Vec::new(),
+            camera_from_ned: None,
+            previous_length_px: None,
+            previous_camera_from_ned: None,
+            motion: camera.segmentation == SegmentationKind::Motion,
         })
     }
 
@@ -71,13 +87,56 @@ impl Metering {
         self.vision.region_clearance_px()
     }
 
+    /// Sets the camera's orientation by navigation, L_CB L_BE, for the frames measured next.
+    pub fn orient(&mut self, camera_from_ned: Mat3) {
+        self.camera_from_ned = Some(camera_from_ned);
+    }
+
+    /// Tells the image pipeline how `frame`'s pixels look into the world.
+    fn set_view(&mut self, frame: &DrawnFrame) {
+        let geometry = self.camera_from_ned.map(|camera_from_ned| ViewGeometry {
+            intrinsics: frame.intrinsics,
+            camera_from_ned,
+        });
+        self.vision.set_view_geometry(geometry);
+        let factor = f64::from(frame.factor);
+        self.vision
+            .expect_length_px(self.previous_length_px.map(|l| l / factor));
+    }
+
     /// The blob to measure in the next frame: the largest, or the one nearest the last
-    /// measured centroid (`camera.selection = "nearest"`).
-    pub fn selection(&self) -> BlobSelection {
+    /// measured centroid (`camera.selection = "nearest"`); with `camera.segmentation =
+    /// "motion"`, the last centroid turned by the camera's rotation since (K R K⁻¹ of the
+    /// camera of `intrinsics`, the orientations by navigation), where the target at rest
+    /// against the world is now.
+    pub fn selection(&self, intrinsics: &CameraIntrinsics) -> BlobSelection {
         match (self.selection, self.previous_centroid_px) {
-            (BlobChoice::Nearest, Some((u_px, v_px))) => BlobSelection::NearestTo { u_px, v_px },
+            (BlobChoice::Nearest, Some((u_px, v_px))) => {
+                let (u_px, v_px) = self.turned(intrinsics, u_px, v_px).unwrap_or((u_px, v_px));
+                BlobSelection::NearestTo { u_px, v_px }
+            }
             _ => BlobSelection::Largest,
         }
+    }
+
+    /// Pixel (u, v) of the last frame turned into the frame being measured (motion only).
+    fn turned(&self, intrinsics: &CameraIntrinsics, u_px: f64, v_px: f64) -> Option<(f64, f64)> {
+        let (before, now) = (self.previous_camera_from_ned?, self.camera_from_ned?);
+        if !self.motion {
+            return None;
+        }
+        let ray = crate::frames::Vec3::new(
+            intrinsics.focal_px,
+            u_px - intrinsics.cx(),
+            v_px - intrinsics.cy(),
+        );
+        let r = now * before.transpose() * ray;
+        (r.x > 0.0).then(|| {
+            (
+                intrinsics.cx() + intrinsics.focal_px * r.y / r.x,
+                intrinsics.cy() + intrinsics.focal_px * r.z / r.x,
+            )
+        })
     }
 
     /// Measures a read-back frame: in its tracking window (binned or not), or the whole image;
@@ -96,6 +155,7 @@ impl Metering {
             ));
         };
         let vision_started = Instant::now();
+        self.set_view(frame);
         let pixels = if frame.drawn == window {
             &frame.pixels.rgba
         } else {
@@ -136,6 +196,7 @@ impl Metering {
         timings: &mut CameraTimings,
     ) -> Result<BlobMeasurement, SensorError> {
         let vision_started = Instant::now();
+        self.set_view(frame);
         let image = frame.pixels;
         let blob = self
             .vision
@@ -157,6 +218,9 @@ impl Metering {
     /// Remembers a measured frame's blob for the next frame's selection.
     pub fn remember(&mut self, blob: &BlobMeasurement) {
         let ok = blob.status == BlobStatus::Ok;
+        self.vision.commit_frame();
+        self.previous_length_px = ok.then_some(blob.max_length_px);
+        self.previous_camera_from_ned = self.camera_from_ned;
         self.previous_centroid_px = ok.then_some((blob.centroid_u_px, blob.centroid_v_px));
     }
 }

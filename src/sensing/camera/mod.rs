@@ -249,7 +249,8 @@ impl CameraSensor {
         exposure: &Exposure,
         in_flight: &mut InFlight,
     ) -> Result<FrameRecord, SensorError> {
-        let selection = self.metering.selection();
+        self.metering.orient(exposure.geometry.camera_from_ned());
+        let selection = self.metering.selection(self.drawing.intrinsics());
         let frame = self.drawing.frame(exposure.index)?;
         let blob = match self
             .metering
