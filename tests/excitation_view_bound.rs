@@ -22,7 +22,12 @@ fn run_20ft(fov_fraction: &str) -> wingman::output::summary::Summary {
 #[test]
 fn a_large_target_is_kept_in_view_by_the_bound() {
     let bounded = run_20ft("0.7");
-    assert_eq!(bounded.status, RunStatus::Completed, "{:?}", bounded.message);
+    assert_eq!(
+        bounded.status,
+        RunStatus::Completed,
+        "{:?}",
+        bounded.message
+    );
     assert_eq!(bounded.lost_frames, 0, "{:?}", bounded.loss_episodes);
     let unbounded = run_20ft("0.0");
     assert!(
