@@ -328,7 +328,9 @@ mod tests {
             ..GimbalSection::default()
         };
         let (pan_deg, centred, tilt_deg) = sweep(&through_nadir);
-        assert!(pan_deg < 10.0, "pan {pan_deg}°");
+        // The line of sight passes 0.02 to the right: centring it at the keyhole cone's edge,
+        // 10° from nadir, takes atan(0.02 / sin 10°) = 6.6° of pan, which then holds.
+        assert!(pan_deg < 7.0, "pan {pan_deg}°");
         assert!(
             centred && (tilt_deg + 170.0).abs() < 1.0,
             "tilt {tilt_deg}°"
