@@ -48,7 +48,8 @@ fn basis(x: f64, y: f64) -> [f64; 6] {
 }
 
 impl BackgroundModel {
-    fn constant(width: usize, height: usize, rgb: [f64; 3]) -> Self {
+    /// A uniform background of colour `rgb` over a `width` x `height` frame.
+    pub(super) fn constant(width: usize, height: usize, rgb: [f64; 3]) -> Self {
         let half_width_px = (0.5 * width as f64).max(0.5);
         let half_height_px = (0.5 * height as f64).max(0.5);
         let mut coefficients = [[0.0; 6]; 3];

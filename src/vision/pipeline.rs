@@ -15,7 +15,7 @@ use crate::render::camera::CameraIntrinsics;
 use crate::render::region::ImageRegion;
 use crate::scenario::BearingPoint;
 
-use super::background::{BackgroundFitter, QUANTISATION_SIGMA};
+use super::background::{BackgroundFitter, BackgroundModel, QUANTISATION_SIGMA};
 use super::components::{BlobSummary, ComponentLabeller, PixelBox};
 use super::config::{BlobSelection, VisionConfig, VisionConfigError};
 use super::feret::FeretDiameter;
@@ -242,20 +242,21 @@ impl VisionPipeline {
             return Ok(BlobMeasurement::not_found(0, f64::NAN));
         }
         let seg = &self.config.segmentation;
-        let mut background = self.background.fit(&frame, seg.background);
-        let reference = match &mut self.motion {
+        // The motion reference replaces the border-fitted surface: only its noise σ is used.
+        let (background, reference) = match &mut self.motion {
             Some(motion) if !motion.has_previous() => {
                 // A first frame only sets up the next frame's background: without one, the
                 // local colour model alone takes every unexplained texture for target.
                 self.labeller.label(&[], frame.width, frame.height);
                 motion.keep(&frame, std::iter::empty());
-                return Ok(BlobMeasurement::not_found(0, background.noise_sigma));
+                return Ok(BlobMeasurement::not_found(0, QUANTISATION_SIGMA));
             }
             Some(motion) => {
-                background.noise_sigma = motion.build(&frame, QUANTISATION_SIGMA, EXPLAINED_GREY);
-                Some(motion.reference.as_slice())
+                let mut model = BackgroundModel::constant(frame.width, frame.height, [0.0; 3]);
+                model.noise_sigma = motion.build(&frame, QUANTISATION_SIGMA, EXPLAINED_GREY);
+                (model, Some(motion.reference.as_slice()))
             }
-            None => None,
+            None => (self.background.fit(&frame, seg.background), None),
         };
         let sigma = background.noise_sigma;
         let Some(coverage) = self.segmenter.segment(&frame, background, reference, seg) else {

@@ -172,10 +172,11 @@ impl MotionReference {
                     let (iu, iv) = (u + frame.origin[0], v + frame.origin[1]);
                     self.warp(&m, &k, iu as f64 + 0.5, iv as f64 + 0.5)
                 });
-                // A strip the camera's turn brought into view at the frame's edge holds no
+                // A strip the camera's turn brought into view at the image's edge holds no
                 // target yet: the previous frame did not see it and the ring lies half outside.
-                let edge = u.min(v).min(w - 1 - u).min(h - 1 - v) < self.ring_radius_px;
-                if seen == Seen::Outside && edge && to_previous.is_some() {
+                // (The image's edge, not a tracking window's: a target may enter a window.)
+                if seen == Seen::Outside && to_previous.is_some() && self.at_image_edge(frame, u, v)
+                {
                     self.reference.push(p);
                     continue;
                 }
@@ -202,6 +203,23 @@ impl MotionReference {
             }
         }
         noise_sigma(&mut differences, floor)
+    }
+
+    /// Whether pixel (u, v) of `frame` lies within the ring's radius of the whole image's
+    /// edge (unknown intrinsics: of the frame's own edge).
+    fn at_image_edge(&self, frame: &RgbaView<'_>, u: usize, v: usize) -> bool {
+        let (iu, iv) = (u + frame.origin[0], v + frame.origin[1]);
+        let (width, height) = self.geometry.map_or((frame.width, frame.height), |g| {
+            (
+                g.intrinsics.width_px as usize,
+                g.intrinsics.height_px as usize,
+            )
+        });
+        let from_edge = iu
+            .min(iv)
+            .min(width.saturating_sub(iu + 1))
+            .min(height.saturating_sub(iv + 1));
+        from_edge < self.ring_radius_px
     }
 
     /// The rotation from the frame being measured's camera axes to the previous frame's,
@@ -386,23 +404,24 @@ mod tests {
         let first = frame(&before(), &intrinsics, None);
         let second = frame(&now(), &intrinsics, Some(CENTRE));
         let mut last = None;
-        // The camera follows the blob nearest its prediction.
-        let near_centre = BlobSelection::NearestTo {
-            u_px: CENTRE.0 + 2.0,
-            v_px: CENTRE.1 - 1.0,
-        };
         for (pixels, told) in [(first, before()), (second, *told_now)] {
             motion.set_view_geometry(Some(ViewGeometry {
                 intrinsics,
                 camera_from_ned: told,
             }));
-            last = Some(motion.measure(&pixels, WIDTH, HEIGHT, near_centre).unwrap());
+            last = Some(motion.measure(&pixels, WIDTH, HEIGHT, NEAR_CENTRE).unwrap());
             motion.commit_frame();
         }
         last.unwrap()
     }
 
     const CENTRE: (f64, f64) = (47.3, 35.8);
+
+    /// The camera follows the blob nearest its prediction (both segmentations below).
+    const NEAR_CENTRE: BlobSelection = BlobSelection::NearestTo {
+        u_px: CENTRE.0 + 2.0,
+        v_px: CENTRE.1 - 1.0,
+    };
 
     fn before() -> Mat3 {
         EulerAngles::new(0.0, 0.05, 0.3).body_from_ned()
@@ -438,7 +457,7 @@ mod tests {
                 &frame(&now(), &intrinsics, Some(CENTRE)),
                 WIDTH,
                 HEIGHT,
-                BlobSelection::Largest,
+                NEAR_CENTRE,
             )
             .unwrap();
         assert!(fails(&threshold), "border-fitted threshold: {threshold:?}");
