@@ -114,7 +114,6 @@ fn shape_floor_covers_a_systematic_length_error() {
     let shape_sigma = EstimatorSection::default().airframe_shape_sigma;
     let (b_hat, sigma) = fly(SizeModel::Airframe, 1.04, shape_sigma);
     assert!((b_hat / SIZE_FT - 1.04).abs() < 0.02, "b̂ = {b_hat} ft");
-    assert!(sigma >= shape_sigma * b_hat, "σ_b = {sigma} ft");
     let z = (b_hat - SIZE_FT) / sigma;
     assert!(z.abs() < 3.0, "b̂ = {b_hat} ± {sigma} ft");
     let (b_white, sigma_white) = fly(SizeModel::Airframe, 1.04, 0.0);

@@ -15,9 +15,9 @@ use crate::scenario::{EstimatorSection, SizeModel};
 use crate::sensing::{FrameRecord, scaled_position_jacobian, scaled_relative_position};
 use crate::vision::ImageMeasurement;
 
-/// With the span model, σ of a frame's maximal length when the span is not the silhouette's
-/// longest dimension, as a multiple of that length: the frame then counts for its bearing
-/// only.
+/// With the span or airframe model, σ of a frame's maximal length when the span is not the
+/// silhouette's longest dimension or the view is unknown, as a multiple of that length: the
+/// frame then counts for its bearing only.
 const BEARING_ONLY_LENGTH_SIGMAS: f64 = 10.0;
 
 /// The Kalman estimator of a run.
@@ -185,17 +185,11 @@ impl KalmanTracker {
         record: &FrameRecord,
         pixels: &ImageMeasurement,
     ) -> Option<(Vec3, Mat3)> {
+        self.airframe.as_ref()?;
+        let (velocity, acceleration) = self.predicted_target_motion(record)?;
         let model = self.airframe.as_ref()?;
-        let filter = self.filter.as_mut()?;
-        filter.predict_to(record.t_s, &record.follower_position_ned_ft);
-        let est = filter.posterior();
-        if est.beta_per_ft <= 0.0 {
-            return None;
-        }
-        let ned_from_body = model.body_axes_ned(
-            &(est.d_per_s / est.beta_per_ft),
-            &(est.a_per_s2 / est.beta_per_ft),
-        )?;
+        let filter = self.filter.as_ref()?;
+        let ned_from_body = model.body_axes_ned(&velocity, &acceleration)?;
         let sight_camera = Vec3::new(self.focal_px, pixels.y_i_px, -pixels.z_i_px);
         let sight_body = ned_from_body.transpose() * record.ned_from_camera * sight_camera;
         let angles = ViewAngles::of_line_of_sight(&sight_body)?;
@@ -225,21 +219,31 @@ impl KalmanTracker {
         Some((r, covariance))
     }
 
+    /// The target's velocity and acceleration, ft/s and ft/s², the filter predicts at the
+    /// frame's capture (None before it runs or while β̂ ≤ 0), which the size models infer its
+    /// attitude from.
+    fn predicted_target_motion(&mut self, record: &FrameRecord) -> Option<(Vec3, Vec3)> {
+        let filter = self.filter.as_mut()?;
+        filter.predict_to(record.t_s, &record.follower_position_ned_ft);
+        let est = filter.posterior();
+        (est.beta_per_ft > 0.0).then(|| {
+            (
+                est.d_per_s / est.beta_per_ft,
+                est.a_per_s2 / est.beta_per_ft,
+            )
+        })
+    }
+
     /// The span's aspect factor in a frame, from the filter predicted to its capture (the
     /// span model once the filter runs; `None` otherwise).
     fn predicted_aspect(&mut self, record: &FrameRecord, pixels: &ImageMeasurement) -> Option<f64> {
         if self.size_model != SizeModel::Span {
             return None;
         }
-        let filter = self.filter.as_mut()?;
-        filter.predict_to(record.t_s, &record.follower_position_ned_ft);
-        let est = filter.posterior();
-        if est.beta_per_ft <= 0.0 {
-            return None;
-        }
+        let (velocity, acceleration) = self.predicted_target_motion(record)?;
         target_span_aspect(
-            &(est.d_per_s / est.beta_per_ft),
-            &(est.a_per_s2 / est.beta_per_ft),
+            &velocity,
+            &acceleration,
             &record.ned_from_camera,
             (pixels.y_i_px, pixels.z_i_px),
             self.focal_px,
@@ -334,11 +338,17 @@ impl TargetTracker for KalmanTracker {
         let jacobian = scaled_position_jacobian(&pixels, self.focal_px, &record.ned_from_camera);
         let mut r = r_star;
         let mut covariance = jacobian * self.pixel_covariance_px2 * jacobian.transpose();
-        if let Some(aspect) = self.predicted_aspect(record, &pixels) {
-            if aspect >= self.span_aspect_min {
+        let aspect = self.predicted_aspect(record, &pixels);
+        // A size model that cannot tell the view once the filter runs (β̂ ≤ 0, a velocity
+        // without a direction) does not know what the length measures: bearing only.
+        let view_unknown = self.size_model != SizeModel::Apparent && self.filter.is_some();
+        match aspect {
+            Some(aspect) if aspect >= self.span_aspect_min => {
                 r *= aspect;
                 covariance *= aspect * aspect;
-            } else {
+            }
+            None if !view_unknown => {}
+            _ => {
                 let mut bearing_only = self.pixel_covariance_px2;
                 bearing_only[(2, 2)] = (BEARING_ONLY_LENGTH_SIGMAS * pixels.b_i_px).powi(2);
                 covariance = jacobian * bearing_only * jacobian.transpose();

@@ -179,13 +179,16 @@ fn airframe_model(scenario: &Scenario) -> Result<Option<AirframeModel>, SimError
     }))
 }
 
-/// The trim α over airspeed of the target's aircraft data (`target.aircraft`) in the steady
-/// air of `[atmosphere]` at the target's starting point.
+/// The trim α over airspeed of the target's aircraft data (`target.aircraft`, the type known
+/// up to scale) in the steady air of `[atmosphere]` at the follower's own starting point: the
+/// air it measures, not the target's, which it does not know. (The steady wind is the
+/// scenario's, what the follower's air data give on average: an assumption, stated in
+/// `estimation::trim_alpha`.)
 fn target_alpha_schedule(scenario: &Scenario) -> Result<AlphaSchedule, SimError> {
     let params = AircraftParams::from_scenario_path(&scenario.target.aircraft)
         .map_err(AircraftSetupError::from)?;
     let aircraft = Aircraft::new(params).map_err(AircraftSetupError::from)?;
-    let start = Vec3::from(scenario.target.initial_position_ft);
+    let start = Vec3::from(scenario.follower.initial_position_ft);
     // As the aircraft's own trims: the steady wind and density, no drag or moment bias.
     let air = AtmosphereSample {
         drag_factor: 1.0,
