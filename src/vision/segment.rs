@@ -51,13 +51,13 @@ impl CoverageModel<'_> {
     /// The background colour at pixel position (u, v) (the pixel holding it).
     pub fn background_near(&self, u_px: f64, v_px: f64) -> [f64; 3] {
         match self.reference {
-            Some(_) => {
-                let (u, v) = (u_px.max(0.0) as usize, v_px.max(0.0) as usize);
-                let height = self.reference.map_or(0, |r| r.len() / self.width.max(1));
-                let (u, v) = (u.min(self.width - 1), v.min(height.max(1) - 1));
+            Some(reference) if self.width > 0 && !reference.is_empty() => {
+                let height = reference.len() / self.width;
+                let u = (u_px.max(0.0) as usize).min(self.width - 1);
+                let v = (v_px.max(0.0) as usize).min(height.max(1) - 1);
                 self.background_at(v * self.width + u, u, v)
             }
-            None => self.background.colour_at(u_px, v_px),
+            _ => self.background.colour_at(u_px, v_px),
         }
     }
 
