@@ -242,7 +242,6 @@ impl VisionPipeline {
             return Ok(BlobMeasurement::not_found(0, f64::NAN));
         }
         let seg = &self.config.segmentation;
-        // The motion reference replaces the border-fitted surface: only its noise σ is used.
         let (background, reference) = match &mut self.motion {
             Some(motion) if !motion.has_previous() => {
                 // A first frame only sets up the next frame's background: without one, the
@@ -252,6 +251,7 @@ impl VisionPipeline {
                 return Ok(BlobMeasurement::not_found(0, QUANTISATION_SIGMA));
             }
             Some(motion) => {
+                // The reference replaces the border-fitted surface: only its noise σ is used.
                 let mut model = BackgroundModel::constant(frame.width, frame.height, [0.0; 3]);
                 model.noise_sigma = motion.build(&frame, QUANTISATION_SIGMA, EXPLAINED_GREY);
                 (model, Some(motion.reference.as_slice()))
@@ -290,12 +290,10 @@ impl VisionPipeline {
                 corner_tolerance: noise.corner_tolerance(),
             },
         );
-        let status = if too_small {
-            BlobStatus::TooSmall
-        } else if geometry.truncated {
-            BlobStatus::Truncated
-        } else {
-            BlobStatus::Ok
+        let status = match (too_small, geometry.truncated) {
+            (true, _) => BlobStatus::TooSmall,
+            (false, true) => BlobStatus::Truncated,
+            (false, false) => BlobStatus::Ok,
         };
         let target = (status == BlobStatus::Ok).then_some(index as u32 + 1);
         self.keep_frame(&frame, target);
