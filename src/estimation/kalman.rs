@@ -123,6 +123,8 @@ pub struct Innovation {
     pub residual: Vec3,
     /// Its normalised square νᵀ S⁻¹ ν (χ² with 3 degrees of freedom when the model holds).
     pub normalised_sq: f64,
+    /// Whether the measurement was fused (false: outside the validation gate).
+    pub fused: bool,
 }
 
 /// The Kalman filter of this module: posterior at the time of the last fused measurement.
@@ -231,14 +233,28 @@ impl TargetFilter {
     /// Fuses a measurement r* of covariance `r_covariance` taken at the posterior's time (call
     /// [`Self::predict_to`] first). Joseph form, so P stays symmetric positive.
     pub fn update(&mut self, r_star: &Vec3, r_covariance: &Mat3) -> Innovation {
+        self.update_within(r_star, r_covariance, f64::INFINITY)
+    }
+
+    /// [`Self::update`], unless the measurement's normalised innovation νᵀ S⁻¹ ν exceeds
+    /// `gate` (a validation gate, docs/equations.md, The innovation gate) or is not finite:
+    /// then the posterior is left as it is, and the innovation says so (`fused` false).
+    pub fn update_within(&mut self, r_star: &Vec3, r_covariance: &Mat3, gate: f64) -> Innovation {
         let residual = r_star - self.x.fixed_rows::<3>(R);
         let s: Mat3 = self.p.fixed_view::<3, 3>(R, R) + r_covariance;
-        let Some(s_inv) = s.try_inverse() else {
-            return Innovation {
-                residual,
-                normalised_sq: f64::INFINITY,
-            };
+        let rejected = |normalised_sq| Innovation {
+            residual,
+            normalised_sq,
+            fused: false,
         };
+        let Some(s_inv) = s.try_inverse() else {
+            return rejected(f64::INFINITY);
+        };
+        let normalised_sq = (residual.transpose() * s_inv * residual)[(0, 0)];
+        // Not a number (from a measurement that is not finite), or outside the gate.
+        if normalised_sq.is_nan() || normalised_sq > gate {
+            return rejected(normalised_sq);
+        }
         let gain: Gain = self.p.fixed_view::<FILTER_STATE_LEN, 3>(0, R) * s_inv;
         self.x += gain * residual;
         let mut kh = Covariance::zeros();
@@ -249,7 +265,8 @@ impl TargetFilter {
         self.p = (self.p + self.p.transpose()) * 0.5;
         Innovation {
             residual,
-            normalised_sq: (residual.transpose() * s_inv * residual)[(0, 0)],
+            normalised_sq,
+            fused: true,
         }
     }
 
@@ -533,5 +550,41 @@ mod tests {
         assert!((est.r - truth).norm() < 1e-12, "{:?} vs {truth:?}", est.r);
         filter.predict_to(0.5, &follower_then);
         assert!((filter.posterior().r - truth).norm() < 1e-12);
+    }
+
+    /// Invariant: the validation gate keeps out a measurement whose normalised innovation
+    /// exceeds it, leaving the posterior as it was, and fuses one inside it as the ungated
+    /// update does.
+    #[test]
+    fn gate_keeps_out_a_measurement_off_the_prediction() {
+        let covariance = Mat3::identity() * 1e-4;
+        let start = || {
+            TargetFilter::new(
+                FilterNoise::without_gust(1e-4, 0.0),
+                &prior(),
+                &Vec3::new(25.0, 6.0, 4.0),
+                &covariance,
+                0.0,
+                &Vec3::zeros(),
+                &Vec3::new(50.0, 0.0, 0.0),
+            )
+        };
+        let mut gated = start();
+        gated.predict_to(0.1, &Vec3::new(5.0, 0.0, 0.0));
+        let before = gated.posterior();
+        let predicted = before.r;
+        let far = predicted + Vec3::new(0.0, 5.0, 0.0);
+        let rejected = gated.update_within(&far, &covariance, 16.3);
+        assert!(
+            !rejected.fused && rejected.normalised_sq > 16.3,
+            "{rejected:?}"
+        );
+        assert_eq!(gated.posterior(), before);
+        let near = predicted + Vec3::new(0.0, 0.01, 0.0);
+        let mut ungated = gated.clone();
+        let fused = gated.update_within(&near, &covariance, 16.3);
+        assert!(fused.fused && fused.normalised_sq < 16.3, "{fused:?}");
+        ungated.update(&near, &covariance);
+        assert_eq!(gated.posterior(), ungated.posterior());
     }
 }

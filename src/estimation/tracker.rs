@@ -42,6 +42,10 @@ pub struct KalmanTracker {
     fused: u64,
     /// (capture time, s; νᵀ S⁻¹ ν) of every fused measurement after the first.
     innovations: Vec<(f64, f64)>,
+    /// Measurements whose νᵀ S⁻¹ ν exceeds this are not fused (∞: every one is).
+    innovation_gate: f64,
+    /// Measurements the gate kept out.
+    gated_out: u64,
     /// The airframe model's shape and its length model (`None` with the other models).
     airframe: Option<AirframeModel>,
     /// The airframe model's view of every frame it corrected.
@@ -162,6 +166,12 @@ impl KalmanTracker {
             known_since_s: None,
             fused: 0,
             innovations: Vec::new(),
+            innovation_gate: if section.innovation_gate > 0.0 {
+                section.innovation_gate
+            } else {
+                f64::INFINITY
+            },
+            gated_out: 0,
             airframe: None,
             views: Vec::new(),
         }
@@ -250,7 +260,8 @@ impl KalmanTracker {
         )
     }
 
-    /// Predicts to the measurement's time and fuses it (or starts the filter on it).
+    /// Predicts to the measurement's time and fuses it (or starts the filter on it), unless
+    /// its normalised innovation exceeds `estimator.innovation_gate`.
     fn fuse(
         &mut self,
         t_s: f64,
@@ -272,8 +283,16 @@ impl KalmanTracker {
                 ));
             }
             Some(filter) => {
-                filter.predict_to(t_s, follower_position_ned_ft);
-                let innovation = filter.update(r_star, covariance);
+                // The posterior stays at the last fused measurement when the gate keeps
+                // this one out.
+                let mut predicted = filter.clone();
+                predicted.predict_to(t_s, follower_position_ned_ft);
+                let innovation = predicted.update_within(r_star, covariance, self.innovation_gate);
+                if !innovation.fused {
+                    self.gated_out += 1;
+                    return;
+                }
+                *filter = predicted;
                 self.innovations.push((t_s, innovation.normalised_sq));
             }
         }
@@ -416,6 +435,10 @@ impl TargetTracker for KalmanTracker {
     /// Measurements fused so far.
     fn fused(&self) -> u64 {
         self.fused
+    }
+
+    fn gated_out(&self) -> u64 {
+        self.gated_out
     }
 
     /// The mean νᵀ S⁻¹ ν of the measurements fused since `t_s`.

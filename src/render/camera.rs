@@ -51,6 +51,19 @@ impl CameraIntrinsics {
         ))
     }
 
+    /// Pixel position (u, v) of a direction in camera axes (any length), or `None` when it
+    /// does not point in front of the camera.
+    pub fn pixel_of_direction(&self, direction_camera: &Vec3) -> Option<(f64, f64)> {
+        let (y_i_px, z_i_px) = self.image_from_body(direction_camera)?;
+        Some(self.pixel_from_image(y_i_px, z_i_px))
+    }
+
+    /// The direction in camera axes (unit focal length scaled by `focal_px`) through pixel
+    /// position (u, v).
+    pub fn direction_of_pixel(&self, u_px: f64, v_px: f64) -> Vec3 {
+        Vec3::new(self.focal_px, u_px - self.cx(), v_px - self.cy())
+    }
+
     /// Pixel position (u, v) of image coordinates (yI, zI).
     pub fn pixel_from_image(&self, y_i_px: f64, z_i_px: f64) -> (f64, f64) {
         (self.cx() + y_i_px, self.cy() - z_i_px)

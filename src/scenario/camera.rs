@@ -22,6 +22,12 @@ pub enum BlobChoice {
     /// The one nearest the previous frame's centroid (the largest on the first frame or after
     /// a loss).
     Nearest,
+    /// The one nearest where the target is expected, inside a gate of `selection_gate_deg`
+    /// plus half the last maximal length: the estimator's predicted line of sight (before
+    /// the target is first measured, the gimbal's cue; without either, the previous frame's
+    /// centroid turned by the camera's rotation since); none when no blob lies inside the
+    /// gate. The largest only with no expectation at all.
+    Predicted,
 }
 
 /// The point of the silhouette its bearing and elevation are measured to.
@@ -109,6 +115,9 @@ pub struct CameraSection {
     pub mesh: String,
     /// Blob selection.
     pub selection: BlobChoice,
+    /// `selection = "predicted"`: the gate's radius about the expected position, deg, beyond
+    /// half the last maximal length.
+    pub selection_gate_deg: f64,
     /// Blobs with fewer mask pixels are too small to measure.
     pub min_pixel_count: u32,
     /// Mask pixels up to this far apart (px, in u and v) are one blob: 2 bridges the broken
@@ -170,6 +179,7 @@ impl Default for CameraSection {
             noise_std_grey: 0.0,
             mesh: DEFAULT_MESH.to_string(),
             selection: BlobChoice::Nearest,
+            selection_gate_deg: 3.0,
             min_pixel_count: 4,
             mask_coverage: 0.5,
             compensate_delay: true,
@@ -223,6 +233,13 @@ impl CameraSection {
             "1 or 4",
         )?;
         check::in_closed("camera.noise_std_grey", self.noise_std_grey, 0.0, 100.0)?;
+        check::in_open(
+            "camera.selection_gate_deg",
+            self.selection_gate_deg,
+            0.0,
+            90.0,
+            "(0, 90)",
+        )?;
         check::require(
             self.measure_max_length_px == 0.0 || (16.0..=1e5).contains(&self.measure_max_length_px),
             "camera.measure_max_length_px",

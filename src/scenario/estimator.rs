@@ -161,6 +161,12 @@ pub struct EstimatorSection {
     /// corrected length reads up to 1% long; inflating each frame's variance instead let b̂
     /// run 14-40% high).
     pub airframe_shape_sigma: f64,
+    /// The Kalman filter's validation gate (docs/equations.md, The innovation gate): a frame
+    /// whose normalised innovation νᵀ S⁻¹ ν exceeds it is not fused, as a measurement of
+    /// something other than the target (0, the default: every frame is fused). νᵀ S⁻¹ ν is
+    /// χ² with 3 degrees of freedom when the filter's model holds: 16.3 keeps out one
+    /// frame in 1,000 of the target's own.
+    pub innovation_gate: f64,
 }
 
 impl Default for EstimatorSection {
@@ -187,6 +193,7 @@ impl Default for EstimatorSection {
             airframe_length_sigma_px: [0.8, 16.0],
             airframe_angle_of_attack: AirframeAlpha::Zero,
             airframe_shape_sigma: 0.025,
+            innovation_gate: 0.0,
         }
     }
 }
@@ -245,6 +252,7 @@ impl EstimatorSection {
                 100.0,
             ),
             ("airframe_shape_sigma", self.airframe_shape_sigma, 0.0, 1.0),
+            ("innovation_gate", self.innovation_gate, 0.0, 1e6),
         ];
         for (key, value, min, max) in scalars {
             check::in_closed(&format!("estimator.{key}"), value, min, max)?;

@@ -88,13 +88,7 @@ pub fn binned_region(region: &ImageRegion, k: u32) -> ImageRegion {
 
 /// A blob selection in image pixels, in binned pixels of factor k.
 pub fn binned_selection(selection: BlobSelection, k: u32) -> BlobSelection {
-    match selection {
-        BlobSelection::NearestTo { u_px, v_px } => BlobSelection::NearestTo {
-            u_px: u_px / f64::from(k),
-            v_px: v_px / f64::from(k),
-        },
-        BlobSelection::Largest => BlobSelection::Largest,
-    }
+    selection.in_pixels(0.0, 0.0, f64::from(k))
 }
 
 /// A measurement in binned pixels of factor k, in image pixels: coordinates and lengths times
@@ -198,15 +192,35 @@ mod tests {
             (bbox.min_u, bbox.max_u, bbox.min_v, bbox.max_v),
             (90, 212, 54, 68)
         );
-        match binned_selection(
+        assert_eq!(
+            binned_selection(
+                BlobSelection::NearestTo {
+                    u_px: 150.0,
+                    v_px: 60.0,
+                },
+                3,
+            ),
             BlobSelection::NearestTo {
-                u_px: 150.0,
-                v_px: 60.0,
-            },
-            3,
-        ) {
-            BlobSelection::NearestTo { u_px, v_px } => assert_eq!((u_px, v_px), (50.0, 20.0)),
-            BlobSelection::Largest => panic!("kept"),
-        }
+                u_px: 50.0,
+                v_px: 20.0,
+            }
+        );
+        assert_eq!(
+            binned_selection(
+                BlobSelection::NearestWithin {
+                    u_px: 150.0,
+                    v_px: 60.0,
+                    radius_px: 30.0,
+                    length_px: 60.0,
+                },
+                3,
+            ),
+            BlobSelection::NearestWithin {
+                u_px: 50.0,
+                v_px: 20.0,
+                radius_px: 10.0,
+                length_px: 20.0,
+            }
+        );
     }
 }

@@ -55,6 +55,10 @@ pub struct CaptureGeometry {
     pub follower: FollowerPose,
     /// The follower as its navigation knows itself: what sensing turns measurements with.
     pub navigation: FollowerPose,
+    /// Where the follower expects the target, a line of sight NED (any length): the
+    /// estimator's prediction, or before the target is first seen the gimbal's cue; `None`
+    /// without either. The image pipeline's `predicted` selection reads it.
+    pub expected_los_ned: Option<Vec3>,
 }
 
 impl CaptureGeometry {
@@ -69,6 +73,7 @@ impl CaptureGeometry {
             target_attitude,
             follower,
             navigation: follower,
+            expected_los_ned: None,
         }
     }
 

@@ -97,6 +97,11 @@ impl Gimbal {
         }
     }
 
+    /// The line of sight NED the camera points along until the target is first seen.
+    pub fn cue_ned(&self) -> Option<Vec3> {
+        self.cue_ned
+    }
+
     /// At the start the camera looks along the cue, or ahead without one (as near as its
     /// limits allow), for a follower whose L_BE is `body_from_ned`.
     pub fn initial_state(&self, body_from_ned: &Mat3) -> [f64; GIMBAL_STATE_LEN] {

@@ -31,13 +31,28 @@ impl Simulation {
     /// been seen yet (see [`Gimbal::command`]).
     pub(super) fn gimbal_command(&self, gimbal: &Gimbal, t_s: f64, x: &[f64]) -> GimbalAngles {
         let slices = self.layout.split(x);
-        let position = self.navigated_position_ned_ft(slices.follower);
-        let law = self.guidance.estimates(slices.guidance);
-        let line_of_sight = self.estimator.predicted_r(t_s, &position, law);
+        let line_of_sight = self.predicted_line_of_sight(t_s, x);
         let base_from_ned = self.navigated_base_from_ned(slices.follower);
         let missing_s = t_s - self.estimator.last_measured_s().unwrap_or(0.0);
         let angles = encoder_reading(&self.own.sensors, slices.gimbal);
         gimbal.command(&angles, line_of_sight, &base_from_ned, missing_s, t_s)
+    }
+
+    /// Where the estimator predicts the target is at (t, x), a line of sight NED from the
+    /// follower's navigated position (None before the target is first measured).
+    fn predicted_line_of_sight(&self, t_s: f64, x: &[f64]) -> Option<Vec3> {
+        let slices = self.layout.split(x);
+        let position = self.navigated_position_ned_ft(slices.follower);
+        let law = self.guidance.estimates(slices.guidance);
+        self.estimator.predicted_r(t_s, &position, law)
+    }
+
+    /// Where the follower expects the target at (t, x): the estimator's prediction, or before
+    /// the target is first measured the gimbal's cue (a line of sight NED; None without
+    /// either).
+    pub(super) fn expected_line_of_sight(&self, t_s: f64, x: &[f64]) -> Option<Vec3> {
+        self.predicted_line_of_sight(t_s, x)
+            .or_else(|| self.gimbal.as_ref().and_then(Gimbal::cue_ned))
     }
 
     /// The measurement the estimator stage gives the guidance at (t, x).

@@ -13,7 +13,8 @@ impl Simulation {
     /// to the Kalman filter when there is one.
     pub(super) fn sense(&mut self) -> Result<(), SimError> {
         let t_s = self.time_s();
-        let geometry = self.capture_geometry();
+        let mut geometry = self.capture_geometry();
+        geometry.expected_los_ned = self.expected_line_of_sight(t_s, &self.state);
         let delivered =
             self.sensor
                 .sample(self.tick, t_s, &geometry)

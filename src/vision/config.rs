@@ -95,6 +95,50 @@ pub enum BlobSelection {
         /// Row of the point, px.
         v_px: f64,
     },
+    /// Among the blobs whose pixel-centre mean lies within `radius_px` of this point and
+    /// whose box lies within the square of that half side (a gate about a prediction), the
+    /// one most like the prediction: least (d / radius)² + (ln(e / length) / ln 1.5)², d its
+    /// distance from the point, e the longer side of its box, `length_px` the expected
+    /// maximal length (0: unknown, the nearest); none when no blob lies inside the gate.
+    NearestWithin {
+        /// Column of the point, px.
+        u_px: f64,
+        /// Row of the point, px.
+        v_px: f64,
+        /// The gate's radius, px.
+        radius_px: f64,
+        /// The expected maximal length, px (0: unknown).
+        length_px: f64,
+    },
+}
+
+impl BlobSelection {
+    /// The same selection in pixels whose origin is at (`u0_px`, `v0_px`) and which are
+    /// `scale` image pixels each (a region's, or binned pixels).
+    pub fn in_pixels(self, u0_px: f64, v0_px: f64, scale: f64) -> Self {
+        let at = |u_px: f64, v_px: f64| ((u_px - u0_px) / scale, (v_px - v0_px) / scale);
+        match self {
+            Self::Largest => Self::Largest,
+            Self::NearestTo { u_px, v_px } => {
+                let (u_px, v_px) = at(u_px, v_px);
+                Self::NearestTo { u_px, v_px }
+            }
+            Self::NearestWithin {
+                u_px,
+                v_px,
+                radius_px,
+                length_px,
+            } => {
+                let (u_px, v_px) = at(u_px, v_px);
+                Self::NearestWithin {
+                    u_px,
+                    v_px,
+                    radius_px: radius_px / scale,
+                    length_px: length_px / scale,
+                }
+            }
+        }
+    }
 }
 
 /// Everything the image pipeline is configured with.

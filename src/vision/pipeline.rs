@@ -24,19 +24,15 @@ use super::measure::{BlobMeasurer, BlobToMeasure};
 use super::reference::{DEFAULT_RING_RADIUS_PX, MotionReference, ViewGeometry};
 use super::segment::{CoverageModel, Segmenter};
 
-/// Edge points need a coverage of at least this many noise standard deviations of the coverage
-/// (σ / contrast): the debiased coverage of a background pixel exceeds 3.6 σ/contrast with
-/// probability 1e-3 (χ²(3) quantile 16.3, minus the 3 subtracted).
-const EDGE_MIN_COVERAGE_SIGMAS: f64 = 4.0;
-/// A pixel within this colour distance of the previous frame's pixel in its direction is
-/// background without looking further (`motion_reference`), grey levels: half the default
-/// detection floor.
-const EXPLAINED_GREY: f64 = 4.0;
 /// The local colour model's ring radius per expected maximal length: beyond half the length,
 /// with room for the target to grow or turn between frames.
 const RING_PER_LENGTH: f64 = 0.65;
 /// And beyond the anti-aliased edge, px.
 const RING_MARGIN_PX: f64 = 4.0;
+/// Edge points need a coverage of at least this many noise standard deviations of the coverage
+/// (σ / contrast): the debiased coverage of a background pixel exceeds 3.6 σ/contrast with
+/// probability 1e-3 (χ²(3) quantile 16.3, minus the 3 subtracted).
+const EDGE_MIN_COVERAGE_SIGMAS: f64 = 4.0;
 /// Bounds of the edge-point coverage cut: at least 0.1 (a pixel can be 10% covered by noise-free
 /// rounding artefacts of the renderer), at most 0.5.
 const EDGE_MIN_COVERAGE_RANGE: (f64, f64) = (0.1, 0.5);
@@ -50,7 +46,8 @@ pub enum BlobStatus {
     NotFound,
     /// The measured blob touches the image border: centroid and length are of the visible part.
     Truncated,
-    /// Every blob is smaller than `min_pixel_count`; the largest is measured.
+    /// Every blob is smaller than `min_pixel_count` (the largest is measured), or the one
+    /// selected has no measurable length.
     TooSmall,
 }
 
@@ -247,13 +244,13 @@ impl VisionPipeline {
                 // A first frame only sets up the next frame's background: without one, the
                 // local colour model alone takes every unexplained texture for target.
                 self.labeller.label(&[], frame.width, frame.height);
-                motion.keep(&frame, std::iter::empty());
+                motion.keep(&frame, expected_box(selection));
                 return Ok(BlobMeasurement::not_found(0, QUANTISATION_SIGMA));
             }
             Some(motion) => {
                 // The reference replaces the border-fitted surface: only its noise σ is used.
                 let mut model = BackgroundModel::constant(frame.width, frame.height, [0.0; 3]);
-                model.noise_sigma = motion.build(&frame, QUANTISATION_SIGMA, EXPLAINED_GREY);
+                model.noise_sigma = motion.build(&frame, QUANTISATION_SIGMA);
                 (model, Some(motion.reference.as_slice()))
             }
             None => (self.background.fit(&frame, seg.background), None),
@@ -261,7 +258,7 @@ impl VisionPipeline {
         let sigma = background.noise_sigma;
         let Some(coverage) = self.segmenter.segment(&frame, background, reference, seg) else {
             self.labeller.label(&[], frame.width, frame.height);
-            self.keep_frame(&frame, None);
+            self.keep_frame(&frame, None, selection);
             return Ok(BlobMeasurement::not_found(0, sigma));
         };
         self.labeller.label_linked(
@@ -273,7 +270,7 @@ impl VisionPipeline {
         let blobs = &self.labeller.blobs;
         let Some((index, too_small)) = select_blob(blobs, self.config.min_pixel_count, selection)
         else {
-            self.keep_frame(&frame, None);
+            self.keep_frame(&frame, None, selection);
             return Ok(BlobMeasurement::not_found(0, sigma));
         };
         let summary = blobs[index];
@@ -290,13 +287,14 @@ impl VisionPipeline {
                 corner_tolerance: noise.corner_tolerance(),
             },
         );
-        let status = match (too_small, geometry.truncated) {
+        // A blob without a measurable length (no edge points) gives no range.
+        let status = match (too_small || geometry.feret.is_none(), geometry.truncated) {
             (true, _) => BlobStatus::TooSmall,
             (false, true) => BlobStatus::Truncated,
             (false, false) => BlobStatus::Ok,
         };
         let target = (status == BlobStatus::Ok).then_some(index as u32 + 1);
-        self.keep_frame(&frame, target);
+        self.keep_frame(&frame, target, selection);
         Ok(BlobMeasurement {
             status,
             centroid_u_px: geometry.centroid_u_px,
@@ -314,13 +312,19 @@ impl VisionPipeline {
 
 impl VisionPipeline {
     /// Keeps `frame` for the next frame's background (`motion_reference` only), the pixels
-    /// around the mask of blob `label` (the target measured `Ok`) excluded.
-    fn keep_frame(&mut self, frame: &RgbaView<'_>, label: Option<u32>) {
+    /// around the mask of blob `label` (the target measured `Ok`) kept out; without one, the
+    /// gate of a `NearestWithin` selection (where the target was expected).
+    fn keep_frame(&mut self, frame: &RgbaView<'_>, label: Option<u32>, selection: BlobSelection) {
         if let Some(motion) = &mut self.motion {
-            let label = label.unwrap_or(0);
-            let target = self.segmenter.mask.iter().map(|&i| i as usize);
-            let labels = &self.labeller.labels;
-            motion.keep(frame, target.filter(|&i| label != 0 && labels[i] == label));
+            let exclusion = match label {
+                Some(label) => {
+                    let target = self.segmenter.mask.iter().map(|&i| i as usize);
+                    let labels = &self.labeller.labels;
+                    motion.exclusion_about(target.filter(|&i| labels[i] == label), frame.width)
+                }
+                None => expected_box(selection),
+            };
+            motion.keep(frame, exclusion);
         }
     }
 
@@ -345,13 +349,8 @@ impl VisionPipeline {
         intrinsics: &CameraIntrinsics,
         selection: BlobSelection,
     ) -> Result<RegionMeasurement, ImageSizeError> {
-        let local_selection = match selection {
-            BlobSelection::NearestTo { u_px, v_px } => BlobSelection::NearestTo {
-                u_px: u_px - f64::from(region.u0_px),
-                v_px: v_px - f64::from(region.v0_px),
-            },
-            BlobSelection::Largest => BlobSelection::Largest,
-        };
+        let local_selection =
+            selection.in_pixels(f64::from(region.u0_px), f64::from(region.v0_px), 1.0);
         let frame = RgbaView::new(rgba, region.width_px, region.height_px)?
             .at_origin(region.u0_px, region.v0_px);
         let mut blob = self.measure_view(&frame, local_selection)?;
@@ -385,39 +384,92 @@ impl VisionPipeline {
 }
 
 /// Index of the blob to measure and whether it is below `min_pixel_count` (then it is the
-/// largest blob, because no blob is big enough); `None` when there are no blobs. A non-finite
-/// `NearestTo` point falls back to `Largest`.
+/// largest blob, because no blob is big enough); `None` when there are no blobs, or none inside
+/// a `NearestWithin` gate (its centre within the radius and its box within the gate's square). A non-finite `NearestTo` point falls back to `Largest`.
 fn select_blob(
     blobs: &[BlobSummary],
     min_pixel_count: usize,
     selection: BlobSelection,
 ) -> Option<(usize, bool)> {
+    let (point, radius_px, length_px) = match selection {
+        BlobSelection::NearestTo { u_px, v_px } if u_px.is_finite() && v_px.is_finite() => {
+            (Some((u_px, v_px)), f64::INFINITY, 0.0)
+        }
+        BlobSelection::NearestWithin {
+            u_px,
+            v_px,
+            radius_px,
+            length_px,
+        } => (Some((u_px, v_px)), radius_px, length_px),
+        _ => (None, f64::INFINITY, 0.0),
+    };
+    let distance = |b: &BlobSummary| {
+        point.map_or(0.0, |(u_px, v_px)| {
+            (b.mean_u_px - u_px).hypot(b.mean_v_px - v_px)
+        })
+    };
+    // How unlike the prediction a blob is: its distance, and with an expected length the
+    // ratio of its box's longer side to it (see `BlobSelection::NearestWithin`).
+    let unlikeness = |b: &BlobSummary| {
+        if length_px <= 0.0 || !radius_px.is_finite() {
+            return distance(b);
+        }
+        let extent = f64::from((b.bbox.max_u - b.bbox.min_u).max(b.bbox.max_v - b.bbox.min_v) + 1);
+        (distance(b) / radius_px).powi(2) + ((extent / length_px).ln() / 1.5f64.ln()).powi(2)
+    };
+    // Inside the gate: the blob's centre within its radius, and the whole blob within its
+    // square (a blob reaching beyond where the target can be is not the target alone).
+    let inside = |b: &BlobSummary| {
+        let Some((u_px, v_px)) = point.filter(|_| radius_px.is_finite()) else {
+            return true;
+        };
+        let (u0, v0) = (f64::from(b.bbox.min_u), f64::from(b.bbox.min_v));
+        let (u1, v1) = (f64::from(b.bbox.max_u) + 1.0, f64::from(b.bbox.max_v) + 1.0);
+        distance(b) <= radius_px
+            && u0 >= u_px - radius_px
+            && u1 <= u_px + radius_px
+            && v0 >= v_px - radius_px
+            && v1 <= v_px + radius_px
+    };
     let largest = |eligible: &dyn Fn(&BlobSummary) -> bool| {
         blobs
             .iter()
             .enumerate()
-            .filter(|(_, b)| eligible(b))
+            .filter(|(_, b)| eligible(b) && inside(b))
             .max_by_key(|(i, b)| (b.pixel_count, std::cmp::Reverse(*i)))
             .map(|(i, _)| i)
     };
     let big_enough = |b: &BlobSummary| b.pixel_count >= min_pixel_count;
-    let chosen = match selection {
-        BlobSelection::NearestTo { u_px, v_px } if u_px.is_finite() && v_px.is_finite() => blobs
+    let chosen = match point {
+        Some(_) => blobs
             .iter()
             .enumerate()
-            .filter(|(_, b)| big_enough(b))
-            .min_by(|(_, a), (_, b)| {
-                let da = (a.mean_u_px - u_px).hypot(a.mean_v_px - v_px);
-                let db = (b.mean_u_px - u_px).hypot(b.mean_v_px - v_px);
-                da.total_cmp(&db)
-            })
+            .filter(|(_, b)| big_enough(b) && inside(b))
+            .min_by(|(_, a), (_, b)| unlikeness(a).total_cmp(&unlikeness(b)))
             .map(|(i, _)| i),
-        _ => largest(&big_enough),
+        None => largest(&big_enough),
     };
     match chosen {
         Some(i) => Some((i, false)),
         None => largest(&|_| true).map(|i| (i, true)),
     }
+}
+
+/// The box [u0, v0, u1, v1] (pixels, inclusive) of a `NearestWithin` selection's gate.
+fn expected_box(selection: BlobSelection) -> Option<[usize; 4]> {
+    let BlobSelection::NearestWithin {
+        u_px,
+        v_px,
+        radius_px,
+        ..
+    } = selection
+    else {
+        return None;
+    };
+    let (u0, u1) = (u_px - radius_px, u_px + radius_px);
+    let (v0, v1) = (v_px - radius_px, v_px + radius_px);
+    (u1 >= 0.0 && v1 >= 0.0 && u0.is_finite() && v0.is_finite())
+        .then(|| [u0, v0, u1, v1].map(|x| x.max(0.0) as usize))
 }
 
 /// How noisy coverage is near a blob: σ of the background over the target's contrast there.

@@ -2,33 +2,36 @@
 //! (`camera.segmentation = "motion"`): a per-pixel reference colour the segmenter measures
 //! colour distances against instead of a smooth surface fitted to the border.
 //!
-//! A pixel's reference is whichever of two explanations is nearest its colour:
-//! 1. The previous frame at the same direction. The background at infinity (sky, cloud, the
-//!    distant ground) maps between frames by the homography K' R K⁻¹, R the camera's rotation
-//!    between the frames, taken from the follower's navigation attitude and gimbal angles
-//!    (the orientations the sensing path already uses; never the truth). Pixels within the
-//!    ring's radius (below) of the previous frame's target (its blob, measured `Ok`) explain
-//!    nothing; after a frame that measured nothing `Ok`, every pixel explains (a target
-//!    missed then and still in the image at rest is missed again, until it moves). A pixel
-//!    within the ring's radius of the frame's edge that the previous frame did not see (a
-//!    strip the camera's turn brought into view) is taken for background.
-//! 2. The nearest colour on a ring of [`RING_POINTS`] pixels around the pixel, of a radius
-//!    beyond the target's half length (from the last measurement), or mixture of two of them
-//!    (a pixel an edge cuts): the local colour model.
-//!    Around a pixel of a compact target the ring lies on background, whose colours it does
-//!    not match; a pixel of a field, a road, a cloud or the sky has pixels of its own kind
-//!    on the ring (along the road, the edge, the horizon), and is explained.
+//! A pixel's reference is the nearest to its colour of:
+//! 1. The remembered background in its direction, and around it. The memory is the last
+//!    frame, mapped into this one by the camera's motion between them, taken from the
+//!    follower's navigation attitude, position and gimbal angles (the pose the sensing path
+//!    already uses; never the truth): a direction at infinity (sky, clouds, the horizon) by
+//!    the homography K' R K⁻¹ of the rotation; a direction below the horizon, when the
+//!    ground's height is known (a radar altimeter over flat ground), through the ground's
+//!    point, which takes in the ground's parallax. Its colours within [`PARALLAX_PX`] and
+//!    their mixtures explain what the mapping leaves (an edge moved by a little parallax).
+//!    Where the target was measured (its blob's box grown by the ring's radius), or expected
+//!    when it was not (a gated selection's gate), the frame does not replace the memory: the
+//!    memory carries the background it had there, so the background under a target that
+//!    moves against the world is known from earlier frames, and a blob that was only a part
+//!    of the target cannot let the rest explain itself.
+//! 2. Where the memory has nothing (the first frames under the target, a strip the camera's
+//!    turn brought into view), the nearest colour on a ring of [`RING_POINTS`] pixels around
+//!    the pixel, of a radius beyond the target's half length, or mixture of two of them (the
+//!    local colour model): around a pixel of a compact target the ring lies on background
+//!    whose colours it does not match; a pixel of a field, a road or the sky has pixels of its
+//!    own kind on the ring. A strip at the image's edge is taken for background.
 //!
 //! Assumptions, and where it breaks (docs/findings.md, The scene and the vision against it):
-//! the background is far away, so that the camera's rotation alone moves it (ground at a
-//! finite distance moves by parallax, f v sin²δ / h per second for ground seen δ below the
-//! horizon from height h at speed v); the target's colour differs from the colours of the
-//! background around it; background features smaller than the ring (a field corner, a
-//! patch of cloud) that the previous frame does not explain are taken for target, and a
-//! part of the target whose colour is on its ring (a grey wing over a grey road) is lost.
+//! the background is at infinity or on the flat ground; the target's colour differs from
+//! the colours of the background around it and their mixtures; parallax beyond
+//! [`PARALLAX_PX`] per frame (ground the follower does not know the height of, or seen
+//! steeply down from low height), a background that changes, and a target at rest against the
+//! world since before the memory saw the background behind it are taken for target or lost.
 
 use super::image_view::RgbaView;
-use crate::frames::Mat3;
+use crate::frames::{Mat3, Vec3};
 use crate::render::camera::CameraIntrinsics;
 
 /// Pixels around the previous frame's target mask that explain nothing at least (its
@@ -36,17 +39,48 @@ use crate::render::camera::CameraIntrinsics;
 pub(crate) const TARGET_MARGIN_PX: usize = 3;
 /// Pixels on the ring of the local colour model.
 const RING_POINTS: usize = 16;
+/// A pixel within this colour distance of the remembered background in its direction is
+/// background without looking further, grey levels: half the default detection floor.
+const EXPLAINED_GREY: f64 = 4.0;
+/// Points around a remembered pixel whose colours (and mixtures) explain a pixel that moved
+/// by parallax.
+const PARALLAX_POINTS: usize = 8;
+/// Their distance from it, px: the parallax of one frame that the memory absorbs (ground
+/// seen up to about 60° below the horizon at formation_scene's start).
+const PARALLAX_PX: f64 = 2.0;
 /// The ring's radius before any target was measured, px.
 pub(crate) const DEFAULT_RING_RADIUS_PX: f64 = 24.0;
 
-/// How a frame's pixels look into the world: the camera (binned or not) and its orientation
-/// as the follower's navigation knows it.
+/// How a frame's pixels look into the world: the camera (binned or not), its orientation and
+/// position as the follower's navigation knows them, and the ground's height when known.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ViewGeometry {
     /// The camera the pixels are of (image coordinates of the view's origin included).
     pub intrinsics: CameraIntrinsics,
     /// L_CB L_BE: camera axes (x along the optical axis, y right, z down) from NED.
     pub camera_from_ned: Mat3,
+    /// The camera's position, NED, ft.
+    pub position_ned_ft: Vec3,
+    /// The flat ground's NED down coordinate, ft, when the follower knows it (a radar
+    /// altimeter): directions below the horizon then map between frames through the
+    /// ground's point (its parallax), the others as directions at infinity.
+    pub ground_down_ft: Option<f64>,
+}
+
+impl ViewGeometry {
+    /// The direction (any length), in `before`'s camera axes, in which `before` saw what
+    /// this view sees along `direction_ned`.
+    fn seen_from(&self, before: &ViewGeometry, direction_ned: &Vec3) -> Vec3 {
+        let height_ft = self
+            .ground_down_ft
+            .map_or(0.0, |g| g - self.position_ned_ft.z);
+        if height_ft > 0.0 && direction_ned.z > 0.0 {
+            let ground_point = self.position_ned_ft + direction_ned * (height_ft / direction_ned.z);
+            before.camera_from_ned * (ground_point - before.position_ned_ft)
+        } else {
+            before.camera_from_ned * direction_ned
+        }
+    }
 }
 
 /// A measured frame kept for the next: its colours, which pixels may explain the next
@@ -122,6 +156,9 @@ pub(crate) struct MotionReference {
     ring_colours: Vec<[f32; 3]>,
     /// Reference colour of each pixel of the frame being measured, row-major.
     pub reference: Vec<[f32; 3]>,
+    /// The remembered background in the direction of each pixel of the frame being measured,
+    /// where the memory has one, row-major.
+    carried: Vec<Option<[f32; 3]>>,
     /// The geometry of the next frame to be measured.
     geometry: Option<ViewGeometry>,
 }
@@ -141,6 +178,21 @@ fn nearest_on_segment(p: [f32; 3], a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     std::array::from_fn(|c| a[c] + t * ab[c])
 }
 
+/// The colour nearest `p` among `colours` and their pairwise mixtures (None when empty).
+fn nearest_mixture(colours: &[[f32; 3]], p: [f32; 3]) -> Option<[f32; 3]> {
+    let mut best: Option<([f32; 3], f32)> = None;
+    for (k, &a) in colours.iter().enumerate() {
+        for &b in &colours[k..] {
+            let q = nearest_on_segment(p, a, b);
+            let d = distance2(p, q);
+            if best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((q, d));
+            }
+        }
+    }
+    best.map(|(q, _)| q)
+}
+
 fn rgb_f32(frame: &RgbaView<'_>, idx: usize) -> [f32; 3] {
     frame.rgb(idx).map(|x| x as f32)
 }
@@ -153,56 +205,75 @@ impl MotionReference {
     }
 
     /// Fills `reference` for `frame`; returns the background's noise σ per channel, grey
-    /// levels: the robust scale of the pixels' distances to the previous frame where it
-    /// explains them (their difference holds two frames' noise), else `floor`.
-    pub fn build(&mut self, frame: &RgbaView<'_>, floor: f64, explained: f64) -> f64 {
-        let explained2 = (explained * explained) as f32;
+    /// levels: the robust scale of the pixels' distances to the remembered background where
+    /// it sees them (their difference holds two frames' noise), else `floor`.
+    pub fn build(&mut self, frame: &RgbaView<'_>, floor: f64) -> f64 {
+        let explained2 = (EXPLAINED_GREY * EXPLAINED_GREY) as f32;
         if self.ring.is_empty() {
             self.set_ring_radius(DEFAULT_RING_RADIUS_PX);
         }
-        let to_previous = self.rotation_to_previous();
+        let to_previous = self.views_to_previous();
         let (w, h) = (frame.width, frame.height);
         self.reference.clear();
         self.reference.reserve(w * h);
+        self.carried.clear();
+        self.carried.reserve(w * h);
         let mut differences = Vec::new();
         for v in 0..h {
             for u in 0..w {
                 let p = rgb_f32(frame, v * w + u);
-                let seen = to_previous.map_or(Seen::Outside, |(m, k)| {
+                let at = to_previous.and_then(|(now, before)| {
                     let (iu, iv) = (u + frame.origin[0], v + frame.origin[1]);
-                    self.warp(&m, &k, iu as f64 + 0.5, iv as f64 + 0.5)
+                    warped_position(&now, &before, iu as f64 + 0.5, iv as f64 + 0.5)
                 });
-                // A strip the camera's turn brought into view at the image's edge holds no
-                // target yet: the previous frame did not see it and the ring lies half outside.
-                // (The image's edge, not a tracking window's: a target may enter a window.)
-                if seen == Seen::Outside && to_previous.is_some() && self.at_image_edge(frame, u, v)
-                {
-                    self.reference.push(p);
-                    continue;
-                }
-                let warped = match seen {
+                let seen = at.map_or(Seen::Outside, |(x, y)| self.previous.sample(x, y));
+                self.carried.push(match seen {
                     Seen::Colour(c) => Some(c),
                     _ => None,
+                });
+                let reference = match (seen, at) {
+                    (Seen::Colour(c), Some((x, y))) => {
+                        differences.push(distance2(p, c));
+                        if distance2(p, c) < explained2 {
+                            c
+                        } else {
+                            self.nearest_remembered(x, y, p)
+                        }
+                    }
+                    // A strip the camera's turn brought into view at the image's edge holds
+                    // no target yet: the memory did not see it and the ring lies half outside.
+                    // (The image's edge, not a tracking window's: a target may enter a window.)
+                    (Seen::Outside, _)
+                        if to_previous.is_some() && self.at_image_edge(frame, u, v) =>
+                    {
+                        p
+                    }
+                    _ => self.nearest_on_ring(frame, u, v, p).unwrap_or(p),
                 };
-                let explained = warped.is_some_and(|a| distance2(p, a) < explained2);
-                let nearest = if explained {
-                    None
-                } else {
-                    self.nearest_on_ring(frame, u, v, p)
-                };
-                let reference = match (warped, nearest) {
-                    (Some(a), Some(b)) if distance2(p, a) <= distance2(p, b) => a,
-                    (Some(a), None) => a,
-                    (_, Some(b)) => b,
-                    (None, None) => p,
-                };
-                if let Some(a) = warped {
-                    differences.push(distance2(p, a));
-                }
                 self.reference.push(reference);
             }
         }
         noise_sigma(&mut differences, floor)
+    }
+
+    /// The colour nearest `p` among the remembered background at position (x, y) of the
+    /// memory and at [`PARALLAX_POINTS`] points [`PARALLAX_PX`] around it, and their pairwise
+    /// mixtures: ground at a finite distance moves by parallax beyond the camera's rotation,
+    /// and a pixel an edge moved onto is a mixture of the colours on either side of it.
+    fn nearest_remembered(&mut self, x: f64, y: f64, p: [f32; 3]) -> [f32; 3] {
+        self.ring_colours.clear();
+        for k in 0..=PARALLAX_POINTS {
+            let (dx, dy) = if k == 0 {
+                (0.0, 0.0)
+            } else {
+                let a = std::f64::consts::TAU * k as f64 / PARALLAX_POINTS as f64;
+                (PARALLAX_PX * a.cos(), PARALLAX_PX * a.sin())
+            };
+            if let Seen::Colour(c) = self.previous.sample(x + dx, y + dy) {
+                self.ring_colours.push(c);
+            }
+        }
+        nearest_mixture(&self.ring_colours, p).unwrap_or(p)
     }
 
     /// Whether pixel (u, v) of `frame` lies within the ring's radius of the whole image's
@@ -222,31 +293,9 @@ impl MotionReference {
         from_edge < self.ring_radius_px
     }
 
-    /// The rotation from the frame being measured's camera axes to the previous frame's,
-    /// and the previous camera, when both orientations are known.
-    fn rotation_to_previous(&self) -> Option<(Mat3, CameraIntrinsics)> {
-        let now = self.geometry?;
-        let before = self.previous.geometry?;
-        Some((
-            before.camera_from_ned * now.camera_from_ned.transpose(),
-            before.intrinsics,
-        ))
-    }
-
-    /// The previous frame's colour in the direction of image position (u, v) of the frame
-    /// being measured.
-    fn warp(&self, rotation: &Mat3, before: &CameraIntrinsics, u: f64, v: f64) -> Seen {
-        let Some(now) = self.geometry.map(|g| g.intrinsics) else {
-            return Seen::Outside;
-        };
-        let ray = crate::frames::Vec3::new(now.focal_px, u - now.cx(), v - now.cy());
-        let r = rotation * ray;
-        if r.x <= 0.0 {
-            return Seen::Outside;
-        }
-        let u_before = before.cx() + before.focal_px * r.y / r.x;
-        let v_before = before.cy() + before.focal_px * r.z / r.x;
-        self.previous.sample(u_before, v_before)
+    /// The views of the frame being measured and of the memory, when both are known.
+    fn views_to_previous(&self) -> Option<(ViewGeometry, ViewGeometry)> {
+        Some((self.geometry?, self.previous.geometry?))
     }
 
     /// The colour nearest `p` among the pixels on a ring of radius `ring_radius_px` around
@@ -267,17 +316,7 @@ impl MotionReference {
                 self.ring_colours.push(q);
             }
         }
-        let mut best: Option<([f32; 3], f32)> = None;
-        for (k, &a) in self.ring_colours.iter().enumerate() {
-            for &b in &self.ring_colours[k..] {
-                let q = nearest_on_segment(p, a, b);
-                let d = distance2(p, q);
-                if best.is_none_or(|(_, bd)| d < bd) {
-                    best = Some((q, d));
-                }
-            }
-        }
-        best.map(|(q, _)| q)
+        nearest_mixture(&self.ring_colours, p)
     }
 
     /// Sets the ring's radius, px of the frames measured next: beyond the target's half
@@ -296,11 +335,12 @@ impl MotionReference {
             .collect();
     }
 
-    /// Keeps `frame` as the candidate previous frame, the pixels of the `target` pixels'
-    /// bounding box (the measured blob's mask, when it was measured `Ok`) grown by the ring's
-    /// radius unusable: the measured blob may be a part of the target, and what is left of it
-    /// must not explain itself in the next frame.
-    pub fn keep(&mut self, frame: &RgbaView<'_>, target: impl Iterator<Item = usize>) {
+    /// Keeps `frame` as the candidate memory of the background, except in `exclusion` (a box
+    /// [u0, v0, u1, v1] of the frame's pixels, inclusive: where the target was measured, or
+    /// where it was expected when it was not): there the memory carries the background it
+    /// had (warped into this frame by [`Self::build`]), and knows none where it had none. A
+    /// blob that was only a part of the target must not let the rest explain itself.
+    pub fn keep(&mut self, frame: &RgbaView<'_>, exclusion: Option<[usize; 4]>) {
         let (w, h) = (frame.width, frame.height);
         let kept = &mut self.pending;
         kept.rgb.clear();
@@ -310,32 +350,62 @@ impl MotionReference {
         kept.origin = frame.origin;
         (kept.width, kept.height) = (w, h);
         kept.geometry = self.geometry;
-        let bounds = target.fold(None, |b: Option<[usize; 4]>, i| {
-            let (u, v) = (i % w, i / w);
+        let Some([u0, v0, u1, v1]) = exclusion else {
+            return;
+        };
+        let carried = (self.carried.len() == w * h).then_some(&self.carried);
+        for v in v0..=v1.min(h - 1) {
+            for i in v * w + u0..=v * w + u1.min(w - 1) {
+                match carried.and_then(|c| c[i]) {
+                    Some(c) => kept.rgb[i] = c,
+                    None => kept.usable[i] = false,
+                }
+            }
+        }
+    }
+
+    /// The box about the pixels `target` of a frame `width` pixels wide that the memory
+    /// keeps out: their bounding box grown by the ring's radius (None without pixels).
+    pub fn exclusion_about(
+        &self,
+        target: impl Iterator<Item = usize>,
+        width: usize,
+    ) -> Option<[usize; 4]> {
+        let [u0, v0, u1, v1] = target.fold(None, |b: Option<[usize; 4]>, i| {
+            let (u, v) = (i % width, i / width);
             Some(b.map_or([u, v, u, v], |[u0, v0, u1, v1]| {
                 [u0.min(u), v0.min(v), u1.max(u), v1.max(v)]
             }))
-        });
-        let Some([u0, v0, u1, v1]) = bounds else {
-            return;
-        };
+        })?;
         let m = self.ring_radius_px.max(TARGET_MARGIN_PX);
-        let (u0, u1) = (u0.saturating_sub(m), (u1 + m + 1).min(w));
-        for v in v0.saturating_sub(m)..(v1 + m + 1).min(h) {
-            kept.usable[v * w + u0..v * w + u1].fill(false);
-        }
+        Some([u0.saturating_sub(m), v0.saturating_sub(m), u1 + m, v1 + m])
     }
 
     /// Whether the frame being measured has a previous frame to be explained by (its
     /// orientation and the previous one's known).
     pub fn has_previous(&self) -> bool {
-        self.rotation_to_previous().is_some()
+        self.views_to_previous().is_some()
     }
 
     /// Makes the frame kept last the previous frame of the next one measured.
     pub fn commit(&mut self) {
         std::mem::swap(&mut self.previous, &mut self.pending);
     }
+}
+
+/// Where image position (u, v) of view `now` lies in the image of view `before`: the same
+/// direction at infinity (the homography K' R K⁻¹ of the camera's rotation), or the same
+/// point of the ground where `now` knows it (None: behind `before`'s camera).
+fn warped_position(
+    now: &ViewGeometry,
+    before: &ViewGeometry,
+    u: f64,
+    v: f64,
+) -> Option<(f64, f64)> {
+    let direction_ned = now.camera_from_ned.transpose() * now.intrinsics.direction_of_pixel(u, v);
+    before
+        .intrinsics
+        .pixel_of_direction(&now.seen_from(before, &direction_ned))
 }
 
 /// Per-channel σ from squared RGB distances between two noisy frames: the median distance
@@ -408,6 +478,8 @@ mod tests {
             motion.set_view_geometry(Some(ViewGeometry {
                 intrinsics,
                 camera_from_ned: told,
+                position_ned_ft: Vec3::zeros(),
+                ground_down_ft: None,
             }));
             last = Some(motion.measure(&pixels, WIDTH, HEIGHT, NEAR_CENTRE).unwrap());
             motion.commit_frame();
@@ -463,6 +535,96 @@ mod tests {
         assert!(fails(&threshold), "border-fitted threshold: {threshold:?}");
     }
 
+    /// Farmland 100 ft below the origin in 20 ft tiles of pseudo-random colours (sky above
+    /// the horizon) seen from `position` by a camera of orientation `camera_from_ned`, with
+    /// the grey disc of [`frame`] at (u, v) if any.
+    fn frame_over_ground(
+        camera_from_ned: &Mat3,
+        position: &Vec3,
+        intrinsics: &CameraIntrinsics,
+        disc: Option<(f64, f64)>,
+    ) -> Vec<u8> {
+        let mut rgba = Vec::with_capacity((WIDTH * HEIGHT * 4) as usize);
+        for v in 0..HEIGHT {
+            for u in 0..WIDTH {
+                let (uc, vc) = (f64::from(u) + 0.5, f64::from(v) + 0.5);
+                let d = camera_from_ned.transpose() * intrinsics.direction_of_pixel(uc, vc);
+                let mut rgb = [200, 212, 228];
+                if d.z > 0.0 {
+                    let ground = position + d * ((GROUND_DOWN_FT - position.z) / d.z);
+                    let (i, j) = (
+                        (ground.x / 20.0).floor() as i64,
+                        (ground.y / 20.0).floor() as i64,
+                    );
+                    let hash = ((i * 73_856_093) ^ (j * 19_349_663)).rem_euclid(997) as u8;
+                    rgb = [80 + hash % 100, 110 + hash % 90, 70 + (hash / 3) % 60];
+                }
+                if let Some((du, dv)) = disc
+                    && (uc - du).hypot(vc - dv) < 6.0
+                {
+                    rgb = TARGET_RGB;
+                }
+                rgba.extend_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
+            }
+        }
+        rgba
+    }
+
+    const GROUND_DOWN_FT: f64 = 100.0;
+
+    /// Invariant: over ground near enough to move by parallax between frames (the camera 100
+    /// ft up, looking 35° down, flown 15 ft between the frames: 5-10 px of parallax), the
+    /// remembered background mapped through the ground's point explains the ground, and the
+    /// target that entered is the largest blob, measured within 0.3 px; mapped as directions
+    /// at infinity (the ground's height unknown) the ground's edges are left unexplained, and
+    /// the largest blob is not the target.
+    #[test]
+    fn known_ground_explains_its_parallax() {
+        let intrinsics = CameraIntrinsics::from_hfov(WIDTH, HEIGHT, 60.0);
+        let look = EulerAngles::new(0.0, -0.6, 0.1).body_from_ned();
+        let positions = [Vec3::zeros(), Vec3::new(15.0, 2.0, 0.0)];
+        let measure = |ground_down_ft: Option<f64>| {
+            let config = VisionConfig {
+                motion_reference: true,
+                ..VisionConfig::default()
+            };
+            let mut motion = VisionPipeline::new(config).unwrap();
+            let mut last = None;
+            for (k, position) in positions.iter().enumerate() {
+                let disc = (k == 1).then_some(CENTRE);
+                let pixels = frame_over_ground(&look, position, &intrinsics, disc);
+                motion.set_view_geometry(Some(ViewGeometry {
+                    intrinsics,
+                    camera_from_ned: look,
+                    position_ned_ft: *position,
+                    ground_down_ft,
+                }));
+                last = Some(
+                    motion
+                        .measure(&pixels, WIDTH, HEIGHT, BlobSelection::Largest)
+                        .unwrap(),
+                );
+                motion.commit_frame();
+            }
+            let m = last.unwrap();
+            (
+                m.status,
+                (m.centroid_u_px - CENTRE.0).hypot(m.centroid_v_px - CENTRE.1),
+            )
+        };
+        let (status, off_px) = measure(Some(GROUND_DOWN_FT));
+        assert_eq!(status, BlobStatus::Ok);
+        assert!(
+            off_px < 0.3,
+            "centroid {off_px} px off with the ground known"
+        );
+        let (status, off_px) = measure(None);
+        assert!(
+            status != BlobStatus::Ok || off_px.is_nan() || off_px >= 1.0,
+            "the ground unknown: {status:?}, {off_px} px off"
+        );
+    }
+
     /// Invariant: a first frame (no previous frame to explain its background) measures
     /// nothing.
     #[test]
@@ -476,6 +638,8 @@ mod tests {
         motion.set_view_geometry(Some(ViewGeometry {
             intrinsics,
             camera_from_ned: now(),
+            position_ned_ft: Vec3::zeros(),
+            ground_down_ft: None,
         }));
         let pixels = frame(&now(), &intrinsics, Some(CENTRE));
         let m = motion

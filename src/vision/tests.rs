@@ -223,6 +223,33 @@ fn largest_versus_nearest() {
     check_shape(&m, &big, 0.05, 0.5);
 }
 
+/// `NearestWithin`: of the blobs inside the gate, the one most like the expected length is
+/// measured, not the nearest; a blob outside the gate, or one reaching beyond its square, is
+/// never taken (nothing is measured then).
+#[test]
+fn gate_takes_the_blob_like_the_prediction() {
+    let mut scene = SyntheticScene::new(160, 120, Background::Uniform(SKY));
+    let target = scene.add_disc(60.0, 60.0, 10.0, DARK);
+    scene.add_disc(75.0, 62.0, 2.5, DARK);
+    let gate = |u_px, radius_px, length_px| BlobSelection::NearestWithin {
+        u_px,
+        v_px: 62.0,
+        radius_px,
+        length_px,
+    };
+    let m = measure_scene(&scene, gate(74.0, 30.0, 20.0));
+    check_shape(&m, &target, 0.05, 0.5);
+    // Without an expected length, the nearest.
+    let m = measure_scene(&scene, gate(74.0, 30.0, 0.0));
+    assert!((m.centroid_u_px - 75.0).abs() < 1.0, "{m:?}");
+    // Both centres outside the gate: nothing.
+    let m = measure_scene(&scene, gate(130.0, 30.0, 20.0));
+    assert_eq!(m.status, BlobStatus::NotFound);
+    // The target's centre inside, its box beyond the gate's square: the fragment only.
+    let m = measure_scene(&scene, gate(70.0, 12.0, 20.0));
+    assert!((m.centroid_u_px - 75.0).abs() < 1.0, "{m:?}");
+}
+
 /// A disc crossing the left edge is `Truncated`; one whose edge is 0.3 px inside the border
 /// (the border pixel is 0 % covered... its ring is, by less than the truncation coverage)
 /// is not, and neither is one 2 px inside.

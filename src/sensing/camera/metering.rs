@@ -5,7 +5,7 @@
 use super::CameraTimings;
 use super::drawing::DrawnFrame;
 use super::setup::SensorError;
-use crate::frames::Mat3;
+use crate::frames::{Mat3, Vec3};
 use crate::render::camera::CameraIntrinsics;
 use crate::render::region::ImageRegion;
 use crate::scenario::{BearingPoint, BlobChoice, CameraSection, SegmentationKind};
@@ -37,13 +37,24 @@ pub(super) struct Metering {
     window_pixels: Vec<u8>,
     /// The camera's orientation by navigation for the frame being measured (L_CB L_BE).
     camera_from_ned: Option<Mat3>,
-    /// The last `Ok` frame's maximal length, px.
+    /// The camera's position by navigation for the frame being measured, NED, ft.
+    camera_position_ned_ft: Vec3,
+    /// The flat ground's NED down coordinate, ft, when the scene has ground: the motion
+    /// segmentation maps the ground between frames through it (the follower is taken to
+    /// know its height above flat ground, as from a radar altimeter).
+    ground_down_ft: Option<f64>,
+    /// The last `Ok` frame's maximal length, px (kept through frames without the target).
     previous_length_px: Option<f64>,
     /// The camera's orientation by navigation when the last frame was measured.
     previous_camera_from_ned: Option<Mat3>,
-    /// Whether the segmentation is `motion` (which also follows the last centroid turned by
-    /// the camera's rotation since).
-    motion: bool,
+    /// Whether the last centroid is followed turned by the camera's rotation since
+    /// (segmentation `motion`, or selection `predicted`).
+    turns_centroid: bool,
+    /// Where the follower expects the target in the frame being measured, a line of sight NED
+    /// (the estimator's prediction, or the cue before the target is first seen).
+    expected_los_ned: Option<Vec3>,
+    /// `predicted` selection's gate beyond half the last maximal length, rad.
+    gate_rad: f64,
 }
 
 /// Copies the pixels of `window` out of `rgba`, the pixels of `drawn` (which contains it),
@@ -60,8 +71,9 @@ fn cut_window(rgba: &[u8], drawn: &ImageRegion, window: &ImageRegion, out: &mut 
 }
 
 impl Metering {
-    /// The image pipeline a `[camera]` section describes.
-    pub fn new(camera: &CameraSection) -> Result<Self, SensorError> {
+    /// The image pipeline a `[camera]` section describes, over ground at NED down
+    /// `ground_down_ft` when there is any.
+    pub fn new(camera: &CameraSection, ground_down_ft: Option<f64>) -> Result<Self, SensorError> {
         let mut vision_config = VisionConfig {
             min_pixel_count: camera.min_pixel_count as usize,
             ..VisionConfig::default()
@@ -76,9 +88,14 @@ impl Metering {
             previous_centroid_px: None,
             window_pixels: Vec::new(),
             camera_from_ned: None,
+            camera_position_ned_ft: Vec3::zeros(),
+            ground_down_ft,
             previous_length_px: None,
             previous_camera_from_ned: None,
-            motion: camera.segmentation == SegmentationKind::Motion,
+            turns_centroid: camera.segmentation == SegmentationKind::Motion
+                || camera.selection == BlobChoice::Predicted,
+            expected_los_ned: None,
+            gate_rad: camera.selection_gate_deg.to_radians(),
         })
     }
 
@@ -87,9 +104,18 @@ impl Metering {
         self.vision.region_clearance_px()
     }
 
-    /// Sets the camera's orientation by navigation, L_CB L_BE, for the frames measured next.
-    pub fn orient(&mut self, camera_from_ned: Mat3) {
+    /// Sets the camera's orientation and position by navigation, L_CB L_BE and NED ft, and
+    /// where the follower expects the target (a line of sight NED, if it has an expectation),
+    /// for the frames measured next.
+    pub fn orient(
+        &mut self,
+        camera_from_ned: Mat3,
+        camera_position_ned_ft: Vec3,
+        expected_los_ned: Option<Vec3>,
+    ) {
         self.camera_from_ned = Some(camera_from_ned);
+        self.camera_position_ned_ft = camera_position_ned_ft;
+        self.expected_los_ned = expected_los_ned;
     }
 
     /// Tells the image pipeline how `frame`'s pixels look into the world.
@@ -97,6 +123,8 @@ impl Metering {
         let geometry = self.camera_from_ned.map(|camera_from_ned| ViewGeometry {
             intrinsics: frame.intrinsics,
             camera_from_ned,
+            position_ned_ft: self.camera_position_ned_ft,
+            ground_down_ft: self.ground_down_ft,
         });
         self.vision.set_view_geometry(geometry);
         let factor = f64::from(frame.factor);
@@ -104,39 +132,48 @@ impl Metering {
             .expect_length_px(self.previous_length_px.map(|l| l / factor));
     }
 
-    /// The blob to measure in the next frame: the largest, or the one nearest the last
-    /// measured centroid (`camera.selection = "nearest"`); with `camera.segmentation =
-    /// "motion"`, the last centroid turned by the camera's rotation since (K R K⁻¹ of the
-    /// camera of `intrinsics`, the orientations by navigation), where the target at rest
-    /// against the world is now.
+    /// The blob to measure in the next frame: the largest, the one nearest the last measured
+    /// centroid (`camera.selection = "nearest"`; with `camera.segmentation = "motion"` the
+    /// last centroid turned by the camera's rotation since, K R K⁻¹ of the camera of
+    /// `intrinsics` with the orientations by navigation, where a target at rest against the
+    /// world is now), or the one nearest where the target is expected inside a gate
+    /// (`"predicted"`, see [`BlobChoice::Predicted`]).
     pub fn selection(&self, intrinsics: &CameraIntrinsics) -> BlobSelection {
-        match (self.selection, self.previous_centroid_px) {
-            (BlobChoice::Nearest, Some((u_px, v_px))) => {
-                let (u_px, v_px) = self.turned(intrinsics, u_px, v_px).unwrap_or((u_px, v_px));
+        let last = self
+            .previous_centroid_px
+            .map(|(u_px, v_px)| self.turned(intrinsics, u_px, v_px).unwrap_or((u_px, v_px)));
+        match self.selection {
+            BlobChoice::Largest => BlobSelection::Largest,
+            BlobChoice::Nearest => last.map_or(BlobSelection::Largest, |(u_px, v_px)| {
                 BlobSelection::NearestTo { u_px, v_px }
-            }
-            _ => BlobSelection::Largest,
+            }),
+            BlobChoice::Predicted => match self.expected_pixel(intrinsics).or(last) {
+                Some((u_px, v_px)) => BlobSelection::NearestWithin {
+                    u_px,
+                    v_px,
+                    radius_px: intrinsics.focal_px * self.gate_rad.tan()
+                        + 0.5 * self.previous_length_px.unwrap_or(0.0),
+                    length_px: self.previous_length_px.unwrap_or(0.0),
+                },
+                None => BlobSelection::Largest,
+            },
         }
     }
 
-    /// Pixel (u, v) of the last frame turned into the frame being measured (motion only).
+    /// Pixel of the expected line of sight in the frame being measured.
+    fn expected_pixel(&self, intrinsics: &CameraIntrinsics) -> Option<(f64, f64)> {
+        let (camera_from_ned, los) = (self.camera_from_ned?, self.expected_los_ned?);
+        intrinsics.pixel_of_direction(&(camera_from_ned * los))
+    }
+
+    /// Pixel (u, v) of the last frame turned into the frame being measured.
     fn turned(&self, intrinsics: &CameraIntrinsics, u_px: f64, v_px: f64) -> Option<(f64, f64)> {
         let (before, now) = (self.previous_camera_from_ned?, self.camera_from_ned?);
-        if !self.motion {
+        if !self.turns_centroid {
             return None;
         }
-        let ray = crate::frames::Vec3::new(
-            intrinsics.focal_px,
-            u_px - intrinsics.cx(),
-            v_px - intrinsics.cy(),
-        );
-        let r = now * before.transpose() * ray;
-        (r.x > 0.0).then(|| {
-            (
-                intrinsics.cx() + intrinsics.focal_px * r.y / r.x,
-                intrinsics.cy() + intrinsics.focal_px * r.z / r.x,
-            )
-        })
+        let direction = intrinsics.direction_of_pixel(u_px, v_px);
+        intrinsics.pixel_of_direction(&(now * before.transpose() * direction))
     }
 
     /// Measures a read-back frame: in its tracking window (binned or not), or the whole image;
@@ -219,7 +256,9 @@ impl Metering {
     pub fn remember(&mut self, blob: &BlobMeasurement) {
         let ok = blob.status == BlobStatus::Ok;
         self.vision.commit_frame();
-        self.previous_length_px = ok.then_some(blob.max_length_px);
+        if ok {
+            self.previous_length_px = Some(blob.max_length_px);
+        }
         self.previous_camera_from_ned = self.camera_from_ned;
         self.previous_centroid_px = ok.then_some((blob.centroid_u_px, blob.centroid_v_px));
     }

@@ -160,7 +160,11 @@ impl CameraSensor {
             Sky::World(world) => Some(BackdropAudit::new(world)),
             _ => None,
         };
-        let metering = Metering::new(camera)?;
+        let ground_down_ft = match &settings.background.sky {
+            Sky::World(world) => world.ground.as_ref().map(|ground| ground.down_ft),
+            _ => None,
+        };
+        let metering = Metering::new(camera, ground_down_ft)?;
         let tracker = TrackingWindow::new(
             settings.intrinsics,
             1.0 / camera.rate_hz,
@@ -249,7 +253,11 @@ impl CameraSensor {
         exposure: &Exposure,
         in_flight: &mut InFlight,
     ) -> Result<FrameRecord, SensorError> {
-        self.metering.orient(exposure.geometry.camera_from_ned());
+        self.metering.orient(
+            exposure.geometry.camera_from_ned(),
+            exposure.geometry.navigation.position_ned_ft,
+            exposure.geometry.expected_los_ned,
+        );
         let selection = self.metering.selection(self.drawing.intrinsics());
         let frame = self.drawing.frame(exposure.index)?;
         let blob = match self
