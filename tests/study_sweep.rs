@@ -257,6 +257,7 @@ fn shipped_studies_are_valid() {
         ("apparent_size", 13 * 13 * 4 * 5),
         ("formation_streams", 10),
         ("vision_ch4_filter", 9),
+        ("background", 6 * 3 * 3),
     ];
     for (name, cases) in expected {
         let path = common::repo_root().join(format!("studies/{name}.toml"));
