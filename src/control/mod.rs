@@ -17,6 +17,7 @@ mod adaptation;
 mod attitude;
 pub mod autopilot;
 mod control_law;
+mod energy;
 mod inversion;
 mod nominal_model;
 pub mod prefilter;

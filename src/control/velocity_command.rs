@@ -24,7 +24,7 @@ use super::prefilter::FilteredCommand;
 use super::reference::{VelocityReference, flight_path_for_thrust_rad, limit_flight_path};
 use super::signals::AutopilotInput;
 use super::state::AutopilotState;
-use super::wind::air_velocity_ned_fps;
+use super::wind::air_flight_path_rad;
 use crate::frames::Vec3;
 use crate::world::aircraft::AirData;
 
@@ -43,9 +43,14 @@ pub(super) struct VelocityReferences {
     pub(super) airspeed_error_fps: f64,
     /// γ of the air-relative velocity, rad.
     pub(super) air_flight_path_rad: f64,
-    /// γ_c before and after the flight-path limits, rad.
-    pub(super) raw_flight_path_rad: f64,
+    /// γ_c after the limits, rad.
     pub(super) flight_path_cmd_rad: f64,
+    /// Whether a limit changed γ_c (the thrust range's, or the energy loop's rate, angle and
+    /// thrust limits).
+    pub(super) flight_path_limited: bool,
+    /// The thrust the outer loop sets, lbf; `None`: (7.20)'s, from the airspeed error
+    /// ([`super::inversion`]).
+    pub(super) thrust_cmd_lbf: Option<f64>,
 }
 
 /// The S-turn leg after `flown_s` of flight: +1 (right of the commanded course) for the first
@@ -72,13 +77,7 @@ impl ControlLaw {
         let g = &self.gains;
         let air = &input.air_data;
         let air_velocity_cmd = self.air_velocity_cmd_ned_fps(state, input, rates);
-        let air_flight_path_rad = if air.airspeed_fps > 0.0 {
-            (-air_velocity_ned_fps(air).z / air.airspeed_fps)
-                .clamp(-1.0, 1.0)
-                .asin()
-        } else {
-            0.0
-        };
+        let air_flight_path_rad = air_flight_path_rad(air);
         let reference = VelocityReference::from_velocity_ned(&air_velocity_cmd);
         let norm_cmd_fps = reference
             .map_or(state.airspeed_filter[1], |r| r.airspeed_fps)
@@ -118,8 +117,9 @@ impl ControlLaw {
             airspeed_ref,
             airspeed_error_fps,
             air_flight_path_rad,
-            raw_flight_path_rad,
             flight_path_cmd_rad,
+            flight_path_limited: flight_path_cmd_rad != raw_flight_path_rad,
+            thrust_cmd_lbf: None,
         }
     }
 

@@ -11,10 +11,56 @@ use serde::{Deserialize, Serialize};
 
 use super::check::{self, Check};
 
+/// Which outer loop turns the guidance's V_F into the thrust and flight-path commands the
+/// inner (attitude and rate) loops fly.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OuterLoop {
+    /// The seed's (7.1)-(7.3) with (7.20): thrust holds the airspeed, γ_c is V_F's, with the
+    /// flight-path limits and the flags below (`control::velocity_command`).
+    #[default]
+    Chapter7,
+    /// A total-energy controller (docs/equations.md, The energy outer loop): thrust and speed
+    /// brake set the specific total energy rate, γ_c distributes it between height and speed
+    /// (`control::energy`). The Chapter 7 loop's flags (`climb_waits_for_speed`,
+    /// `descent_waits_for_speed`, `limited_descent_keeps_horizontal_speed`,
+    /// `flight_path_limits`, `weave_period_s`) do not apply to it.
+    Energy,
+}
+
 /// `[autopilot]`: the follower's flight controller (seed Chapter 7).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct AutopilotSection {
+    /// The outer loop: `"chapter7"` (the seed's, the default) or `"energy"` (a total-energy
+    /// controller with a stated speed-versus-height priority).
+    pub outer_loop: OuterLoop,
+    /// Energy loop: highest climb rate demanded, ft/s. 15 ft/s, 17° at 50 ft/s: above the
+    /// seed target's 6 ft/s climbs with room to close a height gap; what the thrust cannot
+    /// hold is shared out by `energy_speed_weight`.
+    pub energy_max_climb_rate_fps: f64,
+    /// Energy loop: time constant of the first-order lag that shapes the climb-rate demand,
+    /// s (0: none). 0.5 s, about the pitch loop's response: unshaped, a step of the demand
+    /// reaches the thrust at once and the flight path a second later, and the difference
+    /// goes into speed.
+    pub energy_climb_rate_time_constant_s: f64,
+    /// Energy loop: highest descent rate demanded, ft/s (15 ft/s, as the climb).
+    pub energy_max_descent_rate_fps: f64,
+    /// Energy loop: largest |γ_c|, deg. 20°: above the 17° of the rate limits at 50 ft/s, and
+    /// the flight-path angles at which the α envelope (`max_alpha_deg`) still leaves room.
+    pub energy_max_flight_path_deg: f64,
+    /// Energy loop: the speed-versus-height priority s of TECS, in [0, 2]: the height's
+    /// weight is min(2 - s, 1), the speed's min(s, 1). It decides who gives when thrust (or
+    /// the speed brake) saturates: 0 holds the height and lets the speed go, 2 holds the speed
+    /// and lets the height go, 1 shares the shortfall equally (TECS's default).
+    pub energy_speed_weight: f64,
+    /// Energy loop: integral gain on the total energy rate error (thrust channel), 1/s: it
+    /// learns the thrust the nominal drag model lacks. 0.2: a 5 s time constant, slower than
+    /// the airspeed law (1 s) so that it trims rather than fights it.
+    pub energy_thrust_integral_gain_per_s: f64,
+    /// Energy loop: integral gain on the energy balance rate error (flight-path channel),
+    /// 1/s: it learns the flight path the α reference misses. 0.2, as the thrust's.
+    pub energy_balance_integral_gain_per_s: f64,
     /// k_V of the airspeed loop (7.20), 1/s. 1 s error time constant; it also damps the
     /// phugoid, which the plant's T ∝ V² thrust leaves almost undamped.
     pub airspeed_gain_per_s: f64,
@@ -140,6 +186,14 @@ pub struct AutopilotSection {
 impl Default for AutopilotSection {
     fn default() -> Self {
         Self {
+            outer_loop: OuterLoop::Chapter7,
+            energy_max_climb_rate_fps: 15.0,
+            energy_max_descent_rate_fps: 15.0,
+            energy_climb_rate_time_constant_s: 0.5,
+            energy_max_flight_path_deg: 20.0,
+            energy_speed_weight: 1.0,
+            energy_thrust_integral_gain_per_s: 0.2,
+            energy_balance_integral_gain_per_s: 0.2,
             airspeed_gain_per_s: 1.0,
             roll_gain_per_s: 2.0,
             pitch_gain_per_s: 2.0,
@@ -202,7 +256,58 @@ impl AutopilotSection {
             1e3,
         )?;
         check::in_closed("autopilot.weave_period_s", self.weave_period_s, 0.0, 1e3)?;
+        self.validate_energy()?;
         self.validate_rbf()
+    }
+
+    /// The energy loop's limits, priority and integral gains.
+    fn validate_energy(&self) -> Check {
+        all_in_closed(
+            &[
+                (
+                    "autopilot.energy_max_climb_rate_fps",
+                    self.energy_max_climb_rate_fps,
+                ),
+                (
+                    "autopilot.energy_max_descent_rate_fps",
+                    self.energy_max_descent_rate_fps,
+                ),
+            ],
+            0.0,
+            200.0,
+        )?;
+        check::in_closed(
+            "autopilot.energy_climb_rate_time_constant_s",
+            self.energy_climb_rate_time_constant_s,
+            0.0,
+            10.0,
+        )?;
+        check::in_closed(
+            "autopilot.energy_max_flight_path_deg",
+            self.energy_max_flight_path_deg,
+            1.0,
+            60.0,
+        )?;
+        check::in_closed(
+            "autopilot.energy_speed_weight",
+            self.energy_speed_weight,
+            0.0,
+            2.0,
+        )?;
+        all_in_closed(
+            &[
+                (
+                    "autopilot.energy_thrust_integral_gain_per_s",
+                    self.energy_thrust_integral_gain_per_s,
+                ),
+                (
+                    "autopilot.energy_balance_integral_gain_per_s",
+                    self.energy_balance_integral_gain_per_s,
+                ),
+            ],
+            0.0,
+            100.0,
+        )
     }
 
     /// The error-dynamics gains of (7.20), (7.24) and (7.25).
