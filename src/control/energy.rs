@@ -11,7 +11,9 @@
 //! flight path changes. Thrust sets Ṡ to its demand; γ_c distributes the Ṡ that the thrust
 //! range allows so that Ḃ meets its demand: with thrust (or brake) saturated the weights
 //! (`energy_speed_weight`) decide whether speed or height gives. The inner loops get what
-//! they get from the Chapter 7 loop: V_m, V̇_m, γ_c, χ_c and a thrust.
+//! they get from the Chapter 7 loop: V_m, V̇_m, γ_c, χ_c and a thrust. A command slower than
+//! the aircraft flies is stretched by geometry (`weave_half_width_ft`,
+//! [`super::velocity_command::slot_weave_side`]), not by the clock's S-turns.
 
 use super::control_law::ControlLaw;
 use super::nominal_model::NominalModel;
@@ -109,8 +111,15 @@ impl ControlLaw {
         };
         let (flight_path_cmd_rad, thrust_cmd_lbf, limited) =
             self.energy_commands(state, air, model, &demands, air_flight_path_rad, rates);
+        let weave_offset_rad = if g.weave_half_width_ft > 0.0 {
+            self.weave_offset_rad(&air_velocity_cmd, flight_path_cmd_rad)
+        } else {
+            0.0
+        };
         VelocityReferences {
-            course_rad: reference.and_then(|r| r.course_rad),
+            course_rad: reference
+                .and_then(|r| r.course_rad)
+                .map(|course| course + input.weave_side * weave_offset_rad),
             airspeed_cmd_fps,
             airspeed_ref,
             airspeed_error_fps,

@@ -16,7 +16,9 @@
 //!   descent the limit holds short at the command's horizontal speed, V_c = ‖V_h‖ / cos γ_c,
 //!   not at its norm; `weave_period_s` turns a command slower than the aircraft can fly into
 //!   S-turns: χ_c ± acos(‖V_h‖ / (V_min cos γ_c)), the side alternating every half period,
-//!   which keeps the commanded speed along the course.
+//!   which keeps the commanded speed along the course; `weave_half_width_ft` alternates the
+//!   side by geometry instead ([`slot_weave_side`]), reversing when the follower is that far
+//!   off the slot's line (both loops; the clock's S-turns are the Chapter 7 loop's only).
 
 use super::control_law::ControlLaw;
 use super::nominal_model::NominalModel;
@@ -60,6 +62,19 @@ pub fn weave_side(flown_s: f64, weave_period_s: f64) -> f64 {
         -1.0
     } else {
         1.0
+    }
+}
+
+/// The S-turn leg flown by geometry: the side (+1 right, -1 left of the commanded course) is
+/// kept until the follower is `half_width_ft` to that side of the slot's line
+/// (`cross_track_ft`, positive right of the target's estimated track), then reversed.
+pub fn slot_weave_side(side: f64, cross_track_ft: f64, half_width_ft: f64) -> f64 {
+    if side > 0.0 && cross_track_ft > half_width_ft {
+        -1.0
+    } else if side < 0.0 && cross_track_ft < -half_width_ft {
+        1.0
+    } else {
+        side
     }
 }
 
@@ -182,10 +197,15 @@ impl ControlLaw {
     /// The course offset of an S-turn, rad: when the commanded horizontal air speed is below
     /// the slowest the aircraft flies on the commanded path, V_min cos γ_c, the aircraft flies
     /// V_min at acos(V_h,cmd / (V_min cos γ_c)) (at most [`MAX_WEAVE_OFFSET_RAD`]) off the
-    /// commanded course, which keeps the commanded speed along it. 0 with `weave_period_s` 0.
-    fn weave_offset_rad(&self, air_velocity_cmd: &Vec3, flight_path_cmd_rad: f64) -> f64 {
+    /// commanded course, which keeps the commanded speed along it. 0 with neither
+    /// `weave_period_s` nor `weave_half_width_ft`.
+    pub(super) fn weave_offset_rad(
+        &self,
+        air_velocity_cmd: &Vec3,
+        flight_path_cmd_rad: f64,
+    ) -> f64 {
         let g = &self.gains;
-        if g.weave_period_s <= 0.0 {
+        if g.weave_period_s <= 0.0 && g.weave_half_width_ft <= 0.0 {
             return 0.0;
         }
         let slowest_horizontal_fps = g.min_airspeed_cmd_fps * flight_path_cmd_rad.cos();
@@ -194,5 +214,19 @@ impl ControlLaw {
             .min(1.0)
             .acos()
             .min(MAX_WEAVE_OFFSET_RAD)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::slot_weave_side;
+
+    #[test]
+    fn the_slot_weave_reverses_beyond_its_half_width() {
+        assert_eq!(slot_weave_side(1.0, 9.0, 10.0), 1.0);
+        assert_eq!(slot_weave_side(1.0, 11.0, 10.0), -1.0);
+        assert_eq!(slot_weave_side(-1.0, 11.0, 10.0), -1.0);
+        assert_eq!(slot_weave_side(-1.0, -9.0, 10.0), -1.0);
+        assert_eq!(slot_weave_side(-1.0, -11.0, 10.0), 1.0);
     }
 }

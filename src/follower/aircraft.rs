@@ -14,7 +14,9 @@
 //! act on the plant only.
 
 use super::FollowerConfig;
-use crate::control::{AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, weave_side};
+use crate::control::{
+    AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, slot_weave_side, weave_side,
+};
 use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::signals::{CommandKind, FollowerCommand, FollowerFeedback};
 use crate::navigation::OwnStateErrors;
@@ -88,6 +90,10 @@ pub struct AircraftFollower {
     flown_s: f64,
     /// S-turn period, s (0: none).
     weave_period_s: f64,
+    /// Half width of the S-turns by geometry, ft (0: none; then the clock's).
+    weave_half_width_ft: f64,
+    /// The side of the S-turn by geometry, +1 right or -1 left ([`slot_weave_side`]).
+    slot_weave_side: f64,
     /// What the navigation and air data read above the truth over the current step (`None`:
     /// perfect), for the wind estimate.
     own_state_errors: Option<OwnStateErrors>,
@@ -136,6 +142,8 @@ impl AircraftFollower {
                 integrates_acceleration,
                 flown_s: 0.0,
                 weave_period_s: config.autopilot.weave_period_s,
+                weave_half_width_ft: config.autopilot.weave_half_width_ft,
+                slot_weave_side: 1.0,
                 own_state_errors: None,
             },
             x,
@@ -189,6 +197,21 @@ impl AircraftFollower {
         self.flown_s += dt_s;
     }
 
+    /// Whether the S-turns alternate by geometry (`weave_half_width_ft` > 0): the simulation
+    /// then hands in the follower's offset from the slot's line each tick.
+    pub fn weaves_by_geometry(&self) -> bool {
+        self.weave_half_width_ft > 0.0
+    }
+
+    /// Before a step: the follower's offset to the right of the slot's line, ft (`None`
+    /// without an estimate: the side holds), which reverses the S-turn beyond its half width.
+    pub fn hold_slot_cross_track(&mut self, cross_track_ft: Option<f64>) {
+        if let Some(y) = cross_track_ft {
+            self.slot_weave_side =
+                slot_weave_side(self.slot_weave_side, y, self.weave_half_width_ft);
+        }
+    }
+
     /// Holds what the follower's navigation and air data read above the truth over the
     /// coming step (`None`: perfect).
     pub fn hold_own_state_errors(&mut self, errors: Option<OwnStateErrors>) {
@@ -229,7 +252,11 @@ impl AircraftFollower {
                 .map_or(air_data, |e| e.sensed_air_data(&air_data)),
             air_data,
             actuators: state.actuators,
-            weave_side: weave_side(self.flown_s, self.weave_period_s),
+            weave_side: if self.weaves_by_geometry() {
+                self.slot_weave_side
+            } else {
+                weave_side(self.flown_s, self.weave_period_s)
+            },
         };
         let autopilot = self.autopilot.derivative(
             &x[AUTOPILOT..VELOCITY_CMD],

@@ -173,6 +173,14 @@ impl Follower {
         }
     }
 
+    /// Before each step, when the aircraft's S-turns alternate by geometry: the follower's
+    /// offset to the right of the slot's line, ft (`None`: unknown).
+    pub fn hold_slot_cross_track(&mut self, cross_track_ft: Option<f64>) {
+        if let Self::Aircraft(a) = self {
+            a.hold_slot_cross_track(cross_track_ft);
+        }
+    }
+
     /// The control step: the flight controller's ẋ and decision for the guidance `command`.
     pub fn control(&self, x: &[f64], command: &FollowerCommand, dx: &mut [f64]) -> Actuation {
         match self {

@@ -145,6 +145,14 @@ pub struct AutopilotSection {
     /// course, to the right for half a period and to the left for the other half, so that it
     /// keeps the commanded speed along the course instead of overtaking a slower target.
     pub weave_period_s: f64,
+    /// S-turns by geometry, ft off the slot's line (0: none, the seed's): when the commanded
+    /// horizontal air speed is below the slowest the aircraft flies, it flies that speed off
+    /// the commanded course, as the clock's S-turns do, but keeps each side until it is this
+    /// far to that side of the slot's line (the target's estimated track through the slot,
+    /// from the Kalman estimate), then turns to the other. It takes the place of
+    /// `weave_period_s` and applies to both outer loops. 10 ft would keep a 32 ft slot's
+    /// follower within about 17° of the target's track.
+    pub weave_half_width_ft: f64,
     /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
     /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below
     /// the target profile's slowest 35.4 ft/s.
@@ -223,6 +231,7 @@ impl Default for AutopilotSection {
             limited_descent_keeps_horizontal_speed: false,
             descent_waits_for_speed: false,
             weave_period_s: 0.0,
+            weave_half_width_ft: 0.0,
             min_airspeed_cmd_fps: 35.0,
             max_airspeed_cmd_fps: 65.0,
             min_control_airspeed_fps: 15.0,
@@ -256,6 +265,12 @@ impl AutopilotSection {
             1e3,
         )?;
         check::in_closed("autopilot.weave_period_s", self.weave_period_s, 0.0, 1e3)?;
+        check::in_closed(
+            "autopilot.weave_half_width_ft",
+            self.weave_half_width_ft,
+            0.0,
+            1e3,
+        )?;
         self.validate_energy()?;
         self.validate_rbf()
     }

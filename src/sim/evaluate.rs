@@ -58,6 +58,27 @@ impl Simulation {
         )
     }
 
+    /// The follower's offset to the right of the slot's line at (t, x), ft: (R_c - R̂)·n, n the
+    /// horizontal right-hand normal of the target's estimated velocity, R̂ = b̂ r̂ the Kalman
+    /// estimate (the S-turns by geometry, `autopilot.weave_half_width_ft`); `None` without
+    /// an estimate or with a target not moving horizontally.
+    pub(super) fn slot_cross_track_ft(&self, t_s: f64, x: &[f64]) -> Option<f64> {
+        let measurement = self.guidance_measurement(t_s, x);
+        let GuidanceMeasurement::Now {
+            estimate: Some(e), ..
+        } = measurement
+        else {
+            return None;
+        };
+        let input = self.command_input(x, &measurement);
+        let (command_ned_ft, _) = self.command.command(self.layout.split(x).command, &input);
+        let horizontal = e.d_per_s.x.hypot(e.d_per_s.y);
+        (horizontal > 0.0).then(|| {
+            let right = Vec3::new(-e.d_per_s.y, e.d_per_s.x, 0.0) / horizontal;
+            (command_ned_ft - e.r * e.b_hat_ft).dot(&right)
+        })
+    }
+
     /// The estimates b̂ and d̂ the guidance flies on at (t, x): the adaptive law's own, or the
     /// Kalman filter's (`None` before its first measurement).
     pub(super) fn estimates(
