@@ -111,15 +111,14 @@ impl ControlLaw {
         };
         let (flight_path_cmd_rad, thrust_cmd_lbf, limited) =
             self.energy_commands(state, air, model, &demands, air_flight_path_rad, rates);
-        let weave_offset_rad = if g.weave_half_width_ft > 0.0 {
-            self.weave_offset_rad(&air_velocity_cmd, flight_path_cmd_rad)
-        } else {
-            0.0
-        };
+        let course_rad = reference.and_then(|r| r.course_rad);
         VelocityReferences {
-            course_rad: reference
-                .and_then(|r| r.course_rad)
-                .map(|course| course + input.weave_side * weave_offset_rad),
+            // The clock's S-turns are the Chapter 7 loop's only.
+            course_rad: if g.weave_half_width_ft > 0.0 {
+                self.weave_course_rad(input, &air_velocity_cmd, flight_path_cmd_rad, course_rad)
+            } else {
+                course_rad
+            },
             airspeed_cmd_fps,
             airspeed_ref,
             airspeed_error_fps,

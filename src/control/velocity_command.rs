@@ -123,11 +123,13 @@ impl ControlLaw {
             } else {
                 (norm_cmd_fps, norm_ref)
             };
-        let weave_offset_rad = self.weave_offset_rad(&air_velocity_cmd, flight_path_cmd_rad);
         VelocityReferences {
-            course_rad: reference
-                .and_then(|r| r.course_rad)
-                .map(|course| course + input.weave_side * weave_offset_rad),
+            course_rad: self.weave_course_rad(
+                input,
+                &air_velocity_cmd,
+                flight_path_cmd_rad,
+                reference.and_then(|r| r.course_rad),
+            ),
             airspeed_cmd_fps,
             airspeed_ref,
             airspeed_error_fps,
@@ -194,16 +196,41 @@ impl ControlLaw {
             .clamp(g.min_airspeed_cmd_fps, g.max_airspeed_cmd_fps)
     }
 
+    /// χ_c with the S-turn's offset: about the command's course `course_rad`, or, with S-turns
+    /// by geometry and the slot's line known, about the line's course χ_s, at
+    /// acos(V_a·u_s / (V_min cos γ_c)) (at most [`MAX_WEAVE_OFFSET_RAD`]), which keeps the
+    /// command's speed along the line (u_s its horizontal direction). Unchanged without an
+    /// S-turn.
+    pub(super) fn weave_course_rad(
+        &self,
+        input: &AutopilotInput,
+        air_velocity_cmd: &Vec3,
+        flight_path_cmd_rad: f64,
+        course_rad: Option<f64>,
+    ) -> Option<f64> {
+        let g = &self.gains;
+        let offset_rad = self.weave_offset_rad(air_velocity_cmd, flight_path_cmd_rad);
+        match input.slot_track_rad {
+            Some(track_rad) if offset_rad > 0.0 && g.weave_half_width_ft > 0.0 => {
+                let along_fps =
+                    air_velocity_cmd.x * track_rad.cos() + air_velocity_cmd.y * track_rad.sin();
+                let slowest_fps = g.min_airspeed_cmd_fps * flight_path_cmd_rad.cos();
+                let offset_rad = (along_fps / slowest_fps)
+                    .clamp(-1.0, 1.0)
+                    .acos()
+                    .min(MAX_WEAVE_OFFSET_RAD);
+                Some(track_rad + input.weave_side * offset_rad)
+            }
+            _ => course_rad.map(|course| course + input.weave_side * offset_rad),
+        }
+    }
+
     /// The course offset of an S-turn, rad: when the commanded horizontal air speed is below
     /// the slowest the aircraft flies on the commanded path, V_min cos γ_c, the aircraft flies
     /// V_min at acos(V_h,cmd / (V_min cos γ_c)) (at most [`MAX_WEAVE_OFFSET_RAD`]) off the
     /// commanded course, which keeps the commanded speed along it. 0 with neither
     /// `weave_period_s` nor `weave_half_width_ft`.
-    pub(super) fn weave_offset_rad(
-        &self,
-        air_velocity_cmd: &Vec3,
-        flight_path_cmd_rad: f64,
-    ) -> f64 {
+    fn weave_offset_rad(&self, air_velocity_cmd: &Vec3, flight_path_cmd_rad: f64) -> f64 {
         let g = &self.gains;
         if g.weave_period_s <= 0.0 && g.weave_half_width_ft <= 0.0 {
             return 0.0;

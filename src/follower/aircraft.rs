@@ -61,6 +61,16 @@ impl From<InvalidValue> for AircraftSetupError {
     }
 }
 
+/// The slot's line as the follower's estimate places it: through the slot along the
+/// target's estimated horizontal velocity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlotLine {
+    /// Its course, rad.
+    pub track_rad: f64,
+    /// The follower's offset to its right, ft.
+    pub cross_track_ft: f64,
+}
+
 /// What the flight controller decided at one instant, with what it saw.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AircraftActuation {
@@ -94,6 +104,8 @@ pub struct AircraftFollower {
     weave_half_width_ft: f64,
     /// The side of the S-turn by geometry, +1 right or -1 left ([`slot_weave_side`]).
     slot_weave_side: f64,
+    /// The course of the slot's line, rad (`None`: unknown).
+    slot_track_rad: Option<f64>,
     /// What the navigation and air data read above the truth over the current step (`None`:
     /// perfect), for the wind estimate.
     own_state_errors: Option<OwnStateErrors>,
@@ -144,6 +156,7 @@ impl AircraftFollower {
                 weave_period_s: config.autopilot.weave_period_s,
                 weave_half_width_ft: config.autopilot.weave_half_width_ft,
                 slot_weave_side: 1.0,
+                slot_track_rad: None,
                 own_state_errors: None,
             },
             x,
@@ -203,13 +216,18 @@ impl AircraftFollower {
         self.weave_half_width_ft > 0.0
     }
 
-    /// Before a step: the follower's offset to the right of the slot's line, ft (`None`
-    /// without an estimate: the side holds), which reverses the S-turn beyond its half width.
-    pub fn hold_slot_cross_track(&mut self, cross_track_ft: Option<f64>) {
-        if let Some(y) = cross_track_ft {
-            self.slot_weave_side =
-                slot_weave_side(self.slot_weave_side, y, self.weave_half_width_ft);
+    /// Before a step: the slot's line (`None` without an estimate: the side holds and the
+    /// legs are placed about the command's course); the follower's offset from it reverses
+    /// the S-turn beyond its half width.
+    pub fn hold_slot_line(&mut self, line: Option<SlotLine>) {
+        if let Some(l) = line {
+            self.slot_weave_side = slot_weave_side(
+                self.slot_weave_side,
+                l.cross_track_ft,
+                self.weave_half_width_ft,
+            );
         }
+        self.slot_track_rad = line.map(|l| l.track_rad);
     }
 
     /// Holds what the follower's navigation and air data read above the truth over the
@@ -257,6 +275,7 @@ impl AircraftFollower {
             } else {
                 weave_side(self.flown_s, self.weave_period_s)
             },
+            slot_track_rad: self.slot_track_rad,
         };
         let autopilot = self.autopilot.derivative(
             &x[AUTOPILOT..VELOCITY_CMD],

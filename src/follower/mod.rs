@@ -14,7 +14,7 @@ pub mod aircraft;
 pub mod envelope;
 pub mod kinematic;
 
-pub use aircraft::{AircraftActuation, AircraftFollower, AircraftSetupError};
+pub use aircraft::{AircraftActuation, AircraftFollower, AircraftSetupError, SlotLine};
 pub use envelope::{FlightEnvelope, LimitTicks};
 pub use kinematic::KinematicFollower;
 
@@ -173,11 +173,11 @@ impl Follower {
         }
     }
 
-    /// Before each step, when the aircraft's S-turns alternate by geometry: the follower's
-    /// offset to the right of the slot's line, ft (`None`: unknown).
-    pub fn hold_slot_cross_track(&mut self, cross_track_ft: Option<f64>) {
+    /// Before each step, when the aircraft's S-turns alternate by geometry: the slot's line
+    /// from the estimate (`None`: unknown).
+    pub fn hold_slot_line(&mut self, line: Option<SlotLine>) {
         if let Self::Aircraft(a) = self {
-            a.hold_slot_cross_track(cross_track_ft);
+            a.hold_slot_line(line);
         }
     }
 

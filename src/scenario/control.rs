@@ -52,7 +52,9 @@ pub struct AutopilotSection {
     /// Energy loop: the speed-versus-height priority s of TECS, in [0, 2]: the height's
     /// weight is min(2 - s, 1), the speed's min(s, 1). It decides who gives when thrust (or
     /// the speed brake) saturates: 0 holds the height and lets the speed go, 2 holds the speed
-    /// and lets the height go, 1 shares the shortfall equally (TECS's default).
+    /// and lets the height go, 1 shares the shortfall equally (TECS's default). Within 10%
+    /// above `min_airspeed_cmd_fps` it moves to 2 whatever its value: the seed's thrust
+    /// T ∝ V² shrinks with the speed, and a height kept at its expense ends in a stall.
     pub energy_speed_weight: f64,
     /// Energy loop: integral gain on the total energy rate error (thrust channel), 1/s: it
     /// learns the thrust the nominal drag model lacks. 0.2: a 5 s time constant, slower than

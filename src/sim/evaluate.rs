@@ -6,7 +6,7 @@ use super::Simulation;
 use super::build::mounted_camera;
 use super::navigate::encoder_reading;
 use crate::estimation::{GuidanceMeasurement, LawEstimates, TargetEstimate, TargetMotionEstimate};
-use crate::follower::Actuation;
+use crate::follower::{Actuation, SlotLine};
 use crate::frames::{Mat3, Vec3};
 use crate::guidance::command::CommandInput;
 use crate::guidance::signals::{GuidanceInput, GuidanceOutput};
@@ -58,11 +58,11 @@ impl Simulation {
         )
     }
 
-    /// The follower's offset to the right of the slot's line at (t, x), ft: (R_c - R̂)·n, n the
-    /// horizontal right-hand normal of the target's estimated velocity, R̂ = b̂ r̂ the Kalman
-    /// estimate (the S-turns by geometry, `autopilot.weave_half_width_ft`); `None` without
-    /// an estimate or with a target not moving horizontally.
-    pub(super) fn slot_cross_track_ft(&self, t_s: f64, x: &[f64]) -> Option<f64> {
+    /// The slot's line at (t, x) for the S-turns by geometry (`autopilot.weave_half_width_ft`):
+    /// the course of the target's estimated velocity, and the follower's offset to its right,
+    /// (R_c - R̂)·n, n the line's horizontal right-hand normal, R̂ = b̂ r̂ the Kalman
+    /// estimate; `None` without an estimate or with a target not moving horizontally.
+    pub(super) fn slot_line(&self, t_s: f64, x: &[f64]) -> Option<SlotLine> {
         let measurement = self.guidance_measurement(t_s, x);
         let GuidanceMeasurement::Now {
             estimate: Some(e), ..
@@ -75,7 +75,10 @@ impl Simulation {
         let horizontal = e.d_per_s.x.hypot(e.d_per_s.y);
         (horizontal > 0.0).then(|| {
             let right = Vec3::new(-e.d_per_s.y, e.d_per_s.x, 0.0) / horizontal;
-            (command_ned_ft - e.r * e.b_hat_ft).dot(&right)
+            SlotLine {
+                track_rad: e.d_per_s.y.atan2(e.d_per_s.x),
+                cross_track_ft: (command_ned_ft - e.r * e.b_hat_ft).dot(&right),
+            }
         })
     }
 

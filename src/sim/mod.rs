@@ -411,8 +411,8 @@ impl Simulation {
             .aircraft()
             .is_some_and(|a| a.weaves_by_geometry())
         {
-            let cross_track_ft = self.slot_cross_track_ft(t_s, &self.state);
-            self.follower.hold_slot_cross_track(cross_track_ft);
+            let line = self.slot_line(t_s, &self.state);
+            self.follower.hold_slot_line(line);
         }
         let follower_x = self.layout.split(&self.state).follower;
         self.follower.begin_step(follower_x, dt_s);
