@@ -40,9 +40,11 @@ pub struct AutopilotSection {
     /// hold is shared out by `energy_speed_weight`.
     pub energy_max_climb_rate_fps: f64,
     /// Energy loop: time constant of the first-order lag that shapes the climb-rate demand,
-    /// s (0: none). 0.5 s, about the pitch loop's response: unshaped, a step of the demand
-    /// reaches the thrust at once and the flight path a second later, and the difference
-    /// goes into speed.
+    /// s (0: none, the default). Unshaped, a step of the demand reaches the thrust at once
+    /// and the flight path through the pitch loop's lag, and the difference goes into speed
+    /// (a 30 ft height step: ±3.1 ft/s of airspeed unshaped, ±2.6 with 0.5 s); but the lag
+    /// delays the height's response to the guidance: with 0.5 s, over moderate streams 1-30
+    /// the median RMS of the vertical slot error rose from 2.1 to 3.7 ft (measured).
     pub energy_climb_rate_time_constant_s: f64,
     /// Energy loop: highest descent rate demanded, ft/s (15 ft/s, as the climb).
     pub energy_max_descent_rate_fps: f64,
@@ -199,7 +201,7 @@ impl Default for AutopilotSection {
             outer_loop: OuterLoop::Chapter7,
             energy_max_climb_rate_fps: 15.0,
             energy_max_descent_rate_fps: 15.0,
-            energy_climb_rate_time_constant_s: 0.5,
+            energy_climb_rate_time_constant_s: 0.0,
             energy_max_flight_path_deg: 20.0,
             energy_speed_weight: 1.0,
             energy_thrust_integral_gain_per_s: 0.2,
