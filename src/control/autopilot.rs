@@ -8,7 +8,8 @@
 //! 0. The nominal model at this instant: q̄, the controls' effectiveness, the nominal
 //!    aerodynamics and the networks' corrections (`nominal_model`).
 //! 1. V_F → V_c, γ_c, χ_c (7.1)-(7.3) on the air-relative command V_F - ŵ (`wind`), with the
-//!    flight-path limits, the airspeed limits and the S-turns (`velocity_command`).
+//!    flight-path limits, the airspeed limits and the S-turns (`velocity_command`); or, with
+//!    `outer_loop = "energy"`, the total-energy loop's thrust and γ_c (`energy`).
 //! 2. Raw attitude references (Remark 9) and 3. their prefilters (Remark 10) and the α
 //!    envelope (`attitude`).
 //! 4. (7.24) body-rate commands, 5. their command filter and 6. the moment command (7.25)
@@ -26,8 +27,8 @@ use super::signals::{AutopilotInput, AutopilotOutput};
 use super::state::{AUTOPILOT_STATE_LEN, AutopilotState};
 use super::wind::measured_wind_ned_fps;
 use crate::frames::Vec3;
-use crate::scenario::AutopilotSection;
 use crate::scenario::check::InvalidValue;
+use crate::scenario::{AutopilotSection, OuterLoop};
 use crate::world::aircraft::{AirData, AircraftParams};
 
 /// The Chapter 7 controller for one aircraft (its nominal model and the gains).
@@ -104,7 +105,10 @@ impl Autopilot {
         let state = AutopilotState::unpack(x);
         let mut rates = AutopilotState::zero();
         let model = law.nominal_model(&state, input);
-        let velocity = law.velocity_references(&state, input, &model, &mut rates);
+        let velocity = match law.gains.outer_loop {
+            OuterLoop::Chapter7 => law.velocity_references(&state, input, &model, &mut rates),
+            OuterLoop::Energy => law.energy_references(&state, input, &model, &mut rates),
+        };
         let attitude = law.attitude_references(&state, input, &model, &velocity, &mut rates);
         let rate_loop = law.rate_commands(&state, &input.air_data, &attitude, &mut rates);
         let moment_cmd = law.moment_command(&input.air_data, &model, &attitude, &rate_loop);
@@ -126,7 +130,7 @@ impl Autopilot {
             airspeed_ref_fps: velocity.airspeed_ref.value,
             airspeed_error_fps: velocity.airspeed_error_fps,
             flight_path_cmd_rad: velocity.flight_path_cmd_rad,
-            flight_path_limited: velocity.flight_path_cmd_rad != velocity.raw_flight_path_rad,
+            flight_path_limited: velocity.flight_path_limited,
             euler_cmd: attitude.euler_cmd,
             euler_rate_cmd_rps: attitude.euler_rate_cmd_rps,
             euler_error_rad: attitude.euler_error_rad,

@@ -1,6 +1,6 @@
 //! Step 7 of the controller: (7.19) inverted, [δa, δe, δr] = B(q̄)⁻¹ ([L, M, N]_cmd - M_0),
-//! M_0 the nominal moments at zero deflection; (7.20) T → δT = T / (q̄ S C_TδT). Each command
-//! is clamped to its limit.
+//! M_0 the nominal moments at zero deflection; (7.20) T → δT = T / (q̄ S C_TδT) (or the energy
+//! loop's T, [`super::energy`]). Each command is clamped to its limit.
 
 use super::control_law::ControlLaw;
 use super::nominal_model::NominalModel;
@@ -35,12 +35,14 @@ impl ControlLaw {
             });
         let mass = self.params.mass.mass_slug;
         let cos_alpha_beta = (air.alpha_rad.cos() * air.beta_rad.cos()).max(0.1);
-        let thrust_cmd = (mass * GRAVITY_FPS2 * velocity.air_flight_path_rad.sin()
-            + model.nominal_drag_lbf
-            + mass * model.drag_correction_fps2
-            - mass * g.airspeed_gain_per_s * velocity.airspeed_error_fps
-            + mass * velocity.airspeed_ref.rate)
-            / cos_alpha_beta;
+        let thrust_cmd = velocity.thrust_cmd_lbf.unwrap_or_else(|| {
+            (mass * GRAVITY_FPS2 * velocity.air_flight_path_rad.sin()
+                + model.nominal_drag_lbf
+                + mass * model.drag_correction_fps2
+                - mass * g.airspeed_gain_per_s * velocity.airspeed_error_fps
+                + mass * velocity.airspeed_ref.rate)
+                / cos_alpha_beta
+        });
         let unclamped = Controls {
             throttle: thrust_cmd / model.effectiveness.thrust_per_throttle_lbf,
             aileron_rad: surfaces.x,

@@ -22,6 +22,10 @@ pub struct AutopilotInput {
     /// The side of an S-turn leg, +1 right or -1 left of the commanded course (see
     /// `weave_period_s`; unused with it 0).
     pub weave_side: f64,
+    /// The course of the slot's line (the target's estimated track), rad, with S-turns by
+    /// geometry (`weave_half_width_ft`): their legs are placed about it; `None`: about the
+    /// command's course.
+    pub slot_track_rad: Option<f64>,
 }
 
 /// Which actuator commands were clamped to their limits.

@@ -1,6 +1,6 @@
 //! The controller's continuous state: its layout in the simulation's state vector
 //! ([`AutopilotState`], `[V_I, V_m | φ_I, φ_m, φ̇_m | θ_I, θ_m, θ̇_m | ψ_I, ψ_m, ψ̇_m |
-//! p_f, ṗ_f, q_f, q̇_f, r_f, ṙ_f | ŵ (3) | Ŵ_D, Ŵ_l, Ŵ_m, Ŵ_n]`, the weights RBF_CENTRES each)
+//! p_f, ṗ_f, q_f, q̇_f, r_f, ṙ_f | ŵ (3) | I_E, I_B, ḣ_f | Ŵ_D, Ŵ_l, Ŵ_m, Ŵ_n]`, the weights RBF_CENTRES each)
 //! and the names of its elements.
 
 use super::rbf::RBF_CENTRES;
@@ -8,7 +8,7 @@ use crate::frames::Vec3;
 use crate::state_block::{StateReader, StateWriter};
 
 /// Length of the controller's state.
-pub const AUTOPILOT_STATE_LEN: usize = 20 + 4 * RBF_CENTRES;
+pub const AUTOPILOT_STATE_LEN: usize = 23 + 4 * RBF_CENTRES;
 
 /// Index of each network among the weights: drag, roll, pitch, yaw moment.
 pub(super) const DRAG: usize = 0;
@@ -32,6 +32,10 @@ pub struct AutopilotState {
     pub rate_filter: [[f64; 2]; 3],
     /// ŵ: the wind estimate, NED, ft/s.
     pub wind_estimate_ned_fps: Vec3,
+    /// `[I_E, I_B, ḣ_f]`: the energy loop's integrals of the total energy rate error and of
+    /// the balance rate error, ft/s², and its shaped climb-rate demand, ft/s (zero, and
+    /// still, with the Chapter 7 outer loop).
+    pub energy_loop: [f64; 3],
     /// The RBF weights Ŵ_D, Ŵ_l, Ŵ_m, Ŵ_n.
     pub weights: [[f64; RBF_CENTRES]; 4],
 }
@@ -46,6 +50,7 @@ impl AutopilotState {
             heading_filter: [0.0; 3],
             rate_filter: [[0.0; 2]; 3],
             wind_estimate_ned_fps: Vec3::zeros(),
+            energy_loop: [0.0; 3],
             weights: [[0.0; RBF_CENTRES]; 4],
         }
     }
@@ -60,6 +65,7 @@ impl AutopilotState {
             heading_filter: r.array(),
             rate_filter: [(); 3].map(|_| r.array()),
             wind_estimate_ned_fps: r.vec3(),
+            energy_loop: r.array(),
             weights: [(); 4].map(|_| r.array()),
         }
     }
@@ -74,7 +80,8 @@ impl AutopilotState {
         for axis in &self.rate_filter {
             w.values(axis);
         }
-        w.vec3(&self.wind_estimate_ned_fps);
+        w.vec3(&self.wind_estimate_ned_fps)
+            .values(&self.energy_loop);
         for network in &self.weights {
             w.values(network);
         }
@@ -111,6 +118,14 @@ pub fn autopilot_state_names() -> Vec<String> {
             ("q command filter", &filter),
             ("r command filter", &filter),
             ("wind estimate, ft/s", NED),
+            (
+                "energy loop",
+                &[
+                    "total energy integral, ft/s²",
+                    "balance integral, ft/s²",
+                    "shaped climb rate, ft/s",
+                ],
+            ),
         ],
     );
     for channel in ["drag", "roll", "pitch", "yaw"] {

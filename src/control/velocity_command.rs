@@ -16,7 +16,9 @@
 //!   descent the limit holds short at the command's horizontal speed, V_c = ‖V_h‖ / cos γ_c,
 //!   not at its norm; `weave_period_s` turns a command slower than the aircraft can fly into
 //!   S-turns: χ_c ± acos(‖V_h‖ / (V_min cos γ_c)), the side alternating every half period,
-//!   which keeps the commanded speed along the course.
+//!   which keeps the commanded speed along the course; `weave_half_width_ft` alternates the
+//!   side by geometry instead ([`slot_weave_side`]), reversing when the follower is that far
+//!   off the slot's line (both loops; the clock's S-turns are the Chapter 7 loop's only).
 
 use super::control_law::ControlLaw;
 use super::nominal_model::NominalModel;
@@ -24,7 +26,7 @@ use super::prefilter::FilteredCommand;
 use super::reference::{VelocityReference, flight_path_for_thrust_rad, limit_flight_path};
 use super::signals::AutopilotInput;
 use super::state::AutopilotState;
-use super::wind::air_velocity_ned_fps;
+use super::wind::air_flight_path_rad;
 use crate::frames::Vec3;
 use crate::world::aircraft::AirData;
 
@@ -43,9 +45,14 @@ pub(super) struct VelocityReferences {
     pub(super) airspeed_error_fps: f64,
     /// γ of the air-relative velocity, rad.
     pub(super) air_flight_path_rad: f64,
-    /// γ_c before and after the flight-path limits, rad.
-    pub(super) raw_flight_path_rad: f64,
+    /// γ_c after the limits, rad.
     pub(super) flight_path_cmd_rad: f64,
+    /// Whether a limit changed γ_c (the thrust range's, or the energy loop's rate, angle and
+    /// thrust limits).
+    pub(super) flight_path_limited: bool,
+    /// The thrust the outer loop sets, lbf; `None`: (7.20)'s, from the airspeed error
+    /// ([`super::inversion`]).
+    pub(super) thrust_cmd_lbf: Option<f64>,
 }
 
 /// The S-turn leg after `flown_s` of flight: +1 (right of the commanded course) for the first
@@ -55,6 +62,19 @@ pub fn weave_side(flown_s: f64, weave_period_s: f64) -> f64 {
         -1.0
     } else {
         1.0
+    }
+}
+
+/// The S-turn leg flown by geometry: the side (+1 right, -1 left of the commanded course) is
+/// kept until the follower is `half_width_ft` to that side of the slot's line
+/// (`cross_track_ft`, positive right of the target's estimated track), then reversed.
+pub fn slot_weave_side(side: f64, cross_track_ft: f64, half_width_ft: f64) -> f64 {
+    if side > 0.0 && cross_track_ft > half_width_ft {
+        -1.0
+    } else if side < 0.0 && cross_track_ft < -half_width_ft {
+        1.0
+    } else {
+        side
     }
 }
 
@@ -72,13 +92,7 @@ impl ControlLaw {
         let g = &self.gains;
         let air = &input.air_data;
         let air_velocity_cmd = self.air_velocity_cmd_ned_fps(state, input, rates);
-        let air_flight_path_rad = if air.airspeed_fps > 0.0 {
-            (-air_velocity_ned_fps(air).z / air.airspeed_fps)
-                .clamp(-1.0, 1.0)
-                .asin()
-        } else {
-            0.0
-        };
+        let air_flight_path_rad = air_flight_path_rad(air);
         let reference = VelocityReference::from_velocity_ned(&air_velocity_cmd);
         let norm_cmd_fps = reference
             .map_or(state.airspeed_filter[1], |r| r.airspeed_fps)
@@ -109,17 +123,20 @@ impl ControlLaw {
             } else {
                 (norm_cmd_fps, norm_ref)
             };
-        let weave_offset_rad = self.weave_offset_rad(&air_velocity_cmd, flight_path_cmd_rad);
         VelocityReferences {
-            course_rad: reference
-                .and_then(|r| r.course_rad)
-                .map(|course| course + input.weave_side * weave_offset_rad),
+            course_rad: self.weave_course_rad(
+                input,
+                &air_velocity_cmd,
+                flight_path_cmd_rad,
+                reference.and_then(|r| r.course_rad),
+            ),
             airspeed_cmd_fps,
             airspeed_ref,
             airspeed_error_fps,
             air_flight_path_rad,
-            raw_flight_path_rad,
             flight_path_cmd_rad,
+            flight_path_limited: flight_path_cmd_rad != raw_flight_path_rad,
+            thrust_cmd_lbf: None,
         }
     }
 
@@ -179,13 +196,43 @@ impl ControlLaw {
             .clamp(g.min_airspeed_cmd_fps, g.max_airspeed_cmd_fps)
     }
 
+    /// χ_c with the S-turn's offset: about the command's course `course_rad`, or, with S-turns
+    /// by geometry and the slot's line known, about the line's course χ_s, at
+    /// acos(V_a·u_s / (V_min cos γ_c)) (at most [`MAX_WEAVE_OFFSET_RAD`]), which keeps the
+    /// command's speed along the line (u_s its horizontal direction). Unchanged without an
+    /// S-turn.
+    pub(super) fn weave_course_rad(
+        &self,
+        input: &AutopilotInput,
+        air_velocity_cmd: &Vec3,
+        flight_path_cmd_rad: f64,
+        course_rad: Option<f64>,
+    ) -> Option<f64> {
+        let g = &self.gains;
+        let offset_rad = self.weave_offset_rad(air_velocity_cmd, flight_path_cmd_rad);
+        match input.slot_track_rad {
+            Some(track_rad) if offset_rad > 0.0 && g.weave_half_width_ft > 0.0 => {
+                let along_fps =
+                    air_velocity_cmd.x * track_rad.cos() + air_velocity_cmd.y * track_rad.sin();
+                let slowest_fps = g.min_airspeed_cmd_fps * flight_path_cmd_rad.cos();
+                let offset_rad = (along_fps / slowest_fps)
+                    .clamp(-1.0, 1.0)
+                    .acos()
+                    .min(MAX_WEAVE_OFFSET_RAD);
+                Some(track_rad + input.weave_side * offset_rad)
+            }
+            _ => course_rad.map(|course| course + input.weave_side * offset_rad),
+        }
+    }
+
     /// The course offset of an S-turn, rad: when the commanded horizontal air speed is below
     /// the slowest the aircraft flies on the commanded path, V_min cos γ_c, the aircraft flies
     /// V_min at acos(V_h,cmd / (V_min cos γ_c)) (at most [`MAX_WEAVE_OFFSET_RAD`]) off the
-    /// commanded course, which keeps the commanded speed along it. 0 with `weave_period_s` 0.
+    /// commanded course, which keeps the commanded speed along it. 0 with neither
+    /// `weave_period_s` nor `weave_half_width_ft`.
     fn weave_offset_rad(&self, air_velocity_cmd: &Vec3, flight_path_cmd_rad: f64) -> f64 {
         let g = &self.gains;
-        if g.weave_period_s <= 0.0 {
+        if g.weave_period_s <= 0.0 && g.weave_half_width_ft <= 0.0 {
             return 0.0;
         }
         let slowest_horizontal_fps = g.min_airspeed_cmd_fps * flight_path_cmd_rad.cos();
@@ -194,5 +241,19 @@ impl ControlLaw {
             .min(1.0)
             .acos()
             .min(MAX_WEAVE_OFFSET_RAD)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::slot_weave_side;
+
+    #[test]
+    fn the_slot_weave_reverses_beyond_its_half_width() {
+        assert_eq!(slot_weave_side(1.0, 9.0, 10.0), 1.0);
+        assert_eq!(slot_weave_side(1.0, 11.0, 10.0), -1.0);
+        assert_eq!(slot_weave_side(-1.0, 11.0, 10.0), -1.0);
+        assert_eq!(slot_weave_side(-1.0, -9.0, 10.0), -1.0);
+        assert_eq!(slot_weave_side(-1.0, -11.0, 10.0), 1.0);
     }
 }

@@ -45,6 +45,17 @@ pub(super) fn air_velocity_ned_fps(air: &AirData) -> Vec3 {
     air.euler.body_from_ned().transpose() * angles.air_velocity_body_fps()
 }
 
+/// γ of the air-relative velocity, rad (0 at rest).
+pub(super) fn air_flight_path_rad(air: &AirData) -> f64 {
+    if air.airspeed_fps > 0.0 {
+        (-air_velocity_ned_fps(air).z / air.airspeed_fps)
+            .clamp(-1.0, 1.0)
+            .asin()
+    } else {
+        0.0
+    }
+}
+
 /// The wind the air data and the inertial velocity imply: inertial minus air-relative
 /// velocity, NED, ft/s.
 pub(super) fn measured_wind_ned_fps(air: &AirData) -> Vec3 {

@@ -14,7 +14,9 @@
 //! act on the plant only.
 
 use super::FollowerConfig;
-use crate::control::{AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, weave_side};
+use crate::control::{
+    AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, slot_weave_side, weave_side,
+};
 use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::signals::{CommandKind, FollowerCommand, FollowerFeedback};
 use crate::navigation::OwnStateErrors;
@@ -59,6 +61,16 @@ impl From<InvalidValue> for AircraftSetupError {
     }
 }
 
+/// The slot's line as the follower's estimate places it: through the slot along the
+/// target's estimated horizontal velocity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlotLine {
+    /// Its course, rad.
+    pub track_rad: f64,
+    /// The follower's offset to its right, ft.
+    pub cross_track_ft: f64,
+}
+
 /// What the flight controller decided at one instant, with what it saw.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AircraftActuation {
@@ -88,6 +100,12 @@ pub struct AircraftFollower {
     flown_s: f64,
     /// S-turn period, s (0: none).
     weave_period_s: f64,
+    /// Half width of the S-turns by geometry, ft (0: none; then the clock's).
+    weave_half_width_ft: f64,
+    /// The side of the S-turn by geometry, +1 right or -1 left ([`slot_weave_side`]).
+    slot_weave_side: f64,
+    /// The course of the slot's line, rad (`None`: unknown).
+    slot_track_rad: Option<f64>,
     /// What the navigation and air data read above the truth over the current step (`None`:
     /// perfect), for the wind estimate.
     own_state_errors: Option<OwnStateErrors>,
@@ -136,6 +154,9 @@ impl AircraftFollower {
                 integrates_acceleration,
                 flown_s: 0.0,
                 weave_period_s: config.autopilot.weave_period_s,
+                weave_half_width_ft: config.autopilot.weave_half_width_ft,
+                slot_weave_side: 1.0,
+                slot_track_rad: None,
                 own_state_errors: None,
             },
             x,
@@ -189,6 +210,26 @@ impl AircraftFollower {
         self.flown_s += dt_s;
     }
 
+    /// Whether the S-turns alternate by geometry (`weave_half_width_ft` > 0): the simulation
+    /// then hands in the follower's offset from the slot's line each tick.
+    pub fn weaves_by_geometry(&self) -> bool {
+        self.weave_half_width_ft > 0.0
+    }
+
+    /// Before a step: the slot's line (`None` without an estimate: the side holds and the
+    /// legs are placed about the command's course); the follower's offset from it reverses
+    /// the S-turn beyond its half width.
+    pub fn hold_slot_line(&mut self, line: Option<SlotLine>) {
+        if let Some(l) = line {
+            self.slot_weave_side = slot_weave_side(
+                self.slot_weave_side,
+                l.cross_track_ft,
+                self.weave_half_width_ft,
+            );
+        }
+        self.slot_track_rad = line.map(|l| l.track_rad);
+    }
+
     /// Holds what the follower's navigation and air data read above the truth over the
     /// coming step (`None`: perfect).
     pub fn hold_own_state_errors(&mut self, errors: Option<OwnStateErrors>) {
@@ -229,7 +270,12 @@ impl AircraftFollower {
                 .map_or(air_data, |e| e.sensed_air_data(&air_data)),
             air_data,
             actuators: state.actuators,
-            weave_side: weave_side(self.flown_s, self.weave_period_s),
+            weave_side: if self.weaves_by_geometry() {
+                self.slot_weave_side
+            } else {
+                weave_side(self.flown_s, self.weave_period_s)
+            },
+            slot_track_rad: self.slot_track_rad,
         };
         let autopilot = self.autopilot.derivative(
             &x[AUTOPILOT..VELOCITY_CMD],

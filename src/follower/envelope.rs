@@ -38,7 +38,8 @@ pub struct FlightEnvelope {
     pub throttle_range: [f64; 2],
     /// Ticks with a clamped command, per actuator.
     pub limit_ticks: LimitTicks,
-    /// Ticks at which the thrust range limited the commanded flight path (γ_c).
+    /// Ticks at which a limit shaped the commanded flight path γ_c: the thrust range (and,
+    /// with the energy loop, its climb-rate and flight-path limits).
     pub flight_path_limited_ticks: u64,
 }
 

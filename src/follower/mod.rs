@@ -14,7 +14,7 @@ pub mod aircraft;
 pub mod envelope;
 pub mod kinematic;
 
-pub use aircraft::{AircraftActuation, AircraftFollower, AircraftSetupError};
+pub use aircraft::{AircraftActuation, AircraftFollower, AircraftSetupError, SlotLine};
 pub use envelope::{FlightEnvelope, LimitTicks};
 pub use kinematic::KinematicFollower;
 
@@ -170,6 +170,14 @@ impl Follower {
     pub fn hold_own_state_errors(&mut self, errors: Option<crate::navigation::OwnStateErrors>) {
         if let Self::Aircraft(a) = self {
             a.hold_own_state_errors(errors);
+        }
+    }
+
+    /// Before each step, when the aircraft's S-turns alternate by geometry: the slot's line
+    /// from the estimate (`None`: unknown).
+    pub fn hold_slot_line(&mut self, line: Option<SlotLine>) {
+        if let Self::Aircraft(a) = self {
+            a.hold_slot_line(line);
         }
     }
 

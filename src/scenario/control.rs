@@ -11,10 +11,60 @@ use serde::{Deserialize, Serialize};
 
 use super::check::{self, Check};
 
+/// Which outer loop turns the guidance's V_F into the thrust and flight-path commands the
+/// inner (attitude and rate) loops fly.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OuterLoop {
+    /// The seed's (7.1)-(7.3) with (7.20): thrust holds the airspeed, γ_c is V_F's, with the
+    /// flight-path limits and the flags below (`control::velocity_command`).
+    #[default]
+    Chapter7,
+    /// A total-energy controller (docs/equations.md, The energy outer loop): thrust and speed
+    /// brake set the specific total energy rate, γ_c distributes it between height and speed
+    /// (`control::energy`). The Chapter 7 loop's flags (`climb_waits_for_speed`,
+    /// `descent_waits_for_speed`, `limited_descent_keeps_horizontal_speed`,
+    /// `flight_path_limits`, `weave_period_s`) do not apply to it.
+    Energy,
+}
+
 /// `[autopilot]`: the follower's flight controller (seed Chapter 7).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct AutopilotSection {
+    /// The outer loop: `"chapter7"` (the seed's, the default) or `"energy"` (a total-energy
+    /// controller with a stated speed-versus-height priority).
+    pub outer_loop: OuterLoop,
+    /// Energy loop: highest climb rate demanded, ft/s. 15 ft/s, 17° at 50 ft/s: above the
+    /// seed target's 6 ft/s climbs with room to close a height gap; what the thrust cannot
+    /// hold is shared out by `energy_speed_weight`.
+    pub energy_max_climb_rate_fps: f64,
+    /// Energy loop: time constant of the first-order lag that shapes the climb-rate demand,
+    /// s (0: none, the default). Unshaped, a step of the demand reaches the thrust at once
+    /// and the flight path through the pitch loop's lag, and the difference goes into speed
+    /// (a 30 ft height step: ±3.1 ft/s of airspeed unshaped, ±2.6 with 0.5 s); but the lag
+    /// delays the height's response to the guidance: with 0.5 s, over moderate streams 1-30
+    /// the median RMS of the vertical slot error rose from 2.1 to 3.7 ft (measured).
+    pub energy_climb_rate_time_constant_s: f64,
+    /// Energy loop: highest descent rate demanded, ft/s (15 ft/s, as the climb).
+    pub energy_max_descent_rate_fps: f64,
+    /// Energy loop: largest |γ_c|, deg. 20°: above the 17° of the rate limits at 50 ft/s, and
+    /// the flight-path angles at which the α envelope (`max_alpha_deg`) still leaves room.
+    pub energy_max_flight_path_deg: f64,
+    /// Energy loop: the speed-versus-height priority s of TECS, in [0, 2]: the height's
+    /// weight is min(2 - s, 1), the speed's min(s, 1). It decides who gives when thrust (or
+    /// the speed brake) saturates: 0 holds the height and lets the speed go, 2 holds the speed
+    /// and lets the height go, 1 shares the shortfall equally (TECS's default). Within 10%
+    /// above `min_airspeed_cmd_fps` it moves to 2 whatever its value: the seed's thrust
+    /// T ∝ V² shrinks with the speed, and a height kept at its expense ends in a stall.
+    pub energy_speed_weight: f64,
+    /// Energy loop: integral gain on the total energy rate error (thrust channel), 1/s: it
+    /// learns the thrust the nominal drag model lacks. 0.2: a 5 s time constant, slower than
+    /// the airspeed law (1 s) so that it trims rather than fights it.
+    pub energy_thrust_integral_gain_per_s: f64,
+    /// Energy loop: integral gain on the energy balance rate error (flight-path channel),
+    /// 1/s: it learns the flight path the α reference misses. 0.2, as the thrust's.
+    pub energy_balance_integral_gain_per_s: f64,
     /// k_V of the airspeed loop (7.20), 1/s. 1 s error time constant; it also damps the
     /// phugoid, which the plant's T ∝ V² thrust leaves almost undamped.
     pub airspeed_gain_per_s: f64,
@@ -99,6 +149,14 @@ pub struct AutopilotSection {
     /// course, to the right for half a period and to the left for the other half, so that it
     /// keeps the commanded speed along the course instead of overtaking a slower target.
     pub weave_period_s: f64,
+    /// S-turns by geometry, ft off the slot's line (0: none, the seed's): when the commanded
+    /// horizontal air speed is below the slowest the aircraft flies, it flies that speed off
+    /// the commanded course, as the clock's S-turns do, but keeps each side until it is this
+    /// far to that side of the slot's line (the target's estimated track through the slot,
+    /// from the Kalman estimate), then turns to the other. It takes the place of
+    /// `weave_period_s` and applies to both outer loops. 10 ft would keep a 32 ft slot's
+    /// follower within about 17° of the target's track.
+    pub weave_half_width_ft: f64,
     /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
     /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below
     /// the target profile's slowest 35.4 ft/s.
@@ -140,6 +198,14 @@ pub struct AutopilotSection {
 impl Default for AutopilotSection {
     fn default() -> Self {
         Self {
+            outer_loop: OuterLoop::Chapter7,
+            energy_max_climb_rate_fps: 15.0,
+            energy_max_descent_rate_fps: 15.0,
+            energy_climb_rate_time_constant_s: 0.0,
+            energy_max_flight_path_deg: 20.0,
+            energy_speed_weight: 1.0,
+            energy_thrust_integral_gain_per_s: 0.2,
+            energy_balance_integral_gain_per_s: 0.2,
             airspeed_gain_per_s: 1.0,
             roll_gain_per_s: 2.0,
             pitch_gain_per_s: 2.0,
@@ -169,6 +235,7 @@ impl Default for AutopilotSection {
             limited_descent_keeps_horizontal_speed: false,
             descent_waits_for_speed: false,
             weave_period_s: 0.0,
+            weave_half_width_ft: 0.0,
             min_airspeed_cmd_fps: 35.0,
             max_airspeed_cmd_fps: 65.0,
             min_control_airspeed_fps: 15.0,
@@ -202,7 +269,64 @@ impl AutopilotSection {
             1e3,
         )?;
         check::in_closed("autopilot.weave_period_s", self.weave_period_s, 0.0, 1e3)?;
+        check::in_closed(
+            "autopilot.weave_half_width_ft",
+            self.weave_half_width_ft,
+            0.0,
+            1e3,
+        )?;
+        self.validate_energy()?;
         self.validate_rbf()
+    }
+
+    /// The energy loop's limits, priority and integral gains.
+    fn validate_energy(&self) -> Check {
+        all_in_closed(
+            &[
+                (
+                    "autopilot.energy_max_climb_rate_fps",
+                    self.energy_max_climb_rate_fps,
+                ),
+                (
+                    "autopilot.energy_max_descent_rate_fps",
+                    self.energy_max_descent_rate_fps,
+                ),
+            ],
+            0.0,
+            200.0,
+        )?;
+        check::in_closed(
+            "autopilot.energy_climb_rate_time_constant_s",
+            self.energy_climb_rate_time_constant_s,
+            0.0,
+            10.0,
+        )?;
+        check::in_closed(
+            "autopilot.energy_max_flight_path_deg",
+            self.energy_max_flight_path_deg,
+            1.0,
+            60.0,
+        )?;
+        check::in_closed(
+            "autopilot.energy_speed_weight",
+            self.energy_speed_weight,
+            0.0,
+            2.0,
+        )?;
+        all_in_closed(
+            &[
+                (
+                    "autopilot.energy_thrust_integral_gain_per_s",
+                    self.energy_thrust_integral_gain_per_s,
+                ),
+                (
+                    "autopilot.energy_balance_integral_gain_per_s",
+                    self.energy_balance_integral_gain_per_s,
+                ),
+            ],
+            0.0,
+            100.0,
+        )
     }
 
     /// The error-dynamics gains of (7.20), (7.24) and (7.25).

@@ -406,6 +406,14 @@ impl Simulation {
         let integrate_started = Instant::now();
         let t_s = self.time_s();
         let dt_s = self.scenario.run.dt_s;
+        if self
+            .follower
+            .aircraft()
+            .is_some_and(|a| a.weaves_by_geometry())
+        {
+            let line = self.slot_line(t_s, &self.state);
+            self.follower.hold_slot_line(line);
+        }
         let follower_x = self.layout.split(&self.state).follower;
         self.follower.begin_step(follower_x, dt_s);
         self.advance_own_sensors(dt_s);

@@ -1,6 +1,8 @@
 //! Helpers shared by the behaviour tests.
 #![allow(dead_code)]
 
+pub mod flight;
+
 use std::path::{Path, PathBuf};
 use wingman::output::{RunReport, run_to_directory};
 use wingman::scenario::Scenario;

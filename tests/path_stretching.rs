@@ -1,0 +1,61 @@
+//! S-turns by geometry (`autopilot.weave_half_width_ft`; docs/findings.md, An energy outer
+//! loop): formation.toml with the energy outer loop behind a target flying straight north at
+//! 30 ft/s, below the follower's slowest airspeed command (35 ft/s), in light turbulence.
+//!
+//! Invariant: with the S-turns placed about the slot's line and reversing 10 ft off it, the
+//! follower never overtakes the target (the target at least 5 ft ahead of it along the track
+//! at every logged instant after 20 s) and the along-track error stays within ±30 ft;
+//! without them the same follower overtakes. (Measured over streams 1-4: the target at least
+//! 6.4-32 ft ahead, along-track error within 24-27 ft; docs/findings.md, An energy outer
+//! loop.)
+
+mod common;
+
+use wingman::output::RunReport;
+
+/// formation.toml with the energy loop behind the 30 ft/s target for 60 s, with S-turns of
+/// half width `half_width_ft` (0: none).
+fn behind_a_slow_target(half_width_ft: &str) -> RunReport {
+    common::run(
+        "formation",
+        &[
+            "output.frames_every=0",
+            "run.duration_s=60",
+            "target.motion=straight",
+            "target.straight_velocity_fps=[30.0, 0.0, 0.0]",
+            "autopilot.outer_loop=energy",
+            &format!("autopilot.weave_half_width_ft={half_width_ft}"),
+        ],
+    )
+}
+
+/// The least distance the target was ahead of the follower along its (northbound) track,
+/// and the largest |along-track error| (R - R_c, north), after 20 s, ft.
+fn along_track(report: &RunReport) -> (f64, f64) {
+    let late = report.logged.iter().filter(|s| s.t_s >= 20.0);
+    late.fold((f64::INFINITY, 0.0f64), |(ahead, error), s| {
+        (
+            ahead.min(s.relative_ned_ft[0]),
+            error.max((s.relative_ned_ft[0] - s.command_ned_ft[0]).abs()),
+        )
+    })
+}
+
+#[test]
+fn s_turns_by_geometry_hold_the_slot_behind_a_slower_target() {
+    let stretched = behind_a_slow_target("10.0");
+    let (ahead_ft, error_ft) = along_track(&stretched);
+    println!(
+        "with S-turns: target at least {ahead_ft:.1} ft ahead, along-track error within ±{error_ft:.1} ft"
+    );
+    assert!(ahead_ft > 5.0, "the follower came within {ahead_ft:.1} ft");
+    assert!(error_ft < 30.0, "along-track error {error_ft:.1} ft");
+
+    let straight = behind_a_slow_target("0.0");
+    let (ahead_ft, _) = along_track(&straight);
+    println!("without: the target at least {ahead_ft:.1} ft ahead");
+    assert!(
+        ahead_ft < 0.0,
+        "the follower without S-turns did not overtake"
+    );
+}
