@@ -25,6 +25,7 @@ __all__ = [
     "sweep",
     "load_results",
     "scenario_path",
+    "write_png",
 ]
 
 # Mesa's Vulkan layers warn when XDG_RUNTIME_DIR names no folder: give them a private one,
@@ -148,6 +149,26 @@ class Simulation:
         if offset_ned is not None:
             offset_ned = [float(v) for v in np.asarray(offset_ned, dtype=float).reshape(3)]
         self._sim.set_command_offset(offset_ned)
+
+
+def write_png(path, rgba):
+    """Writes an (H, W, 4) uint8 RGBA array (a frame) as a PNG file, making its folder."""
+    import struct
+    import zlib
+
+    rgba = np.ascontiguousarray(rgba, dtype=np.uint8)
+    height, width, _ = rgba.shape
+    rows = np.concatenate([np.zeros((height, 1), np.uint8), rgba.reshape(height, -1)], axis=1)
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+
+    header = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)
+    png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header)
+    png += chunk(b"IDAT", zlib.compress(rows.tobytes())) + chunk(b"IEND", b"")
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    Path(path).write_bytes(png)
 
 
 def load_results(path):
