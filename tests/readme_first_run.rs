@@ -77,11 +77,23 @@ fn commands_install_and_test_the_python_package() {
     assert!(first.contains("sh scripts/install_python.sh"), "{first}");
     let install = read("scripts/install_python.sh");
     assert!(install.contains("python3 -m venv .venv") && install.contains("./python"));
-    assert!(readme.contains("\nsh scripts/test.sh\n"), "command 2 is scripts/test.sh");
+    assert!(
+        readme.contains("\nsh scripts/test.sh\n"),
+        "command 2 is scripts/test.sh"
+    );
     let test = read("scripts/test.sh");
-    assert!(test.contains("\ncargo test --release\n"), "test.sh runs the Rust tests");
-    assert!(test.contains("-m pytest -q python/tests"), "test.sh runs pytest");
-    assert!(read(".ci/run").contains("\nsh scripts/test.sh\n"), "CI runs command 2");
+    assert!(
+        test.contains("\ncargo test --release\n"),
+        "test.sh runs the Rust tests"
+    );
+    assert!(
+        test.contains("-m pytest -q python/tests"),
+        "test.sh runs pytest"
+    );
+    assert!(
+        read(".ci/run").contains("\nsh scripts/test.sh\n"),
+        "CI runs command 2"
+    );
 }
 
 #[test]
