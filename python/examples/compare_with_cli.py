@@ -4,7 +4,8 @@ included; CPU time is steadier on a shared machine), and whether the
 Python summary's b_hat and RMS error are the command line's exactly (docs/findings.md,
 wingman from Python). From the repository's root, after `cargo build --release`:
 
-    .venv/bin/python python/examples/compare_with_cli.py --seeds 1 2 3 [--duration-s 140]
+    .venv/bin/python python/examples/compare_with_cli.py --seeds 1 2 3 [--duration-s 140] \
+        [--set camera.width_px=160 --set camera.height_px=120]
 
 Python runs: `steps`, sim.step() once per tick, no image; `images`, every frame drawn whole
 (output.frames_every = 1) and read as a numpy array after each frame tick.
@@ -56,11 +57,14 @@ def main():
     parser.add_argument("--scenario", default="scenarios/formation.toml")
     parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     parser.add_argument("--duration-s", type=float, default=None)
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="a scenario override for every run (repeatable)")
     args = parser.parse_args()
     print("seed | frames | frames/s by wall: CLI, Python steps, Python images | by CPU: CLI, "
           "Python steps, Python images | b_hat CLI | b_hat Python | RMS identical")
     for seed in args.seeds:
         sets = {"run.seed": seed, "output.plots": "false", "output.frames_every": 0}
+        sets.update(dict(kv.split("=", 1) for kv in args.set))
         if args.duration_s is not None:
             sets["run.duration_s"] = args.duration_s
         with tempfile.TemporaryDirectory() as tmp:
