@@ -234,10 +234,7 @@ fn quiet_mesa_runtime_dir() {
 
 /// Loads the scenario and checks its assets and resources; the error line on failure.
 fn load_checked(path: &Path, overrides: &[String]) -> Result<Scenario, String> {
-    let (scenario, source) =
-        Scenario::load_with_source(path, overrides).map_err(|e| e.to_string())?;
-    preflight::check(&scenario, &source).map_err(|e| e.to_string())?;
-    Ok(scenario)
+    preflight::load(path, overrides).map_err(|e| e.to_string())
 }
 
 /// `--out` of `render`: a PNG file, not a folder.

@@ -167,7 +167,13 @@ fn the_container_installs_the_one_package_list() {
         .collect();
     assert_eq!(
         packages,
-        ["mesa-vulkan-drivers", "libvulkan1", "fonts-dejavu-core"]
+        [
+            "mesa-vulkan-drivers",
+            "libvulkan1",
+            "fonts-dejavu-core",
+            "python3",
+            "python3-venv"
+        ]
     );
     for file in [
         "Dockerfile",

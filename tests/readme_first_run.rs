@@ -1,9 +1,10 @@
 //! The README is a front page a new user can follow: its first command works as
 //! root (no sudo in a container) and as a user, the Rust it asks for is the `rust-version` of
-//! `Cargo.toml`, every link names a file of this repository (none outside it), the
-//! equations, design, findings and scenario reference it points to are in `docs/`, it says
-//! how to put `wingman` on the PATH, names the dissertation in full (as docs/equations.md
-//! does) and the licence, whose files and `Cargo.toml` key agree.
+//! `Cargo.toml`, its first command installs the Python package and its second, which CI
+//! runs, runs pytest after the Rust tests, every link names a file of this repository (none
+//! outside it), the equations, design, findings and scenario reference it points to are in
+//! `docs/`, it says how to put `wingman` on the PATH, names the dissertation in full (as
+//! docs/equations.md does) and the licence, whose files and `Cargo.toml` key agree.
 
 use std::path::Path;
 
@@ -42,7 +43,13 @@ fn first_command_needs_no_sudo_as_root() {
         .collect();
     assert_eq!(
         listed,
-        ["mesa-vulkan-drivers", "libvulkan1", "fonts-dejavu-core"]
+        [
+            "mesa-vulkan-drivers",
+            "libvulkan1",
+            "fonts-dejavu-core",
+            "python3",
+            "python3-venv"
+        ]
     );
     let ci = read(".ci/run");
     let update = ci.find("apt-get update").expect("CI runs apt-get update");
@@ -56,6 +63,37 @@ fn first_command_needs_no_sudo_as_root() {
         .filter(|w| !w.starts_with('-') && !["apt-get", "install"].contains(w))
         .collect();
     assert_eq!(installed, listed, "CI installs packages.txt's list");
+}
+
+/// Command 1 installs the Python package too; command 2, the one CI runs, runs the Rust tests
+/// and the Python package's (pytest).
+#[test]
+fn commands_install_and_test_the_python_package() {
+    let readme = read("README.md");
+    let first = readme
+        .lines()
+        .find(|l| l.contains("cargo run --release -- run scenarios/formation.toml"))
+        .expect("command 1");
+    assert!(first.contains("sh scripts/install_python.sh"), "{first}");
+    let install = read("scripts/install_python.sh");
+    assert!(install.contains("python3 -m venv .venv") && install.contains("./python"));
+    assert!(
+        readme.contains("\nsh scripts/test.sh\n"),
+        "command 2 is scripts/test.sh"
+    );
+    let test = read("scripts/test.sh");
+    assert!(
+        test.contains("\ncargo test --release\n"),
+        "test.sh runs the Rust tests"
+    );
+    assert!(
+        test.contains("-m pytest -q python/tests"),
+        "test.sh runs pytest"
+    );
+    assert!(
+        read(".ci/run").contains("\nsh scripts/test.sh\n"),
+        "CI runs command 2"
+    );
 }
 
 #[test]

@@ -9,6 +9,7 @@ pub mod figures;
 pub mod folder;
 pub mod frame_images;
 pub mod interrupt;
+pub mod live;
 pub mod lock;
 pub mod outputs_doc;
 pub mod plots;
@@ -19,7 +20,7 @@ pub mod track_check;
 
 use crate::render::GpuContext;
 use crate::scenario::Scenario;
-use crate::sim::{SimError, Simulation, Snapshot, StepOutcome};
+use crate::sim::{RunEnd, SimError, Simulation, Snapshot};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use summary::{RunStatus, Summary};
@@ -97,14 +98,6 @@ fn io_error(path: &Path) -> impl Fn(std::io::Error) -> RunError + '_ {
     }
 }
 
-/// Why the stepping loop ended before the scenario's end (or interception).
-enum EarlyStop {
-    Failed(SimError),
-    Lost { since_s: f64 },
-    FalseLock { since_s: f64 },
-    Interrupted,
-}
-
 /// Runs `scenario` (named `name` in the summary) and writes every output into `out_dir`.
 /// The simulation is set up before anything is written, and an earlier run's files in
 /// `out_dir` are cleared (see [`folder`]). `progress` is called with the fraction done now and
@@ -161,23 +154,16 @@ pub fn run_to_directory_on(
         }),
     };
     recorder.log(sim.snapshot());
-    let early = step_to_end(&mut sim, &mut recorder, &mut progress);
+    let end = step_to_end(&mut sim, &mut recorder, &mut progress);
     recorder.finish_telemetry();
     let wall_s = started.elapsed().as_secs_f64();
-    let stopped = early.as_ref().map(|e| match e {
-        EarlyStop::Failed(e) => (RunStatus::Diverged, e.to_string()),
-        EarlyStop::Lost { since_s } => (RunStatus::Lost, lost_message(&sim, *since_s)),
-        EarlyStop::FalseLock { since_s } => {
-            (RunStatus::FalseLock, false_lock_message(&sim, *since_s))
-        }
-        EarlyStop::Interrupted => (RunStatus::Interrupted, "interrupted (Ctrl-C)".to_string()),
-    });
+    let stopped = stopped_status(&end, &sim);
     let mut summary = Summary::build(name, &recorder.logged, &sim, wall_s, stopped);
     summary.unwritten = std::mem::take(&mut recorder.unwritten);
     write_outputs_after_telemetry(out_dir, scenario, &recorder.logged, &mut summary)
         .map_err(io_error(&out_dir.join(SUMMARY_FILE)))?;
-    match early {
-        Some(EarlyStop::Failed(e)) => Err(RunError::Sim(Box::new(e), telemetry_path)),
+    match end {
+        RunEnd::Failed(e) => Err(RunError::Sim(Box::new(e), telemetry_path)),
         _ => Ok(RunReport {
             summary,
             warnings: recorder.warnings,
@@ -315,47 +301,36 @@ impl Recorder {
     }
 }
 
-/// Steps `sim` to its end, logging every `run.log_every` ticks; returns why it stopped
-/// early, if it did.
+/// The status and message of a run that ended early (`None` for one that finished).
+pub fn stopped_status(end: &RunEnd, sim: &Simulation) -> Option<(RunStatus, String)> {
+    Some(match end {
+        RunEnd::Finished => return None,
+        RunEnd::Failed(e) => (RunStatus::Diverged, e.to_string()),
+        RunEnd::Lost { since_s } => (RunStatus::Lost, lost_message(sim, *since_s)),
+        RunEnd::FalseLock { since_s } => (RunStatus::FalseLock, false_lock_message(sim, *since_s)),
+        RunEnd::Interrupted => (RunStatus::Interrupted, "interrupted (Ctrl-C)".to_string()),
+    })
+}
+
+/// Steps `sim` to its end through [`Simulation::run_tick`], logging what it gives and saving
+/// frames; returns why it ended.
 fn step_to_end(
     sim: &mut Simulation,
     recorder: &mut Recorder,
     progress: &mut impl FnMut(f64),
-) -> Option<EarlyStop> {
-    let log_every = u64::from(sim.scenario().run.log_every);
-    let lost_limit_s = sim.scenario().run.stop_after_lost_s;
+) -> RunEnd {
     let progress_every = (sim.total_ticks() / 1000).max(1);
     loop {
-        let outcome = sim.step();
+        let tick = sim.run_tick(interrupt::requested);
         recorder.save_frame(sim);
-        match outcome {
-            Ok(StepOutcome::Running) => {
-                if sim.tick().is_multiple_of(log_every) {
-                    recorder.log(sim.snapshot());
-                }
-                if sim.tick().is_multiple_of(progress_every) {
-                    progress(sim.tick() as f64 / sim.total_ticks() as f64);
-                }
-                let too_long =
-                    |since: &f64| lost_limit_s > 0.0 && sim.time_s() - since > lost_limit_s;
-                let lost_since = sim.unmeasured_since_s().filter(too_long);
-                let false_since = sim.off_target_since_s().filter(too_long);
-                let stop = match (lost_since, false_since, interrupt::requested()) {
-                    (Some(since_s), _, _) => EarlyStop::Lost { since_s },
-                    (None, Some(since_s), _) => EarlyStop::FalseLock { since_s },
-                    (None, None, true) => EarlyStop::Interrupted,
-                    (None, None, false) => continue,
-                };
-                if !sim.tick().is_multiple_of(log_every) {
-                    recorder.log(sim.snapshot());
-                }
-                return Some(stop);
-            }
-            Ok(StepOutcome::Finished | StepOutcome::Intercepted { .. }) => {
-                recorder.log(sim.snapshot());
-                return None;
-            }
-            Err(e) => return Some(EarlyStop::Failed(e)),
+        if let Some(snapshot) = tick.logged {
+            recorder.log(snapshot);
+        }
+        if let Some(end) = tick.end {
+            return end;
+        }
+        if sim.tick().is_multiple_of(progress_every) {
+            progress(sim.tick() as f64 / sim.total_ticks() as f64);
         }
     }
 }

@@ -18,6 +18,14 @@ pub const MAX_FRAME_MEMORY_BYTES: u64 = 1 << 30;
 /// is smaller).
 pub const MAX_SAVED_FRAMES_BYTES: u64 = 20 << 30;
 
+/// Loads the scenario at `path` with its `--set` overrides and checks its resources and
+/// assets, as `wingman run` does before anything else (the Python package too).
+pub fn load(path: &std::path::Path, overrides: &[String]) -> Result<Scenario, ScenarioError> {
+    let (scenario, source) = Scenario::load_with_source(path, overrides)?;
+    check(&scenario, &source)?;
+    Ok(scenario)
+}
+
 /// Checks the scenario's resources and assets; a failure names the key to change.
 pub fn check(scenario: &Scenario, source: &ScenarioSource) -> Result<(), ScenarioError> {
     check_telemetry(scenario, source)?;

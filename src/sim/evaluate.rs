@@ -9,7 +9,7 @@ use crate::estimation::{GuidanceMeasurement, LawEstimates, TargetEstimate, Targe
 use crate::follower::{Actuation, SlotLine};
 use crate::frames::{Mat3, Vec3};
 use crate::guidance::command::CommandInput;
-use crate::guidance::signals::{GuidanceInput, GuidanceOutput};
+use crate::guidance::signals::{FollowerCommand, GuidanceInput, GuidanceOutput};
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
 use std::time::Instant;
 
@@ -18,6 +18,14 @@ use std::time::Instant;
 pub(super) struct Evaluation {
     pub(super) guidance: GuidanceOutput,
     pub(super) actuation: Actuation,
+}
+
+/// `command` with `offset` added, in the command's own units.
+fn offset_command(command: FollowerCommand, offset: Vec3) -> FollowerCommand {
+    match command {
+        FollowerCommand::Velocity(v) => FollowerCommand::Velocity(v + offset),
+        FollowerCommand::Acceleration(a) => FollowerCommand::Acceleration(a + offset),
+    }
 }
 
 impl Simulation {
@@ -194,7 +202,7 @@ impl Simulation {
             let angles = encoder_reading(&self.own.sensors, x_of.gimbal);
             gimbal.derivative(&angles, &pointing, dx_of.gimbal);
         }
-        let out = match measurement {
+        let mut out = match measurement {
             GuidanceMeasurement::NotYet => self.guidance.idle(x_of.guidance, dx_of.guidance),
             GuidanceMeasurement::Now { r, estimate } => {
                 let input = self.guidance_input(t_s, x, &command, r, estimate);
@@ -202,6 +210,9 @@ impl Simulation {
                     .derivative(x_of.guidance, &input, dx_of.guidance)
             }
         };
+        if let Some(offset) = self.command_offset {
+            out.command = offset_command(out.command, offset);
+        }
         let guided = Instant::now();
         let actuation = self
             .follower

@@ -21,9 +21,11 @@ mod evaluate;
 mod layout;
 mod navigate;
 mod record;
+mod run;
 mod sense;
 
 pub use record::{GimbalReading, Snapshot, StageTimes};
+pub use run::{RunEnd, RunTick};
 
 use build::{
     capture_geometry, estimation_stage, excitation_view_bound, first_r, follower_of, gimbal_of,
@@ -149,6 +151,9 @@ pub struct Simulation {
     total_ticks: u64,
     min_range_ft: f64,
     intercept_time_s: Option<f64>,
+    /// Added to the guidance's command before the follower flies it (set from outside, e.g.
+    /// by a learning agent; see [`Self::set_command_offset`]).
+    command_offset: Option<Vec3>,
 }
 
 impl Simulation {
@@ -230,6 +235,7 @@ impl Simulation {
             total_ticks: scenario.run.total_ticks(),
             min_range_ft: geometry.relative_ned_ft.norm(),
             intercept_time_s: None,
+            command_offset: None,
         };
         sim.follower
             .hold_own_state_errors(sim.own.sensors.own_state_errors());
@@ -238,6 +244,20 @@ impl Simulation {
         sim.follower.align_with_first_command(follower_x, &first);
         sim.sense()?;
         Ok(sim)
+    }
+
+    /// Adds `offset` to the guidance's command from the next tick on, until it is changed
+    /// (`None`: the guidance's command alone, as the scenario flies): a velocity offset, NED,
+    /// ft/s, for the velocity law; an acceleration offset, NED, ft/s², for the acceleration
+    /// law. The follower flies the sum (the 6-DOF follower through its flight controller);
+    /// snapshots show it as the command.
+    pub fn set_command_offset(&mut self, offset: Option<Vec3>) {
+        self.command_offset = offset;
+    }
+
+    /// The offset added to the guidance's command (see [`Self::set_command_offset`]).
+    pub fn command_offset(&self) -> Option<Vec3> {
+        self.command_offset
     }
 
     /// The scenario this simulation runs.
