@@ -429,37 +429,46 @@ mod tests {
     const HEIGHT: u32 = 72;
     const TARGET_RGB: [u8; 3] = [150, 150, 165];
 
-    /// A world at infinity of 8° tiles of pseudo-random field colours, seen by a camera of
-    /// orientation `camera_from_ned`, with a grey disc of radius 6 px (at least 35 grey levels from every tile, in blue) at (u, v) if any.
-    fn frame(
+    /// The pixels of a view in which direction NED d looks at colour `world(d)`, with a grey
+    /// disc of radius 6 px (at least 35 grey levels from every tile, in blue) at (u, v) if any.
+    fn draw(
         camera_from_ned: &Mat3,
         intrinsics: &CameraIntrinsics,
         disc: Option<(f64, f64)>,
+        world: impl Fn(&Vec3) -> [u8; 3],
     ) -> Vec<u8> {
         let mut rgba = Vec::with_capacity((WIDTH * HEIGHT * 4) as usize);
         for v in 0..HEIGHT {
             for u in 0..WIDTH {
                 let (uc, vc) = (f64::from(u) + 0.5, f64::from(v) + 0.5);
-                let ray = Vec3::new(
-                    intrinsics.focal_px,
-                    uc - intrinsics.cx(),
-                    vc - intrinsics.cy(),
-                );
-                let d = camera_from_ned.transpose() * ray;
-                let tile = 8f64.to_radians();
-                let az = (d.y.atan2(d.x) / tile).floor() as i64;
-                let el = ((-d.z).atan2(d.x.hypot(d.y)) / tile).floor() as i64;
-                let hash = ((az * 73_856_093) ^ (el * 19_349_663)).rem_euclid(997) as u8;
-                let mut rgb = [80 + hash % 100, 110 + hash % 90, 70 + (hash / 3) % 60];
-                if let Some((du, dv)) = disc
-                    && (uc - du).hypot(vc - dv) < 6.0
-                {
-                    rgb = TARGET_RGB;
-                }
+                let d = camera_from_ned.transpose() * intrinsics.direction_of_pixel(uc, vc);
+                let inside = disc.is_some_and(|(du, dv)| (uc - du).hypot(vc - dv) < 6.0);
+                let rgb = if inside { TARGET_RGB } else { world(&d) };
                 rgba.extend_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
             }
         }
         rgba
+    }
+
+    /// A pseudo-random field colour for tile (i, j).
+    fn tile_colour(i: i64, j: i64) -> [u8; 3] {
+        let hash = ((i * 73_856_093) ^ (j * 19_349_663)).rem_euclid(997) as u8;
+        [80 + hash % 100, 110 + hash % 90, 70 + (hash / 3) % 60]
+    }
+
+    /// A world at infinity of 8° tiles of pseudo-random field colours, seen by a camera of
+    /// orientation `camera_from_ned`, with the target's disc at (u, v) if any.
+    fn frame(
+        camera_from_ned: &Mat3,
+        intrinsics: &CameraIntrinsics,
+        disc: Option<(f64, f64)>,
+    ) -> Vec<u8> {
+        draw(camera_from_ned, intrinsics, disc, |d| {
+            let tile = 8f64.to_radians();
+            let az = (d.y.atan2(d.x) / tile).floor() as i64;
+            let el = ((-d.z).atan2(d.x.hypot(d.y)) / tile).floor() as i64;
+            tile_colour(az, el)
+        })
     }
 
     /// Measures the two frames (the target enters in the second) with the motion reference,
@@ -537,37 +546,23 @@ mod tests {
 
     /// Farmland 100 ft below the origin in 20 ft tiles of pseudo-random colours (sky above
     /// the horizon) seen from `position` by a camera of orientation `camera_from_ned`, with
-    /// the grey disc of [`frame`] at (u, v) if any.
+    /// the target's disc at (u, v) if any.
     fn frame_over_ground(
         camera_from_ned: &Mat3,
         position: &Vec3,
         intrinsics: &CameraIntrinsics,
         disc: Option<(f64, f64)>,
     ) -> Vec<u8> {
-        let mut rgba = Vec::with_capacity((WIDTH * HEIGHT * 4) as usize);
-        for v in 0..HEIGHT {
-            for u in 0..WIDTH {
-                let (uc, vc) = (f64::from(u) + 0.5, f64::from(v) + 0.5);
-                let d = camera_from_ned.transpose() * intrinsics.direction_of_pixel(uc, vc);
-                let mut rgb = [200, 212, 228];
-                if d.z > 0.0 {
-                    let ground = position + d * ((GROUND_DOWN_FT - position.z) / d.z);
-                    let (i, j) = (
-                        (ground.x / 20.0).floor() as i64,
-                        (ground.y / 20.0).floor() as i64,
-                    );
-                    let hash = ((i * 73_856_093) ^ (j * 19_349_663)).rem_euclid(997) as u8;
-                    rgb = [80 + hash % 100, 110 + hash % 90, 70 + (hash / 3) % 60];
-                }
-                if let Some((du, dv)) = disc
-                    && (uc - du).hypot(vc - dv) < 6.0
-                {
-                    rgb = TARGET_RGB;
-                }
-                rgba.extend_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
+        draw(camera_from_ned, intrinsics, disc, |d| {
+            if d.z <= 0.0 {
+                return [200, 212, 228];
             }
-        }
-        rgba
+            let ground = position + d * ((GROUND_DOWN_FT - position.z) / d.z);
+            tile_colour(
+                (ground.x / 20.0).floor() as i64,
+                (ground.y / 20.0).floor() as i64,
+            )
+        })
     }
 
     const GROUND_DOWN_FT: f64 = 100.0;
