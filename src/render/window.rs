@@ -63,8 +63,9 @@ pub fn plan_frame(
         if p.x.is_nan() || p.x <= 2.0 * NEAR_PLANE_FT {
             return FramePlan::Whole;
         }
-        let u = intrinsics.cx() + intrinsics.focal_px * p.y / p.x;
-        let v = intrinsics.cy() + intrinsics.focal_px * p.z / p.x;
+        let Some((u, v)) = intrinsics.pixel_of_direction(&p) else {
+            return FramePlan::Whole;
+        };
         u_min = u_min.min(u);
         u_max = u_max.max(u);
         v_min = v_min.min(v);

@@ -99,6 +99,11 @@ impl Sensor {
         }
     }
 
+    /// Whether the camera takes a frame at this tick (never for a continuous sensor).
+    pub fn is_frame_tick(&self, tick: u64) -> bool {
+        matches!(self, Self::Camera(camera) if camera.is_frame_tick(tick))
+    }
+
     /// The per-axis variance of a continuous sensor's measurement r* (scaled units²), from
     /// the measurement itself and the follower's attitude, not from the truth: zero for the
     /// perfect sensor, the noisy sensor's own.

@@ -14,7 +14,9 @@ impl Simulation {
     pub(super) fn sense(&mut self) -> Result<(), SimError> {
         let t_s = self.time_s();
         let mut geometry = self.capture_geometry();
-        geometry.expected_los_ned = self.expected_line_of_sight(t_s, &self.state);
+        if self.sensor.is_frame_tick(self.tick) {
+            geometry.expected_los_ned = self.expected_line_of_sight(t_s, &self.state);
+        }
         let delivered =
             self.sensor
                 .sample(self.tick, t_s, &geometry)

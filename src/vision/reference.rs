@@ -222,9 +222,9 @@ impl MotionReference {
         for v in 0..h {
             for u in 0..w {
                 let p = rgb_f32(frame, v * w + u);
-                let at = to_previous.and_then(|(now, before)| {
+                let at = to_previous.as_ref().and_then(|warp| {
                     let (iu, iv) = (u + frame.origin[0], v + frame.origin[1]);
-                    warped_position(&now, &before, iu as f64 + 0.5, iv as f64 + 0.5)
+                    warp.position(iu as f64 + 0.5, iv as f64 + 0.5)
                 });
                 let seen = at.map_or(Seen::Outside, |(x, y)| self.previous.sample(x, y));
                 self.carried.push(match seen {
@@ -293,9 +293,14 @@ impl MotionReference {
         from_edge < self.ring_radius_px
     }
 
-    /// The views of the frame being measured and of the memory, when both are known.
-    fn views_to_previous(&self) -> Option<(ViewGeometry, ViewGeometry)> {
-        Some((self.geometry?, self.previous.geometry?))
+    /// The map from the frame being measured to the memory, when both views are known.
+    fn views_to_previous(&self) -> Option<Warp> {
+        let now = self.geometry?;
+        Some(Warp {
+            ned_from_now: now.camera_from_ned.transpose(),
+            now,
+            before: self.previous.geometry?,
+        })
     }
 
     /// The colour nearest `p` among the pixels on a ring of radius `ring_radius_px` around
@@ -393,19 +398,24 @@ impl MotionReference {
     }
 }
 
-/// Where image position (u, v) of view `now` lies in the image of view `before`: the same
-/// direction at infinity (the homography K' R K⁻¹ of the camera's rotation), or the same
-/// point of the ground where `now` knows it (None: behind `before`'s camera).
-fn warped_position(
-    now: &ViewGeometry,
-    before: &ViewGeometry,
-    u: f64,
-    v: f64,
-) -> Option<(f64, f64)> {
-    let direction_ned = now.camera_from_ned.transpose() * now.intrinsics.direction_of_pixel(u, v);
-    before
-        .intrinsics
-        .pixel_of_direction(&now.seen_from(before, &direction_ned))
+/// The map of a frame's image positions into the memory's image (one per frame).
+struct Warp {
+    /// (L_CB L_BE)ᵀ of the frame.
+    ned_from_now: Mat3,
+    now: ViewGeometry,
+    before: ViewGeometry,
+}
+
+impl Warp {
+    /// Where image position (u, v) of the frame lies in the memory's image: the same
+    /// direction at infinity (the homography K' R K⁻¹ of the camera's rotation), or the same
+    /// point of the ground where the frame's view knows it (None: behind the memory's
+    /// camera).
+    fn position(&self, u: f64, v: f64) -> Option<(f64, f64)> {
+        let direction_ned = self.ned_from_now * self.now.intrinsics.direction_of_pixel(u, v);
+        let seen = self.now.seen_from(&self.before, &direction_ned);
+        self.before.intrinsics.pixel_of_direction(&seen)
+    }
 }
 
 /// Per-channel σ from squared RGB distances between two noisy frames: the median distance

@@ -15,7 +15,7 @@
 //! with the time since the last measurement, plus a fixed margin for the pixels the image
 //! pipeline reads beyond the silhouette.
 
-use crate::frames::{Mat3, Vec3};
+use crate::frames::Mat3;
 use crate::render::camera::CameraIntrinsics;
 use crate::render::region::ImageRegion;
 use crate::vision::{BlobMeasurement, BlobStatus};
@@ -137,18 +137,13 @@ impl TrackingWindow {
     /// Where the point seen at pixel (u, v) is seen after the camera turned by
     /// `now_from_then`; `None` when it is not well in front of the camera.
     fn carried(&self, now_from_then: &Mat3, u_px: f64, v_px: f64) -> Option<(f64, f64)> {
-        let cam = &self.intrinsics;
-        let los_then = Vec3::new(cam.focal_px, u_px - cam.cx(), v_px - cam.cy());
-        let los = now_from_then * los_then;
+        let los = now_from_then * self.intrinsics.direction_of_pixel(u_px, v_px);
         // (NaN is not in front either.)
         let in_front = los.x > MIN_FORWARD_COSINE * los.norm();
         if !in_front {
             return None;
         }
-        Some((
-            cam.cx() + cam.focal_px * los.y / los.x,
-            cam.cy() + cam.focal_px * los.z / los.x,
-        ))
+        self.intrinsics.pixel_of_direction(&los)
     }
 }
 
