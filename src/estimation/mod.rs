@@ -74,25 +74,12 @@ pub struct TargetEstimate {
     pub a_per_s2: Vec3,
     /// b̂ = 1/β̂ within the guidance's bounds, ft.
     pub b_hat_ft: f64,
-    /// σ of b̂, ft.
+    /// σ of b̂, ft: the filter's own and the size model's floor in quadrature.
     pub b_sigma_ft: f64,
-    /// The part of σ_b no measurement reduces, ft (the airframe model's shape floor,
-    /// `estimator.airframe_shape_sigma`; 0 otherwise).
-    pub b_sigma_floor_ft: f64,
-}
-
-impl TargetEstimate {
-    /// σ of b̂ without its floor, ft: what more measurements can still reduce (the
-    /// excitation's measure of uncertainty).
-    pub fn reducible_b_sigma_ft(&self) -> f64 {
-        if self.b_sigma_floor_ft > 0.0 {
-            (self.b_sigma_ft.powi(2) - self.b_sigma_floor_ft.powi(2))
-                .max(0.0)
-                .sqrt()
-        } else {
-            self.b_sigma_ft
-        }
-    }
+    /// The filter's own σ of b̂, ft: what more measurements can still reduce (the
+    /// excitation's measure of uncertainty; σ_b without the airframe model's shape floor,
+    /// `estimator.airframe_shape_sigma`).
+    pub b_sigma_reducible_ft: f64,
 }
 
 /// A filter that infers the target's relative position, motion and size from the

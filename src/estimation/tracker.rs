@@ -325,7 +325,7 @@ impl KalmanTracker {
             } else {
                 filter_sigma_ft
             },
-            b_sigma_floor_ft: floor_ft,
+            b_sigma_reducible_ft: filter_sigma_ft,
         }
     }
 

@@ -104,7 +104,7 @@ mod tests {
             a_per_s2: Vec3::zeros(),
             b_hat_ft: 8.0,
             b_sigma_ft: 0.1,
-            b_sigma_floor_ft: 0.0,
+            b_sigma_reducible_ft: 0.1,
         }
     }
 

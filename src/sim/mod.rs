@@ -500,7 +500,7 @@ impl Simulation {
             .estimator
             .filter()
             .and_then(|t| t.posterior())
-            .map(|e| (e.b_hat_ft, e.reducible_b_sigma_ft()));
+            .map(|e| (e.b_hat_ft, e.b_sigma_reducible_ft));
         self.excitation
             .record_errors(t_end_s, &out.excitation_errors, size_ft);
         let g = &self.scenario.guidance;

@@ -8,7 +8,7 @@
 //!    follower's navigation attitude, position and gimbal angles (the pose the sensing path
 //!    already uses; never the truth): a direction at infinity (sky, clouds, the horizon) by
 //!    the homography K' R K⁻¹ of the rotation; a direction below the horizon, when the
-//!    ground's height is known (a radar altimeter over flat ground), through the ground's
+//!    ground's elevation is known (from a map: flat ground), through the ground's
 //!    point, which takes in the ground's parallax. Its colours within [`PARALLAX_PX`] and
 //!    their mixtures explain what the mapping leaves (an edge moved by a little parallax).
 //!    Where the target was measured (its blob's box grown by the ring's radius), or expected
@@ -61,9 +61,10 @@ pub struct ViewGeometry {
     pub camera_from_ned: Mat3,
     /// The camera's position, NED, ft.
     pub position_ned_ft: Vec3,
-    /// The flat ground's NED down coordinate, ft, when the follower knows it (a radar
-    /// altimeter): directions below the horizon then map between frames through the
-    /// ground's point (its parallax), the others as directions at infinity.
+    /// The flat ground's NED down coordinate, ft, when the follower knows it (the terrain's
+    /// elevation from a map): directions below the horizon then map between frames through
+    /// the ground's point (its parallax) at the navigated height above it, the others as
+    /// directions at infinity.
     pub ground_down_ft: Option<f64>,
 }
 

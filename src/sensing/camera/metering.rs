@@ -40,8 +40,9 @@ pub(super) struct Metering {
     /// The camera's position by navigation for the frame being measured, NED, ft.
     camera_position_ned_ft: Vec3,
     /// The flat ground's NED down coordinate, ft, when the scene has ground: the motion
-    /// segmentation maps the ground between frames through it (the follower is taken to
-    /// know its height above flat ground, as from a radar altimeter).
+    /// segmentation maps the ground between frames through it. The follower knows it as the
+    /// terrain's elevation from a map (flat ground: one number); its height above the ground
+    /// is that less its navigated altitude, so the navigation's vertical error enters.
     ground_down_ft: Option<f64>,
     /// The last `Ok` frame's maximal length, px (kept through frames without the target).
     previous_length_px: Option<f64>,
