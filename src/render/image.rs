@@ -34,6 +34,17 @@ impl CameraImage {
         }
     }
 
+    /// Writes `part`'s pixels over this image's from column and row `at_px` (`part` lies
+    /// inside the image).
+    pub fn paste(&mut self, part: &CameraImage, [u0, v0]: [u32; 2]) {
+        let row_bytes = 4 * part.width_px as usize;
+        let stride = 4 * self.width_px as usize;
+        for (v, row) in (v0 as usize..).zip(part.rgba.chunks_exact(row_bytes)) {
+            let start = v * stride + 4 * u0 as usize;
+            self.rgba[start..start + row_bytes].copy_from_slice(row);
+        }
+    }
+
     /// The RGBA of pixel column u, row v, or `None` outside the frame.
     pub fn pixel(&self, u_px: u32, v_px: u32) -> Option<[u8; 4]> {
         if u_px >= self.width_px || v_px >= self.height_px {

@@ -49,22 +49,31 @@ impl Staging {
         Self { buffer }
     }
 
-    /// Copies `region` of `texture` into the staging buffer (rows padded).
+    /// Copies `region` of `texture`, an image-sized texture, into the staging buffer (rows
+    /// padded).
     pub(super) fn copy_region(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         texture: &wgpu::Texture,
         region: &ImageRegion,
     ) {
+        self.copy_from(encoder, texture, [region.u0_px, region.v0_px], region);
+    }
+
+    /// Copies the pixels of `texture` from column and row `origin_px`, as many as `region`
+    /// holds, into the staging buffer as `region`'s (rows padded).
+    pub(super) fn copy_from(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        texture: &wgpu::Texture,
+        [x, y]: [u32; 2],
+        region: &ImageRegion,
+    ) {
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 texture,
                 mip_level: 0,
-                origin: wgpu::Origin3d {
-                    x: region.u0_px,
-                    y: region.v0_px,
-                    z: 0,
-                },
+                origin: wgpu::Origin3d { x, y, z: 0 },
                 aspect: wgpu::TextureAspect::All,
             },
             wgpu::TexelCopyBufferInfo {

@@ -9,6 +9,10 @@
 //! drawn and copied over it where they overlap, and only the region is copied into the staging
 //! buffer, mapped and unpadded. Nothing else of the image is touched, and the region holds the
 //! bytes the whole frame holds there.
+//!
+//! A whole frame under a screen-fixed sky is composed the same way on the CPU: the sky
+//! texture's pixels, read back once, with the target's window read back and pasted over them;
+//! so a whole frame costs a window's drawing and readback plus one copy of the image in memory.
 
 use std::time::Instant;
 
@@ -58,6 +62,9 @@ pub struct PendingFrame {
     region: ImageRegion,
     /// Reports the staging buffer's mapping.
     mapped: MapReport,
+    /// A whole frame over a screen-fixed sky: the part of the target's window inside the
+    /// image, the only pixels read back; the rest is the sky's, filled in on the CPU.
+    window_part: Option<ImageRegion>,
 }
 
 impl PendingFrame {
@@ -96,6 +103,10 @@ pub struct Renderer {
     image: RenderTargets,
     /// The sky alone over the whole image, drawn once (see `targets::sky_texture`).
     sky: wgpu::Texture,
+    /// The sky texture's pixels, read back once (screen-fixed skies; None for a world scene).
+    sky_pixels: Option<CameraImage>,
+    /// The target window's pixels of the last whole frame composed on the CPU.
+    window_pixels: CameraImage,
     staging: Staging,
     noise: Option<NoiseGenerator>,
     /// The frame [`Renderer::render`] reads back into and returns.
@@ -125,7 +136,29 @@ impl Renderer {
         if let Some(e) = validation.or(oom) {
             return Err(RenderError::Gpu(e));
         }
-        Ok(built)
+        let mut renderer = built;
+        if !renderer.has_world() {
+            renderer.sky_pixels = Some(renderer.read_sky()?);
+        }
+        Ok(renderer)
+    }
+
+    /// Reads the sky texture back: the bytes outside the target's window of every whole
+    /// frame under a screen-fixed sky.
+    fn read_sky(&self) -> Result<CameraImage, RenderError> {
+        let whole = ImageRegion::whole(&self.settings.intrinsics);
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("sky readback"),
+            });
+        self.staging.copy_region(&mut encoder, &self.sky, &whole);
+        let submission = self.queue.submit([encoder.finish()]);
+        let mapped = self.staging.map(&whole);
+        let mut sky = CameraImage::default();
+        self.staging
+            .read(&self.device, submission, &mapped, &whole, &mut sky)?;
+        Ok(sky)
     }
 
     /// Creates the renderer's GPU objects (inside [`Self::new`]'s error scopes) and uploads
@@ -164,6 +197,8 @@ impl Renderer {
             windows: WindowTargetsCache::default(),
             image,
             sky,
+            sky_pixels: None,
+            window_pixels: CameraImage::default(),
             staging,
             noise: settings
                 .background
@@ -286,13 +321,23 @@ impl Renderer {
     ) -> Result<(), RenderError> {
         let start = Instant::now();
         let region = pending.region;
-        self.staging.read(
-            &self.device,
-            pending.submission,
-            &pending.mapped,
-            &region,
-            frame,
-        )?;
+        match (&pending.window_part, &self.sky_pixels) {
+            (Some(part), Some(sky)) => {
+                let (device, submission) = (&self.device, pending.submission);
+                let window = &mut self.window_pixels;
+                self.staging
+                    .read(device, submission, &pending.mapped, part, window)?;
+                frame.clone_from(sky);
+                frame.paste(window, [part.u0_px, part.v0_px]);
+            }
+            _ => self.staging.read(
+                &self.device,
+                pending.submission,
+                &pending.mapped,
+                &region,
+                frame,
+            )?,
+        }
         let read = Instant::now();
         if let Some(noise) = &self.noise {
             let width_px = self.settings.intrinsics.width_px;
@@ -340,19 +385,61 @@ impl Renderer {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("target frame"),
             });
-        if region.is_whole(&cam) {
-            self.encode_passes(&mut encoder, plan);
+        let window_part = self.window_part_over_sky(plan, region);
+        let read = if let (Some(part), FramePlan::Window(window)) = (window_part, plan) {
+            self.draw_window_part(&mut encoder, &window, &part);
+            part
         } else {
-            self.encode_region_passes(&mut encoder, plan, region);
-        }
-        self.staging
-            .copy_region(&mut encoder, &self.image.resolve_texture, region);
+            if region.is_whole(&cam) {
+                self.encode_passes(&mut encoder, plan);
+            } else {
+                self.encode_region_passes(&mut encoder, plan, region);
+            }
+            self.staging
+                .copy_region(&mut encoder, &self.image.resolve_texture, region);
+            *region
+        };
         let submission = self.queue.submit([encoder.finish()]);
         Ok(PendingFrame {
             submission,
             region: *region,
-            mapped: self.staging.map(region),
+            mapped: self.staging.map(&read),
+            window_part,
         })
+    }
+
+    /// The part of the target's window inside the image, when a whole frame is composed on
+    /// the CPU: a screen-fixed sky read back once, under a target drawn in its window.
+    fn window_part_over_sky(&self, plan: FramePlan, region: &ImageRegion) -> Option<ImageRegion> {
+        let cam = &self.settings.intrinsics;
+        let (FramePlan::Window(window), Some(_)) = (plan, &self.sky_pixels) else {
+            return None;
+        };
+        let copy = WindowCopy::of(&window, region).filter(|_| region.is_whole(cam))?;
+        Some(ImageRegion {
+            u0_px: copy.to_px[0],
+            v0_px: copy.to_px[1],
+            width_px: copy.size_px[0],
+            height_px: copy.size_px[1],
+        })
+    }
+
+    /// Draws the target in its window's framebuffers and copies `part` of it (where it lies
+    /// in the image) into the staging buffer.
+    fn draw_window_part(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        window: &PixelWindow,
+        part: &ImageRegion,
+    ) {
+        let slot = self.draw_in_window(encoder, window);
+        let targets = self.windows.targets(slot);
+        let from_px = [
+            (i64::from(part.u0_px) - window.u0_px) as u32,
+            (i64::from(part.v0_px) - window.v0_px) as u32,
+        ];
+        self.staging
+            .copy_from(encoder, &targets.resolve_texture, from_px, part);
     }
 
     /// The render passes of `plan`, leaving the frame in the image's resolve texture.
@@ -363,13 +450,9 @@ impl Renderer {
             FramePlan::Whole => self
                 .passes
                 .draw_target(encoder, &self.image, image_uniforms),
-            FramePlan::SkyOnly => {
-                self.passes
-                    .draw_sky(encoder, &self.image.resolve_view, image_uniforms, None)
-            }
+            FramePlan::SkyOnly => self.draw_sky_in(encoder, &whole),
             FramePlan::Window(window) => {
-                self.passes
-                    .draw_sky(encoder, &self.image.resolve_view, image_uniforms, None);
+                self.draw_sky_in(encoder, &whole);
                 self.draw_window(encoder, &window, &whole);
             }
         }
@@ -389,10 +472,21 @@ impl Renderer {
         if plan == FramePlan::Whole {
             return self.encode_passes(encoder, plan);
         }
+        self.draw_sky_in(encoder, region);
+        if let FramePlan::Window(window) = plan {
+            self.draw_window(encoder, &window, region);
+        }
+    }
+
+    /// Leaves the sky alone in `region` of the image's resolve texture: a world scene drawn
+    /// from the camera's pose, a screen-fixed sky copied from the sky texture (the bytes
+    /// drawing it gives, for a copy's cost).
+    fn draw_sky_in(&self, encoder: &mut wgpu::CommandEncoder, region: &ImageRegion) {
         if self.has_world() {
             let uniforms = self.uniform_slots.bind_group(false);
+            let cut = (!region.is_whole(&self.settings.intrinsics)).then_some(region);
             self.passes
-                .draw_sky(encoder, &self.image.resolve_view, uniforms, Some(region));
+                .draw_sky(encoder, &self.image.resolve_view, uniforms, cut);
         } else {
             let sky_copy = WindowCopy {
                 from_px: [region.u0_px, region.v0_px],
@@ -401,9 +495,22 @@ impl Renderer {
             };
             copy_window(encoder, &self.sky, &self.image.resolve_texture, &sky_copy);
         }
-        if let FramePlan::Window(window) = plan {
-            self.draw_window(encoder, &window, region);
-        }
+    }
+
+    /// Draws the target into its window's framebuffers; their slot in the cache.
+    fn draw_in_window(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        window: &PixelWindow,
+    ) -> usize {
+        let samples = self.settings.msaa_samples;
+        let slot = self.windows.slot_for(&self.device, window, samples);
+        self.passes.draw_target(
+            encoder,
+            self.windows.targets(slot),
+            self.uniform_slots.bind_group(true),
+        );
+        slot
     }
 
     /// Draws the target into its window's framebuffers and copies the part of the window
@@ -417,11 +524,8 @@ impl Renderer {
         let Some(copy) = WindowCopy::of(window, region) else {
             return;
         };
-        let samples = self.settings.msaa_samples;
-        let slot = self.windows.slot_for(&self.device, window, samples);
+        let slot = self.draw_in_window(encoder, window);
         let targets = self.windows.targets(slot);
-        self.passes
-            .draw_target(encoder, targets, self.uniform_slots.bind_group(true));
         copy_window(
             encoder,
             &targets.resolve_texture,
