@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 import rerun as rr
+import rerun.blueprint as rrb
 
 try:
     import tomllib
@@ -295,6 +296,35 @@ def _log_measurement(rec, image_path, camera, columns, prefix, row):
         rec.log(f"{path}/length", boxes)
 
 
+def blueprint(cameras, follower):
+    """The layout the recording opens with, at the run's end: the 3-D scene (its eye 80 ft
+    behind and 40 ft above the follower there, following it) and each camera's image beside
+    the time series."""
+    images = [rrb.Spatial2DView(origin=f"world/{name}/camera/image", name=f"{name} camera") for name in cameras]
+    series = [
+        rrb.TimeSeriesView(origin=f"series/{name}", name=title)
+        for name, title in (
+            ("relative_position", "R against R_c, ft"),
+            ("size", "b_hat with +-3 sigma, ft"),
+            ("measurement", "measured against true, px"),
+            ("surfaces", "surfaces, deg; throttle"),
+        )
+    ]
+    end = follower.position_ned_ft[-1]
+    heading = end - follower.position_ned_ft[max(0, len(follower.t_s) - 10)]
+    heading = heading / max(np.linalg.norm(heading), 1e-9)
+    eye = rrb.archetypes.EyeControls3D(
+        position=end - 80.0 * heading + [0.0, 0.0, -40.0],
+        look_target=end,
+        eye_up=[0.0, 0.0, -1.0],
+        tracking_entity="world/follower",
+    )
+    scene = rrb.Spatial3DView(origin="world", name="scene (NED, ft)", eye_controls=eye)
+    layout = rrb.Horizontal(rrb.Vertical(scene, *images), rrb.Vertical(*series), column_shares=[3, 2])
+    time = rrb.TimePanel(timeline=TIMELINE, play_state="following", state="collapsed")
+    return rrb.Blueprint(layout, time, collapse_panels=True)
+
+
 def _read_run(run_dir):
     run_dir = Path(run_dir)
     for name in ("scenario.toml", "telemetry.csv"):
@@ -324,6 +354,7 @@ def write_recording(run_dir, out, aircraft=None):
     log_scene(rec, aircraft, mesh, columns)
     log_time_series(rec, columns, summary.get("b_true_ft", float("nan")))
     frames = {c.name: log_camera(rec, c, camera, columns) for c in aircraft if camera is not None}
+    rec.send_blueprint(blueprint([name for name, n in frames.items() if n > 0], aircraft[0]))
     rec.flush()
     rec.disconnect()
     return {"aircraft": [c.name for c in aircraft], "frames": frames}
