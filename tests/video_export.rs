@@ -70,16 +70,26 @@ fn animated_png_holds_every_frame_in_order_with_its_caption() {
     assert_eq!(videos.len(), 1);
     let v = &videos[0];
     assert_eq!(v.path, dir.path().join("video.apng"));
-    assert_eq!((v.frames, v.width_px, v.height_px, v.fps), (6, WIDTH, HEIGHT, 15.0));
+    assert_eq!(
+        (v.frames, v.width_px, v.height_px, v.fps),
+        (6, WIDTH, HEIGHT, 15.0)
+    );
     let frames = apng_frames(&v.path);
     assert_eq!(frames.len(), NUMBERS.len());
     for ((num, den, rgba), n) in frames.iter().zip(NUMBERS) {
         assert_eq!((*num, *den), (2, 30), "frame {n}: each lasts 2/30 s");
-        assert_eq!(rgba[..3], [grey(n); 3], "frame {n}: top-left pixel, in order");
+        assert_eq!(
+            rgba[..3],
+            [grey(n); 3],
+            "frame {n}: top-left pixel, in order"
+        );
         // The caption's dark box and white text sit in the bottom rows.
         let bottom = &rgba[(HEIGHT as usize - 12) * WIDTH as usize * 4..];
         assert!(bottom.chunks(4).any(|p| p[..3] == [0, 0, 0]), "frame {n}");
-        assert!(bottom.chunks(4).any(|p| p[..3] == [255, 255, 255]), "frame {n}");
+        assert!(
+            bottom.chunks(4).any(|p| p[..3] == [255, 255, 255]),
+            "frame {n}"
+        );
     }
 }
 
@@ -98,7 +108,10 @@ fn each_camera_has_its_own_video() {
     let out = dir.path().join("out").join("clip.apng");
     let videos = export_video(dir.path(), Some(&out), Encoder::Apng).unwrap();
     let names: Vec<_> = videos.iter().map(|v| v.path.clone()).collect();
-    assert_eq!(names, [out.clone(), dir.path().join("out").join("clip_wing2.apng")]);
+    assert_eq!(
+        names,
+        [out.clone(), dir.path().join("out").join("clip_wing2.apng")]
+    );
     assert_eq!(videos[1].camera.as_deref(), Some("wing2"));
     for v in &videos {
         assert_eq!(apng_frames(&v.path).len(), NUMBERS.len());
@@ -109,12 +122,19 @@ fn each_camera_has_its_own_video() {
 fn probe(path: &Path) -> String {
     let out = Command::new("ffprobe")
         .args(["-v", "error", "-count_frames", "-select_streams", "v:0"])
-        .args(["-show_entries", "stream=nb_read_frames,width,height,r_frame_rate"])
+        .args([
+            "-show_entries",
+            "stream=nb_read_frames,width,height,r_frame_rate",
+        ])
         .args(["-of", "default=noprint_wrappers=1"])
         .arg(path)
         .output()
         .expect("ffprobe comes with ffmpeg");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
@@ -131,7 +151,12 @@ fn mp4_through_ffmpeg_holds_every_frame() {
     assert_eq!(v.encoder, format!("ffmpeg {codec} (MP4)"));
     let probed = probe(&v.path);
     // Padded to even sizes for yuv420p.
-    for line in ["width=42", "height=32", "r_frame_rate=15/1", "nb_read_frames=6"] {
+    for line in [
+        "width=42",
+        "height=32",
+        "r_frame_rate=15/1",
+        "nb_read_frames=6",
+    ] {
         assert!(probed.lines().any(|l| l == line), "{line} in {probed}");
     }
 }

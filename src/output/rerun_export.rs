@@ -65,7 +65,7 @@ fn check_arguments(run_dir: &Path, out: &Path) -> Result<(), RerunExportError> {
             )));
         }
     }
-    if out.is_dir() || !out.extension().is_some_and(|e| e == "rrd") {
+    if out.is_dir() || out.extension().is_none_or(|e| e != "rrd") {
         return Err(RerunExportError::BadArgument(format!(
             "--out {}: name a .rrd file",
             out.display()

@@ -4,7 +4,7 @@
 //! `telemetry.csv` logged it (docs/viewer.md, A video). The encoders are in
 //! [`super::video_encoders`]: ffmpeg (MP4) when it is on the PATH, an animated PNG otherwise.
 
-use super::video_encoders::{Encoder, VideoFormat, open_sink};
+use super::video_encoders::{EncodeError, Encoder, VideoFormat, open_sink};
 use crate::vision::overlay::draw_footer;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -19,8 +19,8 @@ pub enum VideoError {
     #[error("{0}")]
     BadFrame(String),
     /// The encoder failed, or the video could not be written.
-    #[error("{0}")]
-    Encode(String),
+    #[error(transparent)]
+    Encode(#[from] EncodeError),
 }
 
 impl VideoError {

@@ -4,10 +4,14 @@
 //! written by the `png` crate, which `image` already builds: no new dependency, no system
 //! package. Browsers and most image viewers play an APNG.
 
-use super::video::VideoError;
 use std::io::{BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
+
+/// Why the encoder failed or the video could not be written: the file and what was said.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct EncodeError(pub String);
 
 /// Which encoder writes the video.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -99,13 +103,13 @@ impl VideoFormat {
 /// Takes RGBA8 frames one by one and writes the video.
 pub trait FrameSink {
     /// One frame, `width * height * 4` bytes, top row first.
-    fn push(&mut self, rgba: &[u8]) -> Result<(), VideoError>;
+    fn push(&mut self, rgba: &[u8]) -> Result<(), EncodeError>;
     /// Ends the video; what encoded it (e.g. `ffmpeg libx264 (MP4)`).
-    fn finish(self: Box<Self>) -> Result<String, VideoError>;
+    fn finish(self: Box<Self>) -> Result<String, EncodeError>;
 }
 
-fn encode_error(path: &Path, what: impl std::fmt::Display) -> VideoError {
-    VideoError::Encode(format!("{}: {what}", path.display()))
+fn encode_error(path: &Path, what: impl std::fmt::Display) -> EncodeError {
+    EncodeError(format!("{}: {what}", path.display()))
 }
 
 /// The encoder's sink writing `path` (its folder made).
@@ -113,7 +117,7 @@ pub fn open_sink(
     encoder: Encoder,
     path: &Path,
     format: &VideoFormat,
-) -> Result<Box<dyn FrameSink>, VideoError> {
+) -> Result<Box<dyn FrameSink>, EncodeError> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| encode_error(dir, e))?;
     }
@@ -130,7 +134,7 @@ struct ApngSink {
 }
 
 impl ApngSink {
-    fn new(path: &Path, format: &VideoFormat) -> Result<Self, VideoError> {
+    fn new(path: &Path, format: &VideoFormat) -> Result<Self, EncodeError> {
         let file = std::fs::File::create(path).map_err(|e| encode_error(path, e))?;
         let mut encoder =
             png::Encoder::new(BufWriter::new(file), format.width_px, format.height_px);
@@ -152,13 +156,13 @@ impl ApngSink {
 }
 
 impl FrameSink for ApngSink {
-    fn push(&mut self, rgba: &[u8]) -> Result<(), VideoError> {
+    fn push(&mut self, rgba: &[u8]) -> Result<(), EncodeError> {
         self.writer
             .write_image_data(rgba)
             .map_err(|e| encode_error(&self.path, e))
     }
 
-    fn finish(self: Box<Self>) -> Result<String, VideoError> {
+    fn finish(self: Box<Self>) -> Result<String, EncodeError> {
         let path = self.path.clone();
         self.writer.finish().map_err(|e| encode_error(&path, e))?;
         Ok("png crate (animated PNG)".to_string())
@@ -174,7 +178,7 @@ struct FfmpegSink {
 }
 
 impl FfmpegSink {
-    fn spawn(path: &Path, format: &VideoFormat) -> Result<Self, VideoError> {
+    fn spawn(path: &Path, format: &VideoFormat) -> Result<Self, EncodeError> {
         let codec =
             ffmpeg_codec().ok_or_else(|| encode_error(path, "ffmpeg is not on the PATH"))?;
         let size = format!("{}x{}", format.width_px, format.height_px);
@@ -215,7 +219,7 @@ impl FfmpegSink {
     }
 
     /// Closes ffmpeg's input and waits for it; its error output when it failed.
-    fn close(&mut self) -> Result<(), VideoError> {
+    fn close(&mut self) -> Result<(), EncodeError> {
         let flushed = self.stdin.take().map_or(Ok(()), |mut s| s.flush());
         let status = self.child.wait().map_err(|e| encode_error(&self.path, e))?;
         if status.success() && flushed.is_ok() {
@@ -234,7 +238,7 @@ impl FfmpegSink {
 }
 
 impl FrameSink for FfmpegSink {
-    fn push(&mut self, rgba: &[u8]) -> Result<(), VideoError> {
+    fn push(&mut self, rgba: &[u8]) -> Result<(), EncodeError> {
         let written = match self.stdin.as_mut() {
             Some(stdin) => stdin.write_all(rgba),
             None => Err(std::io::ErrorKind::BrokenPipe.into()),
@@ -248,7 +252,7 @@ impl FrameSink for FfmpegSink {
         }
     }
 
-    fn finish(mut self: Box<Self>) -> Result<String, VideoError> {
+    fn finish(mut self: Box<Self>) -> Result<String, EncodeError> {
         self.close()?;
         Ok(format!("ffmpeg {} (MP4)", self.codec))
     }
