@@ -264,6 +264,9 @@ def log_camera(rec, craft, camera, columns):
         rec.log(f"{cam_path}/image", rr.EncodedImage(path=png))
         if number in held:
             _log_measurement(rec, f"{cam_path}/image", camera, columns, craft.prefix, held[number])
+        else:  # no telemetry row holds this frame: no marks rather than the last frame's
+            rec.log(f"{cam_path}/image/measured", rr.Clear(recursive=True))
+            rec.log(f"{cam_path}/image/truth", rr.Clear(recursive=True))
     return len(frames)
 
 
@@ -283,7 +286,8 @@ def _log_measurement(rec, image_path, camera, columns, prefix, row):
 
     status = value("meas_status")
     status = int(status) if np.isfinite(status) else 1
-    for kind, suffix, rgb in (("measured", "_px", STATUS_RGB[status]), ("truth", "_true_px", TRUTH_RGB)):
+    marks = (("measured", "_px", STATUS_RGB[status]), ("truth", "_true_px", TRUTH_RGB))
+    for kind, suffix, rgb in marks:
         y, z, b = (value(f"{n}{suffix}") for n in ("y_i", "z_i", "b_i"))
         path = f"{image_path}/{kind}"
         if not np.isfinite([y, z, b]).all():
