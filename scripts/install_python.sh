@@ -9,5 +9,5 @@ cd "$(dirname "$0")/.."
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
-.venv/bin/python -m pip install --quiet --disable-pip-version-check "./python[test]"
+.venv/bin/python -m pip install --quiet --disable-pip-version-check "./python[test,rerun]"
 .venv/bin/python -c "import wingman, gymnasium; gymnasium.spec('wingman/Formation-v0')"

@@ -8,7 +8,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 use wingman::output::frame_images::render_frame_at;
+use wingman::output::rerun_export::export_rerun;
 use wingman::output::summary::{RunStatus, Summary};
+use wingman::output::video::export_video;
+use wingman::output::video_encoders::Encoder;
 use wingman::output::{RunReport, folder, interrupt, preflight, run_to_directory};
 use wingman::scenario::Scenario;
 use wingman::study::results::Tally;
@@ -78,6 +81,46 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Turn a finished run folder into something to watch: a video of its saved frames, or
+    /// a Rerun recording (docs/viewer.md).
+    Export {
+        #[command(subcommand)]
+        what: ExportCommand,
+    },
+}
+
+#[derive(Subcommand)]
+enum ExportCommand {
+    /// The saved frames (frames/*.png) as a video at the camera's rate, captioned with time
+    /// and track status: MP4 through ffmpeg when it is on the PATH, an animated PNG otherwise.
+    Video {
+        /// A run folder (written by `wingman run`).
+        run_dir: PathBuf,
+        /// The video file (default: RUN_DIR/video.mp4, or RUN_DIR/video.apng without ffmpeg).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// auto (ffmpeg when on the PATH, else apng), ffmpeg or apng.
+        #[arg(long, value_enum, default_value = "auto")]
+        encoder: EncoderArg,
+    },
+    /// The run as a Rerun recording (frames with the measurement, the 3-D scene, the time
+    /// series), written by the Python package (`python -m wingman.rerun`); open it with
+    /// `rerun FILE.rrd`.
+    Rerun {
+        /// A run folder (written by `wingman run`).
+        run_dir: PathBuf,
+        /// The recording (.rrd).
+        #[arg(long)]
+        out: PathBuf,
+    },
+}
+
+/// `--encoder` of `export video`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum EncoderArg {
+    Auto,
+    Ffmpeg,
+    Apng,
 }
 
 #[derive(Subcommand)]
@@ -130,7 +173,49 @@ fn main() -> ExitCode {
             Some(study) => sweep(&study, out, jobs, shard, quiet),
             None => ExitCode::from(2),
         },
+        Command::Export { what } => export(what),
     }
+}
+
+/// `wingman export video|rerun`: exit code 2 for a bad argument, 1 when the encoder or the
+/// Python package failed or is missing.
+fn export(what: ExportCommand) -> ExitCode {
+    let (result, bad_input) = match what {
+        ExportCommand::Video {
+            run_dir,
+            out,
+            encoder,
+        } => {
+            let encoder = match encoder {
+                EncoderArg::Auto => Encoder::Auto,
+                EncoderArg::Ffmpeg => Encoder::Ffmpeg,
+                EncoderArg::Apng => Encoder::Apng,
+            };
+            match export_video(&run_dir, out.as_deref(), encoder) {
+                Ok(videos) => {
+                    for v in videos {
+                        eprintln!(
+                            "video: {}: {} frames of {}x{} px at {} fps, encoded by {}",
+                            v.path.display(),
+                            v.frames,
+                            v.width_px,
+                            v.height_px,
+                            v.fps,
+                            v.encoder
+                        );
+                    }
+                    return ExitCode::SUCCESS;
+                }
+                Err(e) => (e.to_string(), e.is_bad_input()),
+            }
+        }
+        ExportCommand::Rerun { run_dir, out } => match export_rerun(&run_dir, &out) {
+            Ok(()) => return ExitCode::SUCCESS,
+            Err(e) => (e.to_string(), e.is_bad_input()),
+        },
+    };
+    eprintln!("error: {result}");
+    ExitCode::from(if bad_input { 2 } else { 1 })
 }
 
 /// Exit code 2 for a bad study file or folder, 1 for a failure to write.

@@ -172,7 +172,8 @@ fn the_container_installs_the_one_package_list() {
             "libvulkan1",
             "fonts-dejavu-core",
             "python3",
-            "python3-venv"
+            "python3-venv",
+            "ffmpeg"
         ]
     );
     for file in [

@@ -48,7 +48,8 @@ fn first_command_needs_no_sudo_as_root() {
             "libvulkan1",
             "fonts-dejavu-core",
             "python3",
-            "python3-venv"
+            "python3-venv",
+            "ffmpeg"
         ]
     );
     let ci = read(".ci/run");

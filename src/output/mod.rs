@@ -14,9 +14,12 @@ pub mod lock;
 pub mod outputs_doc;
 pub mod plots;
 pub mod preflight;
+pub mod rerun_export;
 pub mod summary;
 pub mod telemetry;
 pub mod track_check;
+pub mod video;
+pub mod video_encoders;
 
 use crate::render::GpuContext;
 use crate::scenario::Scenario;

@@ -204,6 +204,21 @@ pub fn draw_caption(
     Ok(())
 }
 
+/// Draws `text` in white on a dark box at the frame's foot, left-aligned (a video's caption:
+/// time and track status).
+pub fn draw_footer(
+    rgba: &mut [u8],
+    width_px: u32,
+    height_px: u32,
+    text: &str,
+) -> Result<(), ImageSizeError> {
+    let mut canvas = Canvas::new(rgba, width_px, height_px)?;
+    let line_px = (GLYPH_HEIGHT + 1) * TEXT_SCALE;
+    let y = (height_px as usize).saturating_sub(line_px + TEXT_ORIGIN_PX);
+    canvas.text(TEXT_ORIGIN_PX, y, text, CAPTION_RGB);
+    Ok(())
+}
+
 /// Draws the ground truth in cyan: a diagonal cross at the projected reference point and the
 /// true maximal-length segment.
 pub fn draw_truth_overlay(
