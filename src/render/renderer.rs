@@ -13,7 +13,7 @@
 use std::time::Instant;
 
 use crate::frames::Vec3;
-use crate::render::camera::TargetPoseInCamera;
+use crate::render::camera::{AircraftPose, TargetPoseInCamera};
 use crate::render::gpu::GpuContext;
 use crate::render::image::CameraImage;
 use crate::render::mesh::TargetMesh;
@@ -28,7 +28,7 @@ use crate::render::settings::{RenderSettings, Sky};
 use crate::render::targets::{RenderTargets, WindowTargetsCache, copy_window, sky_texture};
 use crate::render::uniforms::{UniformSlots, uniform_layout};
 use crate::render::vertices::{TargetVertex, flat_shaded_vertices};
-use crate::render::window::{FramePlan, WindowCopy, plan_frame};
+use crate::render::window::{FramePlan, WindowCopy, plan_frame_with_others};
 
 /// Why a renderer could not be built or a frame not rendered.
 #[derive(Debug, thiserror::Error)]
@@ -103,6 +103,8 @@ pub struct Renderer {
     timings: RenderTimings,
     /// Where the camera is in a world scene (unused under a screen-fixed sky).
     camera_in_world: CameraInWorld,
+    /// Other aircraft drawn with the target in the frames begun from now on.
+    others: Vec<AircraftPose>,
 }
 
 impl Renderer {
@@ -172,6 +174,7 @@ impl Renderer {
             frame: CameraImage::filled(cam.width_px, cam.height_px, [0, 0, 0, 255]),
             timings: RenderTimings::default(),
             camera_in_world: CameraInWorld::default(),
+            others: Vec::new(),
         };
         if !renderer.has_world() {
             renderer.paint_sky_texture();
@@ -189,6 +192,12 @@ impl Renderer {
     /// Frames under a screen-fixed sky do not depend on it.
     pub fn set_camera_in_world(&mut self, camera: &CameraInWorld) {
         self.camera_in_world = *camera;
+    }
+
+    /// Draws `others` (the target's mesh at their poses and scales) with the target in the
+    /// frames begun from now on, occluding it and one another by depth (none by default).
+    pub fn set_other_aircraft(&mut self, others: &[AircraftPose]) {
+        self.others = others.to_vec();
     }
 
     /// Draws the sky texture, with the pass that draws the sky of a whole frame.
@@ -326,13 +335,22 @@ impl Renderer {
                 .write_image(&self.queue, pose, &self.camera_in_world);
         let cam = self.settings.intrinsics;
         let plan = if self.settings.target_window {
-            plan_frame(&self.vertices_ft, pose, &cam)
+            plan_frame_with_others(&self.vertices_ft, pose, &self.others, &cam)
         } else {
             FramePlan::Whole
         };
-        if let FramePlan::Window(window) = plan {
+        let window = match plan {
+            FramePlan::Window(window) => Some(window),
+            _ => None,
+        };
+        if let Some(window) = &window {
             self.uniform_slots
-                .write_window(&self.queue, &self.settings, &window, &target_to_body);
+                .write_window(&self.queue, &self.settings, window, &target_to_body);
+        }
+        if !self.others.is_empty() {
+            let in_window = window.as_ref().map(|w| (&self.settings, w));
+            self.uniform_slots
+                .write_others(&self.device, &self.queue, &self.others, in_window);
         }
 
         let mut encoder = self
@@ -360,9 +378,13 @@ impl Renderer {
         let whole = ImageRegion::whole(&self.settings.intrinsics);
         let image_uniforms = self.uniform_slots.bind_group(false);
         match plan {
-            FramePlan::Whole => self
-                .passes
-                .draw_target(encoder, &self.image, image_uniforms),
+            FramePlan::Whole => {
+                let others = self
+                    .uniform_slots
+                    .other_bind_groups(self.others.len(), false);
+                self.passes
+                    .draw_target(encoder, &self.image, image_uniforms, &others)
+            }
             FramePlan::SkyOnly => {
                 self.passes
                     .draw_sky(encoder, &self.image.resolve_view, image_uniforms, None)
@@ -420,8 +442,15 @@ impl Renderer {
         let samples = self.settings.msaa_samples;
         let slot = self.windows.slot_for(&self.device, window, samples);
         let targets = self.windows.targets(slot);
-        self.passes
-            .draw_target(encoder, targets, self.uniform_slots.bind_group(true));
+        let others = self
+            .uniform_slots
+            .other_bind_groups(self.others.len(), true);
+        self.passes.draw_target(
+            encoder,
+            targets,
+            self.uniform_slots.bind_group(true),
+            &others,
+        );
         copy_window(
             encoder,
             &targets.resolve_texture,
