@@ -7,13 +7,15 @@
 //! is dark and every pixel outside all of them by more than `EPS_PX` is sky; (2) the frame
 //! does not depend on which aircraft is the target and which the other (depth, not drawing
 //! order, decides what is in front); (3) the frame drawn in a window around every aircraft
-//! is the frame drawn whole; (4) an aircraft wholly behind the camera changes nothing.
+//! is the frame drawn whole, and a frame drawn in a region of the image (the tracking
+//! window) holds there the whole frame's pixels, the aircraft outside it left undrawn; (4) an
+//! aircraft wholly behind the camera changes nothing.
 
 mod render_support;
 
 use render_support::*;
 use wingman::render::camera::{AircraftPose, CameraIntrinsics, TargetPoseInCamera};
-use wingman::render::{CameraImage, RenderSettings, Renderer};
+use wingman::render::{CameraImage, ImageRegion, RenderSettings, Renderer};
 
 /// Rasteriser snapping margin, px (as tests/render_matches_geometry.rs).
 const EPS_PX: f64 = 0.07;
@@ -137,4 +139,29 @@ fn window_frame_is_the_whole_frame() {
     let behind_only = render(cam, 1, true, &target, &others[2..]);
     let alone = render(cam, 1, true, &target, &[]);
     assert!(behind_only.rgba == alone.rgba);
+}
+
+#[test]
+fn region_frame_holds_the_whole_frame_there() {
+    let cam = CameraIntrinsics::from_hfov(320, 240, 60.0);
+    let (target, others) = scene();
+    let whole = render(cam, 4, true, &target, &others);
+    let mut settings = RenderSettings::new(cam);
+    settings.msaa_samples = 4;
+    let mut renderer = Renderer::new(gpu(), settings, &aircraft()).expect("renderer");
+    renderer.set_other_aircraft(&others);
+    // Around the target (and the near aircraft over it), away from the large one.
+    let region = ImageRegion {
+        u0_px: 150,
+        v0_px: 100,
+        width_px: 60,
+        height_px: 50,
+    };
+    let part = renderer.render_region(&target, &region, 0).expect("frame");
+    for v in 0..region.height_px {
+        for u in 0..region.width_px {
+            let (wu, wv) = (u + region.u0_px, v + region.v0_px);
+            assert_eq!(part.pixel(u, v), whole.pixel(wu, wv), "pixel ({wu}, {wv})");
+        }
+    }
 }

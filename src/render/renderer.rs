@@ -335,7 +335,7 @@ impl Renderer {
                 .write_image(&self.queue, pose, &self.camera_in_world);
         let cam = self.settings.intrinsics;
         let plan = if self.settings.target_window {
-            plan_frame_with_others(&self.vertices_ft, pose, &self.others, &cam)
+            plan_frame_with_others(&self.vertices_ft, pose, &self.others, region, &cam)
         } else {
             FramePlan::Whole
         };

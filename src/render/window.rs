@@ -55,17 +55,21 @@ pub fn plan_frame(
     pose: &TargetPoseInCamera,
     intrinsics: &CameraIntrinsics,
 ) -> FramePlan {
-    plan_frame_with_others(vertices_ft, pose, &[], intrinsics)
+    let whole = ImageRegion::whole(intrinsics);
+    plan_frame_with_others(vertices_ft, pose, &[], &whole, intrinsics)
 }
 
 /// [`plan_frame`] for the target at `pose` and other aircraft drawn with it (the same mesh
-/// at their own poses and scales): one window around every aircraft in view. An aircraft
-/// wholly behind the camera is left out (it would only force the whole frame); one only
-/// partly behind the near plane, as the target, draws the whole frame.
+/// at their own poses and scales) in a frame that reads back `region` of the image: one
+/// window around the target and every other aircraft that reaches into the region (the
+/// others leave the region's pixels as they are). An aircraft wholly behind the camera is
+/// left out (it would only force the whole frame); one only partly behind the near plane,
+/// as the target, draws the whole frame.
 pub fn plan_frame_with_others(
     vertices_ft: &[Vec3],
     pose: &TargetPoseInCamera,
     others: &[AircraftPose],
+    region: &ImageRegion,
     intrinsics: &CameraIntrinsics,
 ) -> FramePlan {
     let target = vertices_ft
@@ -82,8 +86,8 @@ pub fn plan_frame_with_others(
         let Some(b) = projected_bounds(points, intrinsics) else {
             return FramePlan::Whole;
         };
-        if b.overlaps(intrinsics) {
-            bounds = if bounds.overlaps(intrinsics) {
+        if b.overlaps(region) {
+            bounds = if bounds.overlaps(&ImageRegion::whole(intrinsics)) {
                 bounds.union(&b)
             } else {
                 b
@@ -98,17 +102,14 @@ pub fn plan_frame_with_others(
 struct PixelBounds([f64; 4]);
 
 impl PixelBounds {
-    /// Whether the box, with the margin, reaches into the image.
-    fn overlaps(&self, intrinsics: &CameraIntrinsics) -> bool {
+    /// Whether the box, with the margin, reaches into `region`.
+    fn overlaps(&self, region: &ImageRegion) -> bool {
         let [u_min, u_max, v_min, v_max] = self.0;
-        let (width, height) = (
-            f64::from(intrinsics.width_px),
-            f64::from(intrinsics.height_px),
-        );
-        u_max > -MARGIN_PX
-            && v_max > -MARGIN_PX
-            && u_min < width + MARGIN_PX
-            && v_min < height + MARGIN_PX
+        let (u0, v0) = (f64::from(region.u0_px), f64::from(region.v0_px));
+        u_max > u0 - MARGIN_PX
+            && v_max > v0 - MARGIN_PX
+            && u_min < f64::from(region.u_end_px()) + MARGIN_PX
+            && v_min < f64::from(region.v_end_px()) + MARGIN_PX
     }
 
     fn union(&self, other: &Self) -> Self {
@@ -146,7 +147,7 @@ fn projected_bounds(
 
 /// The plan of a frame whose aircraft project into `bounds`.
 fn plan_bounds(bounds: &PixelBounds, intrinsics: &CameraIntrinsics) -> FramePlan {
-    if !bounds.overlaps(intrinsics) {
+    if !bounds.overlaps(&ImageRegion::whole(intrinsics)) {
         return FramePlan::SkyOnly;
     }
     let [u_min, u_max, v_min, v_max] = bounds.0;
