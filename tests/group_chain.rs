@@ -61,8 +61,8 @@ fn positions(path: &std::path::Path, which: &str) -> Vec<[f64; 3]> {
     let mut reader = csv::Reader::from_path(path).expect("telemetry");
     let header = reader.headers().expect("header").clone();
     let col = |name: &str| header.iter().position(|h| h == name).expect(name);
-    let fol = ["fol_n_ft", "fol_e_ft", "fol_d_ft"].map(|n| col(n));
-    let rel = ["rel_n_ft", "rel_e_ft", "rel_d_ft"].map(|n| col(n));
+    let fol = ["fol_n_ft", "fol_e_ft", "fol_d_ft"].map(&col);
+    let rel = ["rel_n_ft", "rel_e_ft", "rel_d_ft"].map(&col);
     reader
         .records()
         .map(|r| {
