@@ -147,26 +147,7 @@ impl GroupEntries {
                 format!("group.{key} is not a key of [group]: allowed follower, target"),
             ));
         }
-        let members = |key: &str| -> Result<Vec<toml::Table>, ScenarioError> {
-            match table.get(key) {
-                None => Ok(Vec::new()),
-                Some(toml::Value::Array(items)) => items
-                    .iter()
-                    .map(|item| {
-                        item.as_table().cloned().ok_or_else(|| {
-                            reject(
-                                &format!("group.{key}"),
-                                format!("group.{key} entries must be tables ([[group.{key}]])"),
-                            )
-                        })
-                    })
-                    .collect(),
-                Some(_) => Err(reject(
-                    &format!("group.{key}"),
-                    format!("group.{key} must be written [[group.{key}]]"),
-                )),
-            }
-        };
+        let members = |key: &str| member_tables(table, key, source);
         let mut names = vec![BASE_TARGET.to_string()];
         let mut take_name = |entry: &mut toml::Table, key: &str| -> Result<String, ScenarioError> {
             let name = take_string(entry, "name", key, source)?;
@@ -211,6 +192,27 @@ impl GroupEntries {
             ));
         }
         Ok(Self { followers, targets })
+    }
+}
+
+/// The entries of `[[group.<key>]]` (none when there is none).
+fn member_tables(
+    table: &toml::Table,
+    key: &str,
+    source: &ScenarioSource,
+) -> Result<Vec<toml::Table>, ScenarioError> {
+    let at = format!("group.{key}");
+    match table.get(key) {
+        None => Ok(Vec::new()),
+        Some(toml::Value::Array(items)) => items
+            .iter()
+            .map(|item| {
+                item.as_table().cloned().ok_or_else(|| {
+                    source.reject(&at, format!("{at} entries must be tables ([[{at}]])"))
+                })
+            })
+            .collect(),
+        Some(_) => Err(source.reject(&at, format!("{at} must be written [[{at}]]"))),
     }
 }
 
