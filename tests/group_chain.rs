@@ -1,8 +1,9 @@
 //! A chain of followers, each tracking the aircraft ahead by its own camera
 //! (`scenarios/platoon.toml`: target → f1 → f2 → f3), run end to end for its first seconds.
 //!
-//! Invariants: (1) the aircraft each follower tracks is, in its telemetry, exactly where the
-//! leader's own simulation put it at every logged instant (the relay of the leader's truth);
+//! Invariants: (1) the aircraft each follower tracks is, in its telemetry, where the leader's
+//! own simulation put it at every logged instant, within a thousandth of a foot (the relay of
+//! the leader's truth, carried over one tick with its velocity and acceleration);
 //! (2) every frame any follower measured was of the aircraft it tracks, by the truth (no
 //! teammate captured a track) and none went unmeasured; (3) the outputs: one folder per
 //! follower with today's files, and `group.json` with the followers leaders first.
@@ -50,7 +51,7 @@ fn platoon_links_track_their_leaders() {
         assert_eq!(ahead.len(), seen.len());
         for (a, s) in ahead.iter().zip(&seen) {
             let off: f64 = (0..3).map(|i| (a[i] - s[i]).abs()).sum();
-            assert!(off < 1e-6, "{follower} sees {leader} {off} ft off");
+            assert!(off < 1e-3, "{follower} sees {leader} {off} ft off");
         }
     }
 }

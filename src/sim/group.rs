@@ -1,13 +1,13 @@
 //! A group run (docs/design.md, Group tracking): the targets of a [`GroupScenario`] and one
-//! [`Simulation`] per follower, stepped in lockstep, each leader before the followers that
-//! track it.
+//! [`Simulation`] per follower (set up leaders first), stepped in lockstep.
 //!
 //! The group moves the targets. Each follower tracks its aircraft through a [`Relay`] of
-//! that aircraft's truth (the target's state, or the leading follower's state just after its
-//! step), and its camera draws every other aircraft of the group at the frame's instant
-//! (a follower not stepped yet to that instant carried there with its velocity and
-//! acceleration, at most one tick). The followers' estimators and guidance see their pixels
-//! alone. The group stops at the first tick any follower's run ends (lost, falsely locked,
+//! that aircraft's truth (the target's state, or the leading follower's carried over the tick
+//! with its velocity and acceleration), and its camera draws every other aircraft of the
+//! group at the frame's instant, carried there likewise. So the followers' steps within a
+//! tick do not depend on one another, and they are taken on threads of their own on the
+//! ticks their cameras take a frame. The followers' estimators and guidance see their
+//! pixels alone. The group stops at the first tick any follower's run ends (lost, falsely locked,
 //! diverged, or a stop asked for), or at the end of the run.
 
 use super::build::target_of;
@@ -155,11 +155,15 @@ impl Group {
         }
     }
 
-    /// The true state of `leader` at `t_s` (a follower's at its last step).
+    /// The true state of `leader` at `t_s`: a target's own, a follower's carried there from
+    /// its last tick.
     fn leader_state(&self, leader: Leader, t_s: f64) -> TargetState {
         match leader {
             Leader::Target(i) => self.targets[i].model.state(t_s),
-            Leader::Follower(j) => self.members[j].truth,
+            Leader::Follower(j) => {
+                let truth = &self.members[j].truth;
+                carried(truth, t_s - self.members[j].sim.time_s())
+            }
         }
     }
 
@@ -203,8 +207,12 @@ impl Group {
     }
 
     /// Takes one tick of every follower (nothing once [`Self::is_over`]); `stop_asked` as
-    /// [`Simulation::run_tick`]'s.
-    pub fn step(&mut self, stop_asked: impl Fn() -> bool) -> Result<(), SimError> {
+    /// [`Simulation::run_tick`]'s. Every follower is given its leader and the other aircraft
+    /// at the tick's end as this tick's states carry them there (the targets' own: they have
+    /// moved first), so that the followers' steps are independent: a tick on which their
+    /// cameras take a frame steps them on threads of their own, their frames drawn and
+    /// measured at once (docs/findings.md, Group tracking, the cost).
+    pub fn step(&mut self, stop_asked: impl Fn() -> bool + Sync) -> Result<(), SimError> {
         if self.is_over() {
             return Ok(());
         }
@@ -219,21 +227,28 @@ impl Group {
                     what: format!("target {}: {}", target.name, diverged.what),
                 })?;
         }
-        for j in 0..self.members.len() {
-            let started = Instant::now();
-            let leader = self.leader_state(self.members[j].leader, t_next_s);
-            let others = self.others_seen_by(j, t_next_s);
-            let member = &mut self.members[j];
-            member.relay.set(t_next_s, leader);
-            member.sim.set_other_aircraft(&others);
-            let tick = member.sim.run_tick(&stop_asked);
-            member.logged.extend(tick.logged);
-            member.end = tick.end;
-            let mut truth = member.sim.own_state();
-            truth.accel_ned_fps2 =
-                (truth.velocity_ned_fps - member.truth.velocity_ned_fps) / self.dt_s;
-            member.truth = truth;
-            member.wall += started.elapsed();
+        let views: Vec<(TargetState, Vec<OtherAircraft>)> = (0..self.members.len())
+            .map(|j| {
+                let leader = self.leader_state(self.members[j].leader, t_next_s);
+                (leader, self.others_seen_by(j, t_next_s))
+            })
+            .collect();
+        let frame_tick = self
+            .members
+            .iter()
+            .any(|m| (m.sim.camera()).is_some_and(|c| c.is_frame_tick(m.sim.tick() + 1)));
+        let (t_next_s, dt_s, stop_asked) = (t_next_s, self.dt_s, &stop_asked);
+        let members = self.members.iter_mut().zip(views);
+        if frame_tick {
+            std::thread::scope(|scope| {
+                for (member, view) in members {
+                    scope.spawn(move || member.step(t_next_s, dt_s, view, stop_asked));
+                }
+            });
+        } else {
+            for (member, view) in members {
+                member.step(t_next_s, dt_s, view, stop_asked);
+            }
         }
         self.tick += 1;
         if self.tick.is_multiple_of(self.log_every) {
@@ -243,29 +258,50 @@ impl Group {
     }
 
     /// Every aircraft follower `j`'s camera draws at `t_s` (the group's next tick): all but
-    /// itself and the one it tracks. Followers before it have stepped to `t_s`; those after
-    /// it are carried there from their last tick.
+    /// itself and the one it tracks.
     fn others_seen_by(&self, j: usize, t_s: f64) -> Vec<OtherAircraft> {
         let leader = self.members[j].leader;
-        let of = |state: TargetState, size_ft: f64| OtherAircraft {
-            position_ned_ft: state.position_ned_ft,
-            attitude: state.attitude,
-            size_ft,
-        };
-        let targets = (self.targets.iter().enumerate())
-            .filter(|(i, _)| leader != Leader::Target(*i))
-            .map(|(_, t)| of(t.model.state(t_s), t.size_ft));
-        let followers = (self.members.iter().enumerate())
-            .filter(|(k, _)| *k != j && leader != Leader::Follower(*k))
-            .map(|(k, m)| {
-                let state = if k < j {
-                    m.truth
-                } else {
-                    carried(&m.truth, self.dt_s)
-                };
-                of(state, m.size_ft)
-            });
-        targets.chain(followers).collect()
+        let targets = (0..self.targets.len())
+            .filter(|i| leader != Leader::Target(*i))
+            .map(|i| (Leader::Target(i), self.targets[i].size_ft));
+        let followers = (0..self.members.len())
+            .filter(|k| *k != j && leader != Leader::Follower(*k))
+            .map(|k| (Leader::Follower(k), self.members[k].size_ft));
+        targets
+            .chain(followers)
+            .map(|(aircraft, size_ft)| {
+                let state = self.leader_state(aircraft, t_s);
+                OtherAircraft {
+                    position_ned_ft: state.position_ned_ft,
+                    attitude: state.attitude,
+                    size_ft,
+                }
+            })
+            .collect()
+    }
+}
+
+impl GroupMember {
+    /// One tick of this follower, its leader and the others at the tick's end `t_next_s`
+    /// given in `view`; its true state then, the acceleration from the tick's change of
+    /// velocity over `dt_s`.
+    fn step(
+        &mut self,
+        t_next_s: f64,
+        dt_s: f64,
+        (leader, others): (TargetState, Vec<OtherAircraft>),
+        stop_asked: &(impl Fn() -> bool + Sync),
+    ) {
+        let started = Instant::now();
+        self.relay.set(t_next_s, leader);
+        self.sim.set_other_aircraft(&others);
+        let tick = self.sim.run_tick(stop_asked);
+        self.logged.extend(tick.logged);
+        self.end = tick.end;
+        let mut truth = self.sim.own_state();
+        truth.accel_ned_fps2 = (truth.velocity_ned_fps - self.truth.velocity_ned_fps) / dt_s;
+        self.truth = truth;
+        self.wall += started.elapsed();
     }
 }
 
