@@ -40,7 +40,7 @@ pub struct FollowerResult {
     pub b_hat_error_fraction: f64,
     /// RMS of R - R_c per NED axis over the last [`SLOT_RMS_WINDOW_S`] s, ft.
     pub slot_rms_last_20s_ft: [f64; 3],
-    /// Wall time of its set-up and steps, s.
+    /// Wall time of its set-up and steps, s (the followers step at once on frame ticks).
     pub wall_s: f64,
 }
 
