@@ -18,7 +18,7 @@
 //! (after the command line's), so every follower is a whole [`Scenario`] passed by the same
 //! checks; each extra target is the file's scenario with its entry's keys set in `[target]`.
 //! The run section is the group's: the followers step together. Follower `k` (0-based, in
-//! the file's order) flies its own turbulence stream, `run.seed + k·2³²`.
+//! the file's order) flies its own turbulence stream, `run.seed + k·2³²` (modulo 2⁶³).
 
 use super::origin::ScenarioSource;
 use super::{Scenario, ScenarioError};
@@ -97,7 +97,8 @@ impl GroupScenario {
                 ));
             }
             let mut scenario = member_scenario(&source, "group.follower", &name, &sets)?;
-            scenario.run.seed = base.run.seed.wrapping_add((k as u64) << 32);
+            // Within the key's range, [0, 2⁶³ - 1].
+            scenario.run.seed = base.run.seed.wrapping_add((k as u64) << 32) & (i64::MAX as u64);
             followers.push(GroupFollower {
                 name,
                 tracks,
