@@ -411,6 +411,14 @@ fn progress_bar(name: &str, quiet: bool) -> Option<indicatif::ProgressBar> {
 fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> ExitCode {
     let name = stem(path);
     let out_dir = out.unwrap_or_else(|| PathBuf::from("runs").join(&name));
+    match wingman::output::group::load_checked(path, overrides) {
+        Ok(Some(group)) => return run_group(&group, &name, &out_dir, quiet),
+        Ok(None) => {}
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    }
     let checked = load_checked(path, overrides).and_then(|s| {
         folder::check(&out_dir)
             .map(|()| s)
@@ -453,6 +461,47 @@ fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> 
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(1)
+        }
+    }
+}
+
+/// Runs a group scenario (docs/design.md, Group tracking) into `out_dir`: exit code 0 when
+/// every follower kept its track to the end, 1 when one did not or the run failed, 2 for a
+/// scenario or folder the run cannot take.
+fn run_group(
+    group: &wingman::scenario::group::GroupScenario,
+    name: &str,
+    out_dir: &Path,
+    quiet: bool,
+) -> ExitCode {
+    if let Err(e) = interrupt::install_stop_handlers() {
+        eprintln!("warning: Ctrl-C and SIGTERM will not stop the run cleanly: {e}");
+    }
+    let bar = progress_bar(name, quiet);
+    let result = wingman::output::group::run_group_to_directory(group, name, out_dir, None, |f| {
+        if let Some(bar) = &bar {
+            bar.set_position((f * 1000.0) as u64);
+        }
+    });
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    match result {
+        Ok(summary) => {
+            if !quiet {
+                eprintln!("{}", summary.one_line(out_dir));
+            }
+            match &summary.stopped_by {
+                Some(why) => {
+                    eprintln!("error: {why}");
+                    ExitCode::from(1)
+                }
+                None => ExitCode::SUCCESS,
+            }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(if e.is_input_error() { 2 } else { 1 })
         }
     }
 }

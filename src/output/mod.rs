@@ -8,6 +8,8 @@ pub mod figure_set;
 pub mod figures;
 pub mod folder;
 pub mod frame_images;
+pub mod group;
+mod group_plot;
 pub mod interrupt;
 pub mod live;
 pub mod lock;

@@ -101,6 +101,25 @@ impl TargetPoseInCamera {
     }
 }
 
+/// Another aircraft drawn in the same frame as the target: the target's mesh at its own
+/// pose, scaled by `scale` (its size over the target's).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AircraftPose {
+    /// Where it is and how it is turned, as the camera sees it.
+    pub pose: TargetPoseInCamera,
+    /// Its size over the target's (the mesh's), > 0.
+    pub scale: f64,
+}
+
+impl AircraftPose {
+    /// A vertex of the target's mesh (target-body axes, ft) on this aircraft, in camera/body
+    /// coordinates.
+    pub fn body_point(&self, p_target_ft: &Vec3) -> Vec3 {
+        self.pose
+            .body_from_target_point(&(p_target_ft * self.scale))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -44,12 +44,15 @@ impl Passes {
     }
 
     /// One pass: sky and target into `targets` (multisampled and resolved when they have
-    /// multisampled colour), with the projection `uniforms` binds.
+    /// multisampled colour), with the projection `uniforms` binds, and the same mesh once
+    /// more for each of `others` (other aircraft's projections), the nearer surface of any
+    /// two drawn (depth).
     pub(super) fn draw_target(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         targets: &RenderTargets,
         uniforms: &wgpu::BindGroup,
+        others: &[&wgpu::BindGroup],
     ) {
         let (view, resolve_target) = targets.colour_attachment();
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -88,6 +91,10 @@ impl Passes {
         pass.set_pipeline(&self.pipelines.target);
         pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
         pass.draw(0..self.vertex_count, 0..1);
+        for other in others {
+            pass.set_bind_group(0, *other, &[]);
+            pass.draw(0..self.vertex_count, 0..1);
+        }
     }
 
     /// The sky alone, one sample per pixel, over the whole image of `view` or only over

@@ -17,7 +17,7 @@
 use std::time::Instant;
 
 use crate::frames::Vec3;
-use crate::render::camera::TargetPoseInCamera;
+use crate::render::camera::{AircraftPose, TargetPoseInCamera};
 use crate::render::gpu::GpuContext;
 use crate::render::image::CameraImage;
 use crate::render::mesh::TargetMesh;
@@ -32,7 +32,7 @@ use crate::render::settings::{RenderSettings, Sky};
 use crate::render::targets::{RenderTargets, WindowTargetsCache, copy_window, sky_texture};
 use crate::render::uniforms::{UniformSlots, uniform_layout};
 use crate::render::vertices::{TargetVertex, flat_shaded_vertices};
-use crate::render::window::{FramePlan, WindowCopy, plan_frame};
+use crate::render::window::{FramePlan, WindowCopy, plan_frame_with_others};
 
 /// Why a renderer could not be built or a frame not rendered.
 #[derive(Debug, thiserror::Error)]
@@ -114,6 +114,8 @@ pub struct Renderer {
     timings: RenderTimings,
     /// Where the camera is in a world scene (unused under a screen-fixed sky).
     camera_in_world: CameraInWorld,
+    /// Other aircraft drawn with the target in the frames begun from now on.
+    others: Vec<AircraftPose>,
 }
 
 impl Renderer {
@@ -207,6 +209,7 @@ impl Renderer {
             frame: CameraImage::filled(cam.width_px, cam.height_px, [0, 0, 0, 255]),
             timings: RenderTimings::default(),
             camera_in_world: CameraInWorld::default(),
+            others: Vec::new(),
         };
         if !renderer.has_world() {
             renderer.paint_sky_texture();
@@ -224,6 +227,12 @@ impl Renderer {
     /// Frames under a screen-fixed sky do not depend on it.
     pub fn set_camera_in_world(&mut self, camera: &CameraInWorld) {
         self.camera_in_world = *camera;
+    }
+
+    /// Draws `others` (the target's mesh at their poses and scales) with the target in the
+    /// frames begun from now on, occluding it and one another by depth (none by default).
+    pub fn set_other_aircraft(&mut self, others: &[AircraftPose]) {
+        self.others = others.to_vec();
     }
 
     /// Draws the sky texture, with the pass that draws the sky of a whole frame.
@@ -371,13 +380,22 @@ impl Renderer {
                 .write_image(&self.queue, pose, &self.camera_in_world);
         let cam = self.settings.intrinsics;
         let plan = if self.settings.target_window {
-            plan_frame(&self.vertices_ft, pose, &cam)
+            plan_frame_with_others(&self.vertices_ft, pose, &self.others, region, &cam)
         } else {
             FramePlan::Whole
         };
-        if let FramePlan::Window(window) = plan {
+        let window = match plan {
+            FramePlan::Window(window) => Some(window),
+            _ => None,
+        };
+        if let Some(window) = &window {
             self.uniform_slots
-                .write_window(&self.queue, &self.settings, &window, &target_to_body);
+                .write_window(&self.queue, &self.settings, window, &target_to_body);
+        }
+        if !self.others.is_empty() {
+            let in_window = window.as_ref().map(|w| (&self.settings, w));
+            self.uniform_slots
+                .write_others(&self.device, &self.queue, &self.others, in_window);
         }
 
         let mut encoder = self
@@ -447,9 +465,13 @@ impl Renderer {
         let whole = ImageRegion::whole(&self.settings.intrinsics);
         let image_uniforms = self.uniform_slots.bind_group(false);
         match plan {
-            FramePlan::Whole => self
-                .passes
-                .draw_target(encoder, &self.image, image_uniforms),
+            FramePlan::Whole => {
+                let others = self
+                    .uniform_slots
+                    .other_bind_groups(self.others.len(), false);
+                self.passes
+                    .draw_target(encoder, &self.image, image_uniforms, &others)
+            }
             FramePlan::SkyOnly => self.draw_sky_in(encoder, &whole),
             FramePlan::Window(window) => {
                 self.draw_sky_in(encoder, &whole);
@@ -497,7 +519,8 @@ impl Renderer {
         }
     }
 
-    /// Draws the target into its window's framebuffers; their slot in the cache.
+    /// Draws the target, and the other aircraft, into its window's framebuffers; their slot
+    /// in the cache.
     fn draw_in_window(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
@@ -505,10 +528,14 @@ impl Renderer {
     ) -> usize {
         let samples = self.settings.msaa_samples;
         let slot = self.windows.slot_for(&self.device, window, samples);
+        let others = self
+            .uniform_slots
+            .other_bind_groups(self.others.len(), true);
         self.passes.draw_target(
             encoder,
             self.windows.targets(slot),
             self.uniform_slots.bind_group(true),
+            &others,
         );
         slot
     }

@@ -1,12 +1,13 @@
 //! The per-frame uniforms: the block the shaders read and the buffer that holds it twice, once
-//! with the whole image's projection and once with the target window's.
+//! with the whole image's projection and once with the target window's; one such buffer
+//! for the target and one for each other aircraft drawn with it.
 //!
 //! Per frame only this 192-byte block changes; the mesh is uploaded once.
 
 use bytemuck::{Pod, Zeroable};
 use nalgebra::Matrix4;
 
-use crate::render::camera::TargetPoseInCamera;
+use crate::render::camera::{AircraftPose, TargetPoseInCamera};
 use crate::render::projection::{
     PixelWindow, body_from_target, clip_from_body, clip_from_body_in_window,
 };
@@ -37,10 +38,10 @@ struct FrameUniforms {
 
 const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 352);
 
-/// The uniform buffer's two slots, the whole image's projection and the target window's, a
-/// bind group for each, and the block last written to the first.
+/// A uniform buffer of two slots, the whole image's projection and the target window's, and
+/// a bind group for each.
 #[derive(Debug)]
-pub(super) struct UniformSlots {
+struct SlotPair {
     buffer: wgpu::Buffer,
     /// Binds the first slot: the whole image's projection.
     whole: wgpu::BindGroup,
@@ -48,26 +49,16 @@ pub(super) struct UniformSlots {
     window: wgpu::BindGroup,
     /// Byte offset of the second slot.
     window_offset: u64,
-    /// The first slot's block (the second is this one with the window's projection).
-    uniforms: FrameUniforms,
-    /// The whole image's projection of camera/body points.
-    clip_from_body: Matrix4<f64>,
-    /// The world scene, when the sky is one (its sun lights the target).
-    world: Option<WorldScene>,
 }
 
-impl UniformSlots {
+impl SlotPair {
     /// The buffer, its second slot at the first multiple of `min_offset_alignment` after the
-    /// first slot, and the slots' bind groups of `layout`; the first slot is written with the
-    /// block of `settings` (no target pose yet).
-    pub(super) fn new(
+    /// first, and the slots' bind groups of `layout`.
+    fn new(
         device: &wgpu::Device,
-        queue: &wgpu::Queue,
         layout: &wgpu::BindGroupLayout,
         min_offset_alignment: u32,
-        settings: &RenderSettings,
     ) -> Self {
-        let uniforms = initial_uniforms(settings);
         let uniform_size = std::mem::size_of::<FrameUniforms>() as u64;
         let window_offset = uniform_size.next_multiple_of(u64::from(min_offset_alignment));
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -90,25 +81,75 @@ impl UniformSlots {
                 }],
             })
         };
-        let slots = Self {
+        Self {
             whole: slot(0),
             window: slot(window_offset),
             window_offset,
             buffer,
-            uniforms,
+        }
+    }
+
+    fn bind_group(&self, in_window: bool) -> &wgpu::BindGroup {
+        if in_window { &self.window } else { &self.whole }
+    }
+}
+
+/// The uniform slots: the target's pair (the whole image's projection and the target
+/// window's), a pair for each other aircraft drawn with it (made when first needed), and
+/// the block last written to the target's first slot.
+#[derive(Debug)]
+pub(super) struct UniformSlots {
+    target: SlotPair,
+    /// One pair per other aircraft drawn in the last frame, or earlier ones.
+    others: Vec<SlotPair>,
+    /// What the pairs are made with.
+    layout: wgpu::BindGroupLayout,
+    min_offset_alignment: u32,
+    /// The target's first slot's block (the second is this one with the window's projection).
+    uniforms: FrameUniforms,
+    /// The whole image's projection of camera/body points.
+    clip_from_body: Matrix4<f64>,
+    /// The world scene, when the sky is one (its sun lights the target).
+    world: Option<WorldScene>,
+}
+
+impl UniformSlots {
+    /// The target's pair, its first slot written with the block of `settings` (no target
+    /// pose yet).
+    pub(super) fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layout: &wgpu::BindGroupLayout,
+        min_offset_alignment: u32,
+        settings: &RenderSettings,
+    ) -> Self {
+        let slots = Self {
+            target: SlotPair::new(device, layout, min_offset_alignment),
+            others: Vec::new(),
+            layout: layout.clone(),
+            min_offset_alignment,
+            uniforms: initial_uniforms(settings),
             clip_from_body: clip_from_body(&settings.intrinsics),
             world: match settings.background.sky {
                 Sky::World(world) => Some(world),
                 _ => None,
             },
         };
-        queue.write_buffer(&slots.buffer, 0, bytemuck::bytes_of(&slots.uniforms));
+        queue.write_buffer(&slots.target.buffer, 0, bytemuck::bytes_of(&slots.uniforms));
         slots
     }
 
     /// The bind group of the whole image's projection or, `in_window`, of the window's.
     pub(super) fn bind_group(&self, in_window: bool) -> &wgpu::BindGroup {
-        if in_window { &self.window } else { &self.whole }
+        self.target.bind_group(in_window)
+    }
+
+    /// The bind groups of the first `count` other aircraft (see [`Self::write_others`]).
+    pub(super) fn other_bind_groups(&self, count: usize, in_window: bool) -> Vec<&wgpu::BindGroup> {
+        self.others[..count]
+            .iter()
+            .map(|pair| pair.bind_group(in_window))
+            .collect()
     }
 
     /// Writes the first slot (the whole image's projection of the target at `pose`, and the
@@ -132,7 +173,7 @@ impl UniformSlots {
         let clip_from_target = self.clip_from_body * target_to_body;
         self.uniforms.clip_from_target = columns_f32(&clip_from_target);
         self.uniforms.body_from_target = columns3_f32(&pose.body_from_target);
-        queue.write_buffer(&self.buffer, 0, bytemuck::bytes_of(&self.uniforms));
+        queue.write_buffer(&self.target.buffer, 0, bytemuck::bytes_of(&self.uniforms));
         target_to_body
     }
 
@@ -145,17 +186,64 @@ impl UniformSlots {
         window: &PixelWindow,
         target_to_body: &Matrix4<f64>,
     ) {
-        let mut in_window = self.uniforms;
-        in_window.clip_from_target =
-            columns_f32(&(clip_from_body_in_window(&settings.intrinsics, window) * target_to_body));
-        in_window.image[1] = window.v0_px as f32;
-        in_window.image[2] = window.u0_px as f32;
-        queue.write_buffer(
-            &self.buffer,
-            self.window_offset,
-            bytemuck::bytes_of(&in_window),
+        write_in_window(
+            queue,
+            &self.target,
+            self.uniforms,
+            settings,
+            window,
+            target_to_body,
         );
     }
+
+    /// Writes the pairs of the other aircraft drawn with the target (after
+    /// [`Self::write_image`], whose world and light they share): each the target's block
+    /// with the aircraft's pose and scale, in the whole image and, when the frame has one,
+    /// in `window`.
+    pub(super) fn write_others(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        others: &[AircraftPose],
+        window: Option<(&RenderSettings, &PixelWindow)>,
+    ) {
+        while self.others.len() < others.len() {
+            let pair = SlotPair::new(device, &self.layout, self.min_offset_alignment);
+            self.others.push(pair);
+        }
+        for (other, pair) in others.iter().zip(&self.others) {
+            let to_body = body_from_target(&other.pose) * Matrix4::new_scaling(other.scale);
+            let mut block = self.uniforms;
+            block.clip_from_target = columns_f32(&(self.clip_from_body * to_body));
+            block.body_from_target = columns3_f32(&other.pose.body_from_target);
+            queue.write_buffer(&pair.buffer, 0, bytemuck::bytes_of(&block));
+            if let Some((settings, window)) = window {
+                write_in_window(queue, pair, block, settings, window, &to_body);
+            }
+        }
+    }
+}
+
+/// Writes the second slot of `pair`: `block` with the projection of `settings`' camera
+/// into `window` of the points `to_body` takes to camera/body axes.
+fn write_in_window(
+    queue: &wgpu::Queue,
+    pair: &SlotPair,
+    block: FrameUniforms,
+    settings: &RenderSettings,
+    window: &PixelWindow,
+    to_body: &Matrix4<f64>,
+) {
+    let mut in_window = block;
+    in_window.clip_from_target =
+        columns_f32(&(clip_from_body_in_window(&settings.intrinsics, window) * to_body));
+    in_window.image[1] = window.v0_px as f32;
+    in_window.image[2] = window.u0_px as f32;
+    queue.write_buffer(
+        &pair.buffer,
+        pair.window_offset,
+        bytemuck::bytes_of(&in_window),
+    );
 }
 
 /// The layout of one uniform slot: a [`FrameUniforms`] at binding 0, seen by both stages.

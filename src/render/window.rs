@@ -13,7 +13,7 @@
 //! frame: the target's window does not depend on the region.
 
 use crate::frames::Vec3;
-use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use crate::render::camera::{AircraftPose, CameraIntrinsics, TargetPoseInCamera};
 use crate::render::projection::{NEAR_PLANE_FT, PixelWindow};
 use crate::render::region::ImageRegion;
 
@@ -55,33 +55,102 @@ pub fn plan_frame(
     pose: &TargetPoseInCamera,
     intrinsics: &CameraIntrinsics,
 ) -> FramePlan {
-    let (mut u_min, mut u_max) = (f64::INFINITY, f64::NEG_INFINITY);
-    let (mut v_min, mut v_max) = (f64::INFINITY, f64::NEG_INFINITY);
-    for vertex in vertices_ft {
-        let p = pose.body_from_target * vertex + pose.position_body_ft;
-        // (A NaN depth is not in front either.)
-        if p.x.is_nan() || p.x <= 2.0 * NEAR_PLANE_FT {
-            return FramePlan::Whole;
+    let whole = ImageRegion::whole(intrinsics);
+    plan_frame_with_others(vertices_ft, pose, &[], &whole, intrinsics)
+}
+
+/// [`plan_frame`] for the target at `pose` and other aircraft drawn with it (the same mesh
+/// at their own poses and scales) in a frame that reads back `region` of the image: one
+/// window around the target and every other aircraft that reaches into the region (the
+/// others leave the region's pixels as they are). An aircraft wholly behind the camera is
+/// left out (it would only force the whole frame); one only partly behind the near plane,
+/// as the target, draws the whole frame.
+pub fn plan_frame_with_others(
+    vertices_ft: &[Vec3],
+    pose: &TargetPoseInCamera,
+    others: &[AircraftPose],
+    region: &ImageRegion,
+    intrinsics: &CameraIntrinsics,
+) -> FramePlan {
+    let target = vertices_ft
+        .iter()
+        .map(|v| pose.body_from_target * v + pose.position_body_ft);
+    let Some(mut bounds) = projected_bounds(target, intrinsics) else {
+        return FramePlan::Whole;
+    };
+    for other in others {
+        let points = vertices_ft.iter().map(|v| other.body_point(v));
+        if points.clone().all(|p| p.x <= 0.0) {
+            continue;
         }
-        let Some((u, v)) = intrinsics.pixel_of_direction(&p) else {
+        let Some(b) = projected_bounds(points, intrinsics) else {
             return FramePlan::Whole;
         };
+        if b.overlaps(region) {
+            bounds = if bounds.overlaps(&ImageRegion::whole(intrinsics)) {
+                bounds.union(&b)
+            } else {
+                b
+            };
+        }
+    }
+    plan_bounds(&bounds, intrinsics)
+}
+
+/// The bounding box of projected points, px: `[u_min, u_max, v_min, v_max]`.
+#[derive(Debug, Clone, Copy)]
+struct PixelBounds([f64; 4]);
+
+impl PixelBounds {
+    /// Whether the box, with the margin, reaches into `region`.
+    fn overlaps(&self, region: &ImageRegion) -> bool {
+        let [u_min, u_max, v_min, v_max] = self.0;
+        let (u0, v0) = (f64::from(region.u0_px), f64::from(region.v0_px));
+        u_max > u0 - MARGIN_PX
+            && v_max > v0 - MARGIN_PX
+            && u_min < f64::from(region.u_end_px()) + MARGIN_PX
+            && v_min < f64::from(region.v_end_px()) + MARGIN_PX
+    }
+
+    fn union(&self, other: &Self) -> Self {
+        let [a, b] = [self.0, other.0];
+        Self([
+            a[0].min(b[0]),
+            a[1].max(b[1]),
+            a[2].min(b[2]),
+            a[3].max(b[3]),
+        ])
+    }
+}
+
+/// The bounding box of `points` (camera/body axes, ft) projected, or None when a point is
+/// not well in front of the camera (the frame is then drawn whole).
+fn projected_bounds(
+    points: impl Iterator<Item = Vec3>,
+    intrinsics: &CameraIntrinsics,
+) -> Option<PixelBounds> {
+    let (mut u_min, mut u_max) = (f64::INFINITY, f64::NEG_INFINITY);
+    let (mut v_min, mut v_max) = (f64::INFINITY, f64::NEG_INFINITY);
+    for p in points {
+        // (A NaN depth is not in front either.)
+        if p.x.is_nan() || p.x <= 2.0 * NEAR_PLANE_FT {
+            return None;
+        }
+        let (u, v) = intrinsics.pixel_of_direction(&p)?;
         u_min = u_min.min(u);
         u_max = u_max.max(u);
         v_min = v_min.min(v);
         v_max = v_max.max(v);
     }
-    let (width, height) = (
-        f64::from(intrinsics.width_px),
-        f64::from(intrinsics.height_px),
-    );
-    let overlaps = u_max > -MARGIN_PX
-        && v_max > -MARGIN_PX
-        && u_min < width + MARGIN_PX
-        && v_min < height + MARGIN_PX;
-    if !overlaps {
+    Some(PixelBounds([u_min, u_max, v_min, v_max]))
+}
+
+/// The plan of a frame whose aircraft project into `bounds`.
+fn plan_bounds(bounds: &PixelBounds, intrinsics: &CameraIntrinsics) -> FramePlan {
+    if !bounds.overlaps(&ImageRegion::whole(intrinsics)) {
         return FramePlan::SkyOnly;
     }
+    let [u_min, u_max, v_min, v_max] = bounds.0;
     let u0 = (u_min - MARGIN_PX).floor();
     let v0 = (v_min - MARGIN_PX).floor();
     let side = |extent: f64| window_side_px(extent.min(f64::from(u32::MAX / 2)) as u32);

@@ -8,6 +8,7 @@ pub mod check;
 mod control;
 mod estimator;
 mod gimbal;
+pub mod group;
 mod navigation;
 pub mod origin;
 mod probe;
@@ -214,6 +215,9 @@ impl Scenario {
     /// Parses, overrides and validates a source.
     fn from_source(source: &ScenarioSource) -> Result<Scenario, ScenarioError> {
         let mut table: toml::Table = source.text.parse().map_err(|e| source.text_error(&e))?;
+        // A group's members are read by `group::GroupScenario`; the file's own sections are
+        // the pair its members start from.
+        table.remove("group");
         for text in &source.overrides {
             apply_override(&mut table, text).map_err(|reason| ScenarioError::Override {
                 text: text.clone(),

@@ -10,7 +10,35 @@
 //! simulation supplies the follower's own solution here without touching the sensors.
 
 use crate::frames::{EulerAngles, Mat3, Vec3};
-use crate::render::camera::TargetPoseInCamera;
+use crate::render::camera::{AircraftPose, TargetPoseInCamera};
+
+/// Another aircraft in the camera's world (a teammate, or a target not tracked): drawn in
+/// every frame with the tracked target, as the target's mesh at its size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OtherAircraft {
+    /// Its reference point, NED, ft (true).
+    pub position_ned_ft: Vec3,
+    /// Its attitude (true).
+    pub attitude: EulerAngles,
+    /// Its size (span), ft.
+    pub size_ft: f64,
+}
+
+impl OtherAircraft {
+    /// How a camera on `follower` (its true pose) sees it, drawn with a mesh of
+    /// `mesh_size_ft`.
+    pub fn pose_from(&self, follower: &FollowerPose, mesh_size_ft: f64) -> AircraftPose {
+        let camera_from_ned = follower.camera_from_ned();
+        AircraftPose {
+            pose: TargetPoseInCamera {
+                position_body_ft: camera_from_ned
+                    * (self.position_ned_ft - follower.position_ned_ft),
+                body_from_target: camera_from_ned * self.attitude.body_from_ned().transpose(),
+            },
+            scale: self.size_ft / mesh_size_ft,
+        }
+    }
+}
 
 /// The follower's pose and its camera's pointing, true or as its navigation knows them.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -26,7 +26,7 @@ pub mod transform;
 
 pub use camera::{CameraSensor, FrameRecord, SensorError};
 pub use config::{CameraConfig, NoisyConfig, SensorConfig};
-pub use geometry::{CaptureGeometry, FollowerPose};
+pub use geometry::{CaptureGeometry, FollowerPose, OtherAircraft};
 pub use noisy::NoisySensor;
 pub use transform::{
     bearing_elevation_rad, image_from_relative_position, line_of_sight_body,
@@ -148,6 +148,14 @@ impl Sensor {
 
     /// The camera, in camera runs.
     pub fn camera(&self) -> Option<&CameraSensor> {
+        match self {
+            Self::Camera(camera) => Some(camera),
+            _ => None,
+        }
+    }
+
+    /// The camera, in camera runs, to change what it draws.
+    pub fn camera_mut(&mut self) -> Option<&mut CameraSensor> {
         match self {
             Self::Camera(camera) => Some(camera),
             _ => None,

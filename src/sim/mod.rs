@@ -18,6 +18,7 @@
 
 mod build;
 mod evaluate;
+pub mod group;
 mod layout;
 mod navigate;
 mod record;
@@ -47,10 +48,10 @@ use crate::scenario::{FollowerModel, Mission, Scenario};
 use crate::sensing::gimbal::{GIMBAL_STATE_NAMES, Gimbal, GimbalAngles};
 use crate::sensing::losses::{LossEpisode, LossLog};
 use crate::sensing::{
-    CameraSensor, CaptureGeometry, NoisySensor, Sensor, SensorConfig, SensorError,
+    CameraSensor, CaptureGeometry, NoisySensor, OtherAircraft, Sensor, SensorConfig, SensorError,
 };
 use crate::target_aircraft::TargetAircraftError;
-use crate::world::target::TargetModel;
+use crate::world::target::{TargetModel, TargetState};
 use crate::world::trajectory::TrackError;
 use layout::StateLayout;
 use std::cell::Cell;
@@ -169,6 +170,16 @@ impl Simulation {
     /// [`Self::new`], with a camera rendering on `gpu` when given (a device shared by the
     /// runs of a sweep) and on a device of its own otherwise.
     pub fn on_gpu(scenario: &Scenario, gpu: Option<&GpuContext>) -> Result<Self, SimError> {
+        Self::with_target(scenario, gpu, target_of(scenario)?)
+    }
+
+    /// [`Self::on_gpu`] with the target `target` instead of the one `[target]` describes
+    /// (a group's relayed aircraft, `sim::group`).
+    pub fn with_target(
+        scenario: &Scenario,
+        gpu: Option<&GpuContext>,
+        target: Box<dyn TargetModel>,
+    ) -> Result<Self, SimError> {
         let g = &scenario.guidance;
         let (follower, follower_x) = follower_of(scenario)?;
         let compensate = scenario.follower.model == FollowerModel::Aircraft;
@@ -176,7 +187,6 @@ impl Simulation {
             .map_err(|e| SimError::Sensor(Box::new(e)))?;
         let (estimator, guidance, notes) =
             estimation_stage(scenario, compensate, sensor.is_continuous())?;
-        let target = target_of(scenario)?;
         let gimbal = gimbal_of(scenario, target.as_ref());
         let body_from_ned = follower.attitude(&follower_x).body_from_ned();
         let gimbal_x = gimbal
@@ -321,6 +331,26 @@ impl Simulation {
     /// than the target), s; None while the last measurement was of the target.
     pub fn off_target_since_s(&self) -> Option<f64> {
         self.false_locks.open_since_s()
+    }
+
+    /// Draws `others` with the target in the camera's frames from the next one on (camera
+    /// runs; nothing otherwise).
+    pub fn set_other_aircraft(&mut self, others: &[OtherAircraft]) {
+        if let Some(camera) = self.sensor.camera_mut() {
+            camera.set_other_aircraft(others);
+        }
+    }
+
+    /// The follower's true state now, as another aircraft would track it (its acceleration
+    /// left zero: the caller differences velocities).
+    pub fn own_state(&self) -> TargetState {
+        let x = self.layout.split(&self.state).follower;
+        TargetState {
+            position_ned_ft: self.follower.position_ned_ft(x),
+            velocity_ned_fps: self.follower.track_ned_fps(x),
+            accel_ned_fps2: Vec3::zeros(),
+            attitude: self.follower.attitude(x),
+        }
     }
 
     /// The noisy sensor, in noisy runs.

@@ -6,7 +6,7 @@ use super::CameraTimings;
 use super::schedule::Exposure;
 use super::setup::SensorError;
 use crate::frames::Mat3;
-use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use crate::render::camera::{AircraftPose, CameraIntrinsics, TargetPoseInCamera};
 use crate::render::gpu::GpuContext;
 use crate::render::image::CameraImage;
 use crate::render::mesh::TargetMesh;
@@ -16,6 +16,7 @@ use crate::render::scene::CameraInWorld;
 use crate::render::settings::RenderSettings;
 use crate::scenario::CameraPipeline;
 use crate::sensing::binning::{Binning, binned_intrinsics, binned_region};
+use crate::sensing::geometry::OtherAircraft;
 use crate::vision::{BlobMeasurement, TrackingWindow};
 
 /// How the frames were drawn and measured (`camera.pipeline = "window"`), counted over the
@@ -95,6 +96,10 @@ pub(super) struct FrameDrawing {
     /// The binning each of `pixels` was drawn at (1: none); `regions` and `windows` are in its
     /// pixels.
     factors: [u32; 2],
+    /// Other aircraft to draw in the frames begun from now on.
+    others: Vec<OtherAircraft>,
+    /// The other aircraft each of `pixels` was drawn with, as its camera saw them.
+    drawn_others: [Vec<AircraftPose>; 2],
 }
 
 /// What [`FrameDrawing`] is made of, besides its device and mesh.
@@ -139,6 +144,8 @@ impl FrameDrawing {
             regions: [whole, whole],
             windows: [None, None],
             factors: [1, 1],
+            others: Vec::new(),
+            drawn_others: [Vec::new(), Vec::new()],
         })
     }
 
@@ -150,6 +157,11 @@ impl FrameDrawing {
     /// The target mesh.
     pub fn mesh(&self) -> &TargetMesh {
         &self.mesh
+    }
+
+    /// Draws `others` with the target in the frames begun from now on.
+    pub fn set_other_aircraft(&mut self, others: &[OtherAircraft]) {
+        self.others = others.to_vec();
     }
 
     /// How the frames were drawn so far.
@@ -205,9 +217,15 @@ impl FrameDrawing {
         let buffer = buffer_of(exposure.index);
         self.factors[buffer] = factor;
         let pose = self.drawn_pose(exposure);
+        let mesh_size_ft = self.mesh.max_dimension_ft();
+        let others: Vec<AircraftPose> = (self.others.iter())
+            .map(|o| o.pose_from(&exposure.geometry.follower, mesh_size_ft))
+            .collect();
         let renderer = self.renderer_for(factor)?;
         renderer.set_camera_in_world(&camera_in_world(exposure));
+        renderer.set_other_aircraft(&others);
         let pending = renderer.begin_frame_in(&pose, region)?;
+        self.drawn_others[buffer] = others;
         self.windows[buffer] = window;
         Ok(pending)
     }
@@ -228,6 +246,7 @@ impl FrameDrawing {
         self.factors[buffer] = 1;
         self.renderer
             .set_camera_in_world(&camera_in_world(exposure));
+        self.renderer.set_other_aircraft(&self.drawn_others[buffer]);
         let redrawn = self.renderer.begin_frame_in(&pose, &whole)?;
         self.finish(&mut Some((redrawn, exposure.index)), timings)?;
         self.windows[buffer] = None;

@@ -36,7 +36,7 @@ pub use drawing::WindowCounts;
 pub use setup::{SensorError, load_target_mesh};
 
 use super::config::CameraConfig;
-use super::geometry::CaptureGeometry;
+use super::geometry::{CaptureGeometry, OtherAircraft};
 use super::transform::scaled_relative_position;
 use crate::frames::{Mat3, Vec3};
 use crate::render::camera::CameraIntrinsics;
@@ -192,6 +192,11 @@ impl CameraSensor {
             timings: CameraTimings::default(),
             adapter: gpu.description(),
         })
+    }
+
+    /// Draws `others` with the target in the frames taken from now on (none by default).
+    pub fn set_other_aircraft(&mut self, others: &[OtherAircraft]) {
+        self.drawing.set_other_aircraft(others);
     }
 
     /// Whether a frame is taken at this tick.

@@ -1,0 +1,317 @@
+//! A group run (docs/design.md, Group tracking): the targets of a [`GroupScenario`] and one
+//! [`Simulation`] per follower (set up leaders first), stepped in lockstep.
+//!
+//! The group moves the targets. Each follower tracks its aircraft through a [`Relay`] of
+//! that aircraft's truth (the target's state, or the leading follower's carried over the tick
+//! with its velocity and acceleration), and its camera draws every other aircraft of the
+//! group at the frame's instant, carried there likewise. So the followers' steps within a
+//! tick do not depend on one another, and they are taken on threads of their own on the
+//! ticks their cameras take a frame. The followers' estimators and guidance see their
+//! pixels alone. The group stops at the first tick any follower's run ends (lost, falsely locked,
+//! diverged, or a stop asked for), or at the end of the run.
+
+use super::build::target_of;
+use super::{RunEnd, SimError, Simulation, Snapshot};
+use crate::follower::AircraftSetupError;
+use crate::frames::Vec3;
+use crate::render::GpuContext;
+use crate::scenario::group::{GroupFollower, GroupScenario};
+use crate::scenario::{FollowerModel, Scenario};
+use crate::sensing::{OtherAircraft, SensorError};
+use crate::world::aircraft::AircraftParams;
+use crate::world::relay::{Relay, carried};
+use crate::world::target::{TargetModel, TargetState};
+use std::time::{Duration, Instant};
+
+/// What a follower tracks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Leader {
+    /// The group's target of this index.
+    Target(usize),
+    /// The follower of this index (stepped before it).
+    Follower(usize),
+}
+
+/// One follower of a group run: its simulation, what it logged and how it ended.
+#[derive(Debug)]
+pub struct GroupMember {
+    /// Its name.
+    pub name: String,
+    /// The name of the aircraft it tracks.
+    pub tracks: String,
+    /// Its simulation.
+    pub sim: Simulation,
+    /// Its logged snapshots (`telemetry.csv`'s rows).
+    pub logged: Vec<Snapshot>,
+    /// Why its run ended, once it has.
+    pub end: Option<RunEnd>,
+    /// Wall time of its set-up and steps.
+    pub wall: Duration,
+    /// Its size (span) as the others draw it, ft.
+    pub size_ft: f64,
+    leader: Leader,
+    relay: Relay,
+    /// Its true state at the last tick (acceleration from the last two ticks).
+    truth: TargetState,
+}
+
+/// A target of a group run.
+#[derive(Debug)]
+struct GroupTargetTruth {
+    name: String,
+    model: Box<dyn TargetModel>,
+    size_ft: f64,
+}
+
+/// A group run in progress.
+#[derive(Debug)]
+pub struct Group {
+    targets: Vec<GroupTargetTruth>,
+    members: Vec<GroupMember>,
+    dt_s: f64,
+    tick: u64,
+    total_ticks: u64,
+    /// Ticks between samples of the targets' track (`run.log_every`).
+    log_every: u64,
+    /// The targets' positions, NED, ft, at the run's start and every `log_every` ticks.
+    target_tracks: Vec<Vec<Vec3>>,
+}
+
+impl Group {
+    /// Sets up the targets and every follower (on `gpu` when given, else on one device
+    /// opened here for all of them), leaders first.
+    pub fn new(group: &GroupScenario, gpu: Option<&GpuContext>) -> Result<Self, SimError> {
+        let own_gpu;
+        let gpu = match gpu {
+            Some(gpu) => gpu,
+            None => {
+                own_gpu = GpuContext::new()
+                    .map_err(|e| SimError::Sensor(Box::new(SensorError::Gpu(e))))?;
+                &own_gpu
+            }
+        };
+        let mut targets = Vec::new();
+        for t in &group.targets {
+            targets.push(GroupTargetTruth {
+                name: t.name.clone(),
+                model: target_of(&t.scenario)?,
+                size_ft: t.scenario.target.size_ft,
+            });
+        }
+        let run = &group.followers[0].scenario.run;
+        let mut built = Self {
+            targets,
+            members: Vec::new(),
+            dt_s: run.dt_s,
+            tick: 0,
+            total_ticks: run.total_ticks(),
+            log_every: u64::from(run.log_every).max(1),
+            target_tracks: Vec::new(),
+        };
+        built.target_tracks.push(built.target_positions());
+        for follower in &group.followers {
+            let member = built.member(follower, gpu)?;
+            built.members.push(member);
+        }
+        Ok(built)
+    }
+
+    /// The simulation of `follower`, tracking its leader (already built) through a relay.
+    fn member(&self, follower: &GroupFollower, gpu: &GpuContext) -> Result<GroupMember, SimError> {
+        let started = Instant::now();
+        let leader = self.leader_of(&follower.tracks);
+        let mut scenario = follower.scenario.clone();
+        if let Leader::Follower(j) = leader {
+            let ahead = &self.members[j];
+            scenario.target.size_ft = ahead.size_ft;
+            scenario.target.initial_position_ft = ahead.sim.scenario().follower.initial_position_ft;
+        }
+        let relay = Relay::new(0.0, self.leader_state(leader, 0.0));
+        let sim = Simulation::with_target(&scenario, Some(gpu), relay.target())?;
+        let logged = vec![sim.snapshot()];
+        Ok(GroupMember {
+            name: follower.name.clone(),
+            tracks: follower.tracks.clone(),
+            truth: sim.own_state(),
+            size_ft: drawn_size_ft(&scenario)?,
+            sim,
+            logged,
+            end: None,
+            wall: started.elapsed(),
+            leader,
+            relay,
+        })
+    }
+
+    /// The aircraft named `name` (the scenario's checks found it).
+    fn leader_of(&self, name: &str) -> Leader {
+        match self.targets.iter().position(|t| t.name == name) {
+            Some(i) => Leader::Target(i),
+            None => Leader::Follower(
+                (self.members.iter())
+                    .position(|m| m.name == name)
+                    .unwrap_or_default(),
+            ),
+        }
+    }
+
+    /// The true state of `leader` at `t_s`: a target's own, a follower's carried there from
+    /// its last tick.
+    fn leader_state(&self, leader: Leader, t_s: f64) -> TargetState {
+        match leader {
+            Leader::Target(i) => self.targets[i].model.state(t_s),
+            Leader::Follower(j) => {
+                let truth = &self.members[j].truth;
+                carried(truth, t_s - self.members[j].sim.time_s())
+            }
+        }
+    }
+
+    /// The followers, leaders first.
+    pub fn members(&self) -> &[GroupMember] {
+        &self.members
+    }
+
+    /// The targets' names, in the group's order.
+    pub fn target_names(&self) -> Vec<&str> {
+        self.targets.iter().map(|t| t.name.as_str()).collect()
+    }
+
+    /// The targets' positions (NED, ft, in the order of [`Self::target_names`]) at the
+    /// run's start and every `run.log_every` ticks.
+    pub fn target_tracks(&self) -> &[Vec<Vec3>] {
+        &self.target_tracks
+    }
+
+    /// The true position of every target now, NED, ft.
+    fn target_positions(&self) -> Vec<Vec3> {
+        let t_s = self.time_s();
+        (self.targets.iter())
+            .map(|t| t.model.position_ned_ft(t_s))
+            .collect()
+    }
+
+    /// The fraction of the run's ticks taken.
+    pub fn fraction_done(&self) -> f64 {
+        self.tick as f64 / self.total_ticks.max(1) as f64
+    }
+
+    /// The group's time now, s.
+    pub fn time_s(&self) -> f64 {
+        self.tick as f64 * self.dt_s
+    }
+
+    /// Whether the group has stopped: a follower's run ended, or the run's end is reached.
+    pub fn is_over(&self) -> bool {
+        self.tick >= self.total_ticks || self.members.iter().any(|m| m.end.is_some())
+    }
+
+    /// Takes one tick of every follower (nothing once [`Self::is_over`]); `stop_asked` as
+    /// [`Simulation::run_tick`]'s. Every follower is given its leader and the other aircraft
+    /// at the tick's end as this tick's states carry them there (the targets' own: they have
+    /// moved first), so that the followers' steps are independent: a tick on which their
+    /// cameras take a frame steps them on threads of their own, their frames drawn and
+    /// measured at once (docs/findings.md, Group tracking, the cost).
+    pub fn step(&mut self, stop_asked: impl Fn() -> bool + Sync) -> Result<(), SimError> {
+        if self.is_over() {
+            return Ok(());
+        }
+        let t_s = self.time_s();
+        let t_next_s = t_s + self.dt_s;
+        for target in &mut self.targets {
+            target
+                .model
+                .advance(t_s, self.dt_s)
+                .map_err(|diverged| SimError::Diverged {
+                    t_s: t_next_s,
+                    what: format!("target {}: {}", target.name, diverged.what),
+                })?;
+        }
+        let views: Vec<(TargetState, Vec<OtherAircraft>)> = (0..self.members.len())
+            .map(|j| {
+                let leader = self.leader_state(self.members[j].leader, t_next_s);
+                (leader, self.others_seen_by(j, t_next_s))
+            })
+            .collect();
+        let frame_tick = self
+            .members
+            .iter()
+            .any(|m| (m.sim.camera()).is_some_and(|c| c.is_frame_tick(m.sim.tick() + 1)));
+        let (t_next_s, dt_s, stop_asked) = (t_next_s, self.dt_s, &stop_asked);
+        let members = self.members.iter_mut().zip(views);
+        if frame_tick {
+            std::thread::scope(|scope| {
+                for (member, view) in members {
+                    scope.spawn(move || member.step(t_next_s, dt_s, view, stop_asked));
+                }
+            });
+        } else {
+            for (member, view) in members {
+                member.step(t_next_s, dt_s, view, stop_asked);
+            }
+        }
+        self.tick += 1;
+        if self.tick.is_multiple_of(self.log_every) {
+            self.target_tracks.push(self.target_positions());
+        }
+        Ok(())
+    }
+
+    /// Every aircraft follower `j`'s camera draws at `t_s` (the group's next tick): all but
+    /// itself and the one it tracks.
+    fn others_seen_by(&self, j: usize, t_s: f64) -> Vec<OtherAircraft> {
+        let leader = self.members[j].leader;
+        let targets = (0..self.targets.len())
+            .filter(|i| leader != Leader::Target(*i))
+            .map(|i| (Leader::Target(i), self.targets[i].size_ft));
+        let followers = (0..self.members.len())
+            .filter(|k| *k != j && leader != Leader::Follower(*k))
+            .map(|k| (Leader::Follower(k), self.members[k].size_ft));
+        targets
+            .chain(followers)
+            .map(|(aircraft, size_ft)| {
+                let state = self.leader_state(aircraft, t_s);
+                OtherAircraft {
+                    position_ned_ft: state.position_ned_ft,
+                    attitude: state.attitude,
+                    size_ft,
+                }
+            })
+            .collect()
+    }
+}
+
+impl GroupMember {
+    /// One tick of this follower, its leader and the others at the tick's end `t_next_s`
+    /// given in `view`; its true state then, the acceleration from the tick's change of
+    /// velocity over `dt_s`.
+    fn step(
+        &mut self,
+        t_next_s: f64,
+        dt_s: f64,
+        (leader, others): (TargetState, Vec<OtherAircraft>),
+        stop_asked: &(impl Fn() -> bool + Sync),
+    ) {
+        let started = Instant::now();
+        self.relay.set(t_next_s, leader);
+        self.sim.set_other_aircraft(&others);
+        let tick = self.sim.run_tick(stop_asked);
+        self.logged.extend(tick.logged);
+        self.end = tick.end;
+        let mut truth = self.sim.own_state();
+        truth.accel_ned_fps2 = (truth.velocity_ned_fps - self.truth.velocity_ned_fps) / dt_s;
+        self.truth = truth;
+        self.wall += started.elapsed();
+    }
+}
+
+/// A follower's size as the others' cameras draw it: its airframe's span (the 6-DOF
+/// aircraft), or the scenario's target size (a kinematic follower has no airframe).
+fn drawn_size_ft(scenario: &Scenario) -> Result<f64, SimError> {
+    if scenario.follower.model != FollowerModel::Aircraft {
+        return Ok(scenario.target.size_ft);
+    }
+    let params = AircraftParams::from_scenario_path(&scenario.follower.aircraft)
+        .map_err(AircraftSetupError::from)?;
+    Ok(params.geometry.span_ft)
+}
