@@ -119,3 +119,23 @@ def test_cli_export_runs_the_module(run_dir, tmp_path, cli):
         [sys.executable, "-m", "wingman.rerun", str(tmp_path), str(tmp_path / "x.rrd")], capture_output=True, text=True
     )
     assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1, bad.stderr
+
+
+def test_group_run_shows_every_aircraft(cli, tmp_path):
+    """A group run's folder (a 3 s platoon): every follower and the target, each follower's
+    slot and its own time series, over the run's rows."""
+    run = tmp_path / "platoon"
+    args = [str(cli), "run", str(ROOT / "scenarios" / "platoon.toml"), "--out", str(run), "--quiet"]
+    for o in ("run.duration_s=3", "output.plots=false"):
+        args += ["--set", o]
+    subprocess.run(args, check=True, env={**os.environ, "NODEVICE_SELECT": "1"})
+    written = write_recording(run, tmp_path / "platoon.rrd")
+    assert written["aircraft"] == ["f1", "target", "f2", "f3"]
+    rows, times, _ = read_back(tmp_path / "platoon.rrd")
+    n_rows = len(load_results(run / "f2" / "telemetry.csv")["t_s"])
+    for name in ("f1", "f2", "f3", "target"):
+        assert rows[f"/world/{name}"] == n_rows and f"/world/trails/{name}" in rows
+    for name in ("f1", "f2", "f3"):
+        assert rows[f"/world/slots/{name}"] == n_rows + 1  # and its static colour
+        assert rows[f"/series/size/{name}/b_hat"] == n_rows
+        assert max(times[f"/series/relative_position/{name}/n/R"]) == pytest.approx(3.0)

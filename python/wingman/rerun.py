@@ -154,39 +154,44 @@ def _series(rec, path, t_s, values):
         )
 
 
-def log_time_series(rec, columns, b_true_ft):
+def log_time_series(rec, columns, b_true_ft, follower=None):
     """R against R_c per axis, b̂ (and the filter's b̂ ± 3σ_b) against the true size, the
     held frame's measured centroid and length against the truth, the surfaces (°) and
-    throttle: under ``series/``."""
+    throttle: under ``series/KIND/`` (``series/KIND/FOLLOWER/`` for a follower of a group)."""
     t = np.asarray(columns["t_s"], dtype=float)
+    who = f"{follower}/" if follower else ""
+
+    def path(kind, rest):
+        return f"series/{kind}/{who}{rest}"
+
     for axis in ("n", "e", "d"):
-        _series(rec, f"series/relative_position/{axis}/R", t, columns[f"rel_{axis}_ft"])
-        _series(rec, f"series/relative_position/{axis}/R_c", t, columns[f"cmd_{axis}_ft"])
-    _series(rec, "series/size/b_hat", t, columns["b_hat_ft"])
-    _series(rec, "series/size/b_true", t, np.full_like(t, b_true_ft))
+        _series(rec, path("relative_position", f"{axis}/R"), t, columns[f"rel_{axis}_ft"])
+        _series(rec, path("relative_position", f"{axis}/R_c"), t, columns[f"cmd_{axis}_ft"])
+    _series(rec, path("size", "b_hat"), t, columns["b_hat_ft"])
+    _series(rec, path("size", "b_true"), t, np.full_like(t, b_true_ft))
     if "kf_b_sigma_ft" in columns:
         b, sigma = np.asarray(columns["kf_b_hat_ft"]), np.asarray(columns["kf_b_sigma_ft"])
-        _series(rec, "series/size/b_hat_plus_3sigma", t, b + 3.0 * sigma)
-        _series(rec, "series/size/b_hat_minus_3sigma", t, b - 3.0 * sigma)
+        _series(rec, path("size", "b_hat_plus_3sigma"), t, b + 3.0 * sigma)
+        _series(rec, path("size", "b_hat_minus_3sigma"), t, b - 3.0 * sigma)
     for name in ("y_i", "z_i", "b_i"):
-        _series(rec, f"series/measurement/{name}/measured", t, columns[f"{name}_px"])
-        _series(rec, f"series/measurement/{name}/truth", t, columns[f"{name}_true_px"])
+        _series(rec, path("measurement", f"{name}/measured"), t, columns[f"{name}_px"])
+        _series(rec, path("measurement", f"{name}/truth"), t, columns[f"{name}_true_px"])
     for name in ("elevator", "aileron", "rudder"):
         if f"{name}_rad" in columns:
-            _series(rec, f"series/surfaces/{name}_deg", t, np.degrees(columns[f"{name}_rad"]))
+            _series(rec, path("surfaces", f"{name}_deg"), t, np.degrees(columns[f"{name}_rad"]))
     if "throttle" in columns:
-        _series(rec, "series/surfaces/throttle", t, columns["throttle"])
+        _series(rec, path("surfaces", "throttle"), t, columns["throttle"])
     dashed = rr.SeriesLines(colors=[(150, 150, 150)], widths=[1.0])
-    for path in ("b_true", "b_hat_plus_3sigma", "b_hat_minus_3sigma"):
-        rec.log(f"series/size/{path}", dashed, static=True)
+    for name in ("b_true", "b_hat_plus_3sigma", "b_hat_minus_3sigma"):
+        rec.log(path("size", name), dashed, static=True)
     for axis in ("n", "e", "d"):
-        rec.log(f"series/relative_position/{axis}/R_c", dashed, static=True)
+        rec.log(path("relative_position", f"{axis}/R_c"), dashed, static=True)
 
 
-def log_scene(rec, aircraft, mesh_path, columns):
-    """Every aircraft's pose (a transform at every telemetry row, the target's mesh on it),
-    its trail so far (redrawn every TRAIL_EVERY_S) and the slot the follower is sent to
-    (R_F + R - R_c), in NED (x north, y east, z down), ft, under ``world/``."""
+def log_scene(rec, aircraft, mesh_path):
+    """Every aircraft's pose (a transform at every telemetry row, the target's mesh on it)
+    and its trail so far (redrawn every TRAIL_EVERY_S), in NED (x north, y east, z down),
+    ft, under ``world/``."""
     rec.log("world", rr.ViewCoordinates.FRD, static=True)
     for k, craft in enumerate(aircraft):
         path, rgb = f"world/{craft.name}", AIRCRAFT_RGB[k % len(AIRCRAFT_RGB)]
@@ -202,14 +207,19 @@ def log_scene(rec, aircraft, mesh_path, columns):
         else:
             rec.log(f"{path}/mesh", rr.Arrows3D(vectors=[[8.0, 0, 0]], colors=[rgb]), static=True)
         _log_trail(rec, f"world/trails/{craft.name}", craft, rgb)
+
+
+def log_slot(rec, path, columns):
+    """The slot a follower is sent to, R_F + R - R_c, from its own telemetry, at ``path``."""
     t = np.asarray(columns["t_s"], dtype=float)
-    slot = aircraft[1].position_ned_ft - _stack(columns, _axes("cmd_", "_ft"))
+    tracked = _stack(columns, _axes("fol_", "_ft")) + _stack(columns, _axes("rel_", "_ft"))
+    slot = tracked - _stack(columns, _axes("cmd_", "_ft"))
     rec.send_columns(
-        "world/slot",
+        path,
         indexes=[rr.TimeColumn(TIMELINE, duration=t)],
         columns=rr.Points3D.columns(positions=slot),
     )
-    rec.log("world/slot", rr.Points3D.from_fields(colors=[(0, 200, 0)], radii=[1.0]), static=True)
+    rec.log(path, rr.Points3D.from_fields(colors=[(0, 200, 0)], radii=[1.0]), static=True)
 
 
 def _log_trail(rec, path, craft, rgb):
@@ -321,7 +331,7 @@ def blueprint(cameras, follower):
         position=end - 80.0 * heading + [0.0, 0.0, -40.0],
         look_target=end,
         eye_up=[0.0, 0.0, -1.0],
-        tracking_entity="world/follower",
+        tracking_entity=f"world/{follower.name}",
     )
     scene = rrb.Spatial3DView(origin="world", name="scene (NED, ft)", eye_controls=eye)
     layout = rrb.Horizontal(rrb.Vertical(scene, *images), rrb.Vertical(*series), column_shares=[3, 2])
@@ -341,27 +351,72 @@ def _read_run(run_dir):
     return scenario, columns, summary
 
 
-def write_recording(run_dir, out, aircraft=None):
-    """Writes the run folder ``run_dir`` as the Rerun recording ``out`` (.rrd). ``aircraft``:
-    the aircraft to show, a list of :class:`Aircraft` (default: :func:`find_aircraft`'s).
-    Returns a dict: the aircraft's names and the frames logged per camera."""
-    scenario, columns, summary = _read_run(run_dir)
-    aircraft = aircraft if aircraft is not None else find_aircraft(run_dir, columns)
-    camera = Camera.of(scenario) if "camera" in scenario else None
-    mesh = scenario.get("camera", {}).get("mesh")
-    mesh = mesh if mesh and Path(mesh).is_file() else None
+def _recording(run_dir, out, name):
     rec = rr.RecordingStream("wingman", recording_id=f"wingman-{Path(run_dir).resolve().name}")
     rec.save(str(out))
     rec.set_log_time_enabled(False)
     rec.set_log_tick_enabled(False)
-    rec.send_recording_name(summary.get("scenario", Path(run_dir).name))
-    log_scene(rec, aircraft, mesh, columns)
-    log_time_series(rec, columns, summary.get("b_true_ft", float("nan")))
-    frames = {c.name: log_camera(rec, c, camera, columns) for c in aircraft if camera is not None}
+    rec.send_recording_name(name)
+    return rec
+
+
+def _mesh_of(scenario):
+    mesh = scenario.get("camera", {}).get("mesh")
+    return mesh if mesh and Path(mesh).is_file() else None
+
+
+def _finish(rec, frames, aircraft):
     rec.send_blueprint(blueprint([name for name, n in frames.items() if n > 0], aircraft[0]))
     rec.flush()
     rec.disconnect()
     return {"aircraft": [c.name for c in aircraft], "frames": frames}
+
+
+def write_recording(run_dir, out, aircraft=None):
+    """Writes the run folder ``run_dir`` as the Rerun recording ``out`` (.rrd). ``aircraft``:
+    the aircraft to show, a list of :class:`Aircraft` (default: :func:`find_aircraft`'s).
+    A group run's folder (``group.json``) is written by :func:`write_group_recording`.
+    Returns a dict: the aircraft's names and the frames logged per camera."""
+    if (Path(run_dir) / "group.json").is_file() and aircraft is None:
+        return write_group_recording(run_dir, out)
+    scenario, columns, summary = _read_run(run_dir)
+    aircraft = aircraft if aircraft is not None else find_aircraft(run_dir, columns)
+    camera = Camera.of(scenario) if "camera" in scenario else None
+    rec = _recording(run_dir, out, summary.get("scenario", Path(run_dir).name))
+    log_scene(rec, aircraft, _mesh_of(scenario))
+    log_slot(rec, "world/slot", columns)
+    log_time_series(rec, columns, summary.get("b_true_ft", float("nan")))
+    frames = {c.name: log_camera(rec, c, camera, columns) for c in aircraft if camera is not None}
+    return _finish(rec, frames, aircraft)
+
+
+def write_group_recording(run_dir, out):
+    """A group run's folder (docs/outputs.md, Group runs) as one recording: every follower
+    (from its own folder's ``fol_*`` and attitude) and every target a follower tracks (at
+    its R_F + R), each follower's slot (``world/slots/NAME``) and its time series (under
+    ``series/KIND/NAME/``), and the cameras' saved frames where there are any."""
+    run_dir = Path(run_dir)
+    group = json.loads((run_dir / "group.json").read_text())
+    runs = {f["name"]: _read_run(run_dir / f["name"]) for f in group["followers"]}
+    aircraft = []
+    for member in group["followers"]:
+        name, (_, columns, _) = member["name"], runs[member["name"]]
+        follower, target = find_aircraft(run_dir / name, columns)[:2]
+        aircraft.append(Aircraft(name, follower.t_s, follower.position_ned_ft, follower.attitude_rad, follower.frames_dir))
+        seen = {a.name for a in aircraft} | set(runs)
+        if member["tracks"] not in seen:
+            aircraft.append(Aircraft(member["tracks"], target.t_s, target.position_ned_ft, target.attitude_rad))
+    first_scenario = runs[group["followers"][0]["name"]][0]
+    rec = _recording(run_dir, out, group.get("scenario", run_dir.name))
+    log_scene(rec, aircraft, _mesh_of(first_scenario))
+    frames = {}
+    for name, (scenario, columns, summary) in runs.items():
+        log_slot(rec, f"world/slots/{name}", columns)
+        log_time_series(rec, columns, summary.get("b_true_ft", float("nan")), follower=name)
+        camera = Camera.of(scenario) if "camera" in scenario else None
+        craft = next(a for a in aircraft if a.name == name)
+        frames[name] = log_camera(rec, craft, camera, columns) if camera is not None else 0
+    return _finish(rec, frames, aircraft)
 
 
 def main(argv=None):
