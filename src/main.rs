@@ -491,12 +491,16 @@ fn run_group(
             if !quiet {
                 eprintln!("{}", summary.one_line(out_dir));
             }
-            match &summary.stopped_by {
-                Some(why) => {
+            match (&summary.stopped_by, interrupt::signal()) {
+                (Some(why), Some(_)) => {
+                    eprintln!("interrupted: {why}");
+                    interrupted_exit_code()
+                }
+                (Some(why), None) => {
                     eprintln!("error: {why}");
                     ExitCode::from(1)
                 }
-                None => ExitCode::SUCCESS,
+                (None, _) => ExitCode::SUCCESS,
             }
         }
         Err(e) => {
@@ -554,12 +558,16 @@ fn finish(report: &RunReport, out_dir: &Path, quiet: bool) -> ExitCode {
         }
         RunStatus::Interrupted => {
             eprintln!("interrupted: {line}");
-            // 128 + the signal, as a shell reports a process the signal ended: 130 for
-            // Ctrl-C, 143 for SIGTERM.
-            let signal = interrupt::signal().unwrap_or(libc::SIGINT);
-            ExitCode::from(u8::try_from(128 + signal).unwrap_or(130))
+            interrupted_exit_code()
         }
     }
+}
+
+/// 128 + the signal that stopped the run, as a shell reports a process the signal ended:
+/// 130 for Ctrl-C, 143 for SIGTERM.
+fn interrupted_exit_code() -> ExitCode {
+    let signal = interrupt::signal().unwrap_or(libc::SIGINT);
+    ExitCode::from(u8::try_from(128 + signal).unwrap_or(130))
 }
 
 /// One line on the run: status, time, speed, b̂, errors, frames lost, where the outputs are.
