@@ -2,8 +2,9 @@
 //! every frame in it, in order, at the camera's rate over the frames' spacing, at the frames'
 //! size (ffmpeg pads odd sizes to even), each captioned at its foot with its time and the
 //! track status its telemetry row gives; the animated PNG always, the MP4 where ffmpeg is on
-//! the PATH (CI installs it). A folder without frames, or an `export rerun` without the Python
-//! package, is refused in one line with exit codes 2 and 1.
+//! the PATH (CI installs it). A group run's folder gives one video per follower that saved
+//! frames. A folder without frames, or an `export rerun` without the Python package, is
+//! refused in one line with exit codes 2 and 1.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -116,6 +117,28 @@ fn each_camera_has_its_own_video() {
     for v in &videos {
         assert_eq!(apng_frames(&v.path).len(), NUMBERS.len());
     }
+}
+
+#[test]
+fn a_group_run_has_a_video_per_follower_with_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("group.json"), "{}\n").unwrap();
+    for name in ["f1", "f2", "f3"] {
+        std::fs::create_dir(dir.path().join(name)).unwrap();
+        run_folder(&dir.path().join(name), false);
+    }
+    std::fs::remove_dir_all(dir.path().join("f3").join("frames")).unwrap();
+    let videos = export_video(dir.path(), None, Encoder::Apng).unwrap();
+    let cameras: Vec<_> = videos.iter().map(|v| v.camera.as_deref()).collect();
+    assert_eq!(cameras, [Some("f1"), Some("f2")]);
+    for (v, name) in videos.iter().zip(["f1", "f2"]) {
+        assert_eq!(v.path, dir.path().join(format!("video_{name}.apng")));
+        assert_eq!(apng_frames(&v.path).len(), NUMBERS.len());
+    }
+    std::fs::remove_dir_all(dir.path().join("f1").join("frames")).unwrap();
+    std::fs::remove_dir_all(dir.path().join("f2").join("frames")).unwrap();
+    let refused = export_video(dir.path(), None, Encoder::Apng).unwrap_err();
+    assert!(refused.is_bad_input(), "{refused}");
 }
 
 /// ffprobe's count of decoded frames, width, height and frame rate of an MP4.

@@ -123,10 +123,10 @@ def test_cli_export_runs_the_module(run_dir, tmp_path, cli):
 
 def test_group_run_shows_every_aircraft(cli, tmp_path):
     """A group run's folder (a 3 s platoon): every follower and the target, each follower's
-    slot and its own time series, over the run's rows."""
+    slot, its own time series over the run's rows and its camera's saved frames."""
     run = tmp_path / "platoon"
     args = [str(cli), "run", str(ROOT / "scenarios" / "platoon.toml"), "--out", str(run), "--quiet"]
-    for o in ("run.duration_s=3", "output.plots=false"):
+    for o in ("run.duration_s=3", "output.plots=false", "output.frames_every=10"):
         args += ["--set", o]
     subprocess.run(args, check=True, env={**os.environ, "NODEVICE_SELECT": "1"})
     written = write_recording(run, tmp_path / "platoon.rrd")
@@ -139,3 +139,6 @@ def test_group_run_shows_every_aircraft(cli, tmp_path):
         assert rows[f"/world/slots/{name}"] == n_rows + 1  # and its static colour
         assert rows[f"/series/size/{name}/b_hat"] == n_rows
         assert max(times[f"/series/relative_position/{name}/n/R"]) == pytest.approx(3.0)
+        saved = sorted((run / name / "frames").glob("*.png"))
+        assert len(saved) >= 8 and written["frames"][name] == len(saved)
+        assert rows[f"/world/{name}/camera/image#images"] == len(saved)

@@ -1,8 +1,9 @@
 //! A group run's outputs (docs/outputs.md, Group runs): one folder per follower holding what a
-//! single run writes (`scenario.toml`, `telemetry.csv`, `summary.json`), and beside them
-//! `group.json`, each follower's result in one table, and `formation.png`, the formation seen
-//! from above.
+//! single run writes (`scenario.toml`, `telemetry.csv`, `summary.json`, and the camera's
+//! `frames/` when its `output.frames_every` is set), and beside them `group.json`, each
+//! follower's result in one table, and `formation.png`, the formation seen from above.
 
+use super::frame_images::{FrameSaver, gimbal_captions};
 use super::summary::{RunStatus, Summary};
 use super::telemetry::{TelemetryWriter, row_of};
 use super::{RunError, folder, interrupt, lock, stopped_status};
@@ -125,13 +126,19 @@ pub fn run_group_to_directory(
     folder::prepare(out_dir)?;
     folder::mark(out_dir)?;
     let mut next_report = 0.0;
+    let mut savers = frame_savers(&run, out_dir);
+    let mut warnings = Vec::new();
     while !run.is_over() {
         run.step(interrupt::requested)
             .map_err(|e| RunError::Sim(Box::new(e), out_dir.to_path_buf()))?;
+        save_frames(&run, &mut savers, &mut warnings);
         if run.fraction_done() >= next_report {
             progress(run.fraction_done());
             next_report += 0.001;
         }
+    }
+    for warning in warnings {
+        eprintln!("warning: {warning}");
     }
     let wall_s = started.elapsed().as_secs_f64();
     let summary = group_summary(&run, name, wall_s);
@@ -148,6 +155,33 @@ pub fn run_group_to_directory(
         }
     }
     Ok(summary)
+}
+
+/// A frame saver per follower whose scenario saves frames (`output.frames_every`), into its
+/// folder's `frames/`.
+fn frame_savers(run: &Group, out_dir: &Path) -> Vec<Option<FrameSaver>> {
+    (run.members().iter())
+        .map(|m| {
+            let output = &m.sim.scenario().output;
+            (output.frames_every > 0).then(|| {
+                let dir = out_dir.join(&m.name).join("frames");
+                FrameSaver::new(&dir, output.frames_every, output.overlay)
+            })
+        })
+        .collect()
+}
+
+/// Offers each follower's latest frame to its saver; a failure to save is a warning, and
+/// that follower saves no more.
+fn save_frames(run: &Group, savers: &mut [Option<FrameSaver>], warnings: &mut Vec<String>) {
+    for (member, slot) in run.members().iter().zip(savers.iter_mut()) {
+        if let (Some(saver), Some(camera)) = (slot.as_mut(), member.sim.camera())
+            && let Err(e) = saver.offer(camera, || gimbal_captions(member.sim.gimbal_reading()))
+        {
+            warnings.push(format!("{}: frame not saved: {e}", member.name));
+            *slot = None;
+        }
+    }
 }
 
 /// The group's summary after its run.

@@ -190,12 +190,16 @@ fn read_frame(path: &Path) -> Result<image::RgbaImage, VideoError> {
 
 /// Writes a run folder's videos, one per camera (see the module's documentation): `out`
 /// names the file (default `RUN_DIR/video.mp4` with ffmpeg, `RUN_DIR/video.apng` without),
-/// `encoder` picks the encoder.
+/// `encoder` picks the encoder. A group run's folder (`group.json`) gives one video per
+/// follower that saved frames, named `_NAME` as another camera's.
 pub fn export_video(
     run_dir: &Path,
     out: Option<&Path>,
     encoder: Encoder,
 ) -> Result<Vec<VideoWritten>, VideoError> {
+    if run_dir.join("group.json").is_file() {
+        return export_group_videos(run_dir, out, encoder);
+    }
     let rate_hz = camera_rate_hz(run_dir)?;
     let sources = frame_sources(run_dir);
     if sources.is_empty() {
@@ -209,6 +213,44 @@ pub fn export_video(
         .iter()
         .map(|source| write_video(run_dir, out, encoder, source, rate_hz))
         .collect()
+}
+
+/// A group run's videos: each follower's folder (one holding a `scenario.toml`) with saved
+/// frames, as `video_NAME.EXT` in the group's folder (or `out` with `_NAME`).
+fn export_group_videos(
+    run_dir: &Path,
+    out: Option<&Path>,
+    encoder: Encoder,
+) -> Result<Vec<VideoWritten>, VideoError> {
+    let mut followers: Vec<PathBuf> = std::fs::read_dir(run_dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.join("scenario.toml").is_file())
+        .collect();
+    followers.sort();
+    let encoder = encoder.resolve();
+    let mut written = Vec::new();
+    for dir in followers {
+        let name = dir.file_name().unwrap_or_default().to_string_lossy();
+        if numbered_pngs(&dir.join("frames")).is_empty() {
+            continue;
+        }
+        let path = video_path(run_dir, out, Some(&name), encoder.extension());
+        for mut video in export_video(&dir, Some(&path), encoder)? {
+            video.camera = Some(name.to_string());
+            written.push(video);
+        }
+    }
+    if written.is_empty() {
+        return Err(VideoError::NotARun(format!(
+            "{}: a group run whose followers saved no frames (run with --set \
+             output.frames_every=1 for every frame)",
+            run_dir.display()
+        )));
+    }
+    Ok(written)
 }
 
 /// One camera's video.
