@@ -165,17 +165,7 @@ fn the_container_installs_the_one_package_list() {
         .split_whitespace()
         .map(str::to_string)
         .collect();
-    assert_eq!(
-        packages,
-        [
-            "mesa-vulkan-drivers",
-            "libvulkan1",
-            "fonts-dejavu-core",
-            "python3",
-            "python3-venv",
-            "ffmpeg"
-        ]
-    );
+    assert_eq!(packages, common::SYSTEM_PACKAGES);
     for file in [
         "Dockerfile",
         "scripts/setup.sh",

@@ -6,6 +6,8 @@
 //! `docs/`, it says how to put `wingman` on the PATH, names the dissertation in full (as
 //! docs/equations.md does) and the licence, whose files and `Cargo.toml` key agree.
 
+mod common;
+
 use std::path::Path;
 
 fn repo() -> &'static Path {
@@ -41,17 +43,7 @@ fn first_command_needs_no_sudo_as_root() {
         .lines()
         .filter(|l| !l.is_empty() && !l.starts_with('#'))
         .collect();
-    assert_eq!(
-        listed,
-        [
-            "mesa-vulkan-drivers",
-            "libvulkan1",
-            "fonts-dejavu-core",
-            "python3",
-            "python3-venv",
-            "ffmpeg"
-        ]
-    );
+    assert_eq!(listed, common::SYSTEM_PACKAGES);
     let ci = read(".ci/run");
     let update = ci.find("apt-get update").expect("CI runs apt-get update");
     let install = ci

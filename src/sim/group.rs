@@ -227,16 +227,17 @@ impl Group {
                     what: format!("target {}: {}", target.name, diverged.what),
                 })?;
         }
-        let views: Vec<(TargetState, Vec<OtherAircraft>)> = (0..self.members.len())
-            .map(|j| {
-                let leader = self.leader_state(self.members[j].leader, t_next_s);
-                (leader, self.others_seen_by(j, t_next_s))
-            })
-            .collect();
         let frame_tick = self
             .members
             .iter()
             .any(|m| (m.sim.camera()).is_some_and(|c| c.is_frame_tick(m.sim.tick() + 1)));
+        // The others are drawn only in frames: they are placed on frame ticks alone.
+        let views: Vec<(TargetState, Option<Vec<OtherAircraft>>)> = (0..self.members.len())
+            .map(|j| {
+                let leader = self.leader_state(self.members[j].leader, t_next_s);
+                (leader, frame_tick.then(|| self.others_seen_by(j, t_next_s)))
+            })
+            .collect();
         let (t_next_s, dt_s, stop_asked) = (t_next_s, self.dt_s, &stop_asked);
         let members = self.members.iter_mut().zip(views);
         if frame_tick {
@@ -282,19 +283,21 @@ impl Group {
 }
 
 impl GroupMember {
-    /// One tick of this follower, its leader and the others at the tick's end `t_next_s`
-    /// given in `view`; its true state then, the acceleration from the tick's change of
-    /// velocity over `dt_s`.
+    /// One tick of this follower, its leader and (on frame ticks) the others at the tick's
+    /// end `t_next_s` given in `view`; its true state then, the acceleration from the tick's
+    /// change of velocity over `dt_s`.
     fn step(
         &mut self,
         t_next_s: f64,
         dt_s: f64,
-        (leader, others): (TargetState, Vec<OtherAircraft>),
+        (leader, others): (TargetState, Option<Vec<OtherAircraft>>),
         stop_asked: &(impl Fn() -> bool + Sync),
     ) {
         let started = Instant::now();
         self.relay.set(t_next_s, leader);
-        self.sim.set_other_aircraft(&others);
+        if let Some(others) = others {
+            self.sim.set_other_aircraft(&others);
+        }
         let tick = self.sim.run_tick(stop_asked);
         self.logged.extend(tick.logged);
         self.end = tick.end;

@@ -287,3 +287,14 @@ pub fn quiet_sweep_into(out: &Path) -> SweepOptions {
         progress: Progress::Quiet,
     }
 }
+
+/// The system packages `scripts/packages.txt` lists, in its order: what README command 1,
+/// CI and the container install.
+pub const SYSTEM_PACKAGES: [&str; 6] = [
+    "mesa-vulkan-drivers",
+    "libvulkan1",
+    "fonts-dejavu-core",
+    "python3",
+    "python3-venv",
+    "ffmpeg",
+];
