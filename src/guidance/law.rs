@@ -118,7 +118,7 @@ impl GuidanceLaw {
         match self {
             Self::Velocity(law) => law.start_at(x, r0),
             Self::Acceleration(law) => law.start_at(x, r0),
-            Self::VelocityOnEstimate(_) => x.copy_from_slice(r0.as_slice()),
+            Self::VelocityOnEstimate(law) => law.start_at(x, r0),
         }
     }
 

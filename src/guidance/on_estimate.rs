@@ -11,9 +11,15 @@
 //! runs on the follower's realised velocity, so nothing else needs compensating).
 //!
 //! Beyond the seed, the target's estimated acceleration can be fed forward over the lag of the
-//! follower's velocity: V_F += b̂ â τ_lead (`guidance.velocity_lead_s`, 0 for none).
+//! follower's velocity: V_F += b̂ â τ_lead (`guidance.velocity_lead_s`, 0 for none); and an
+//! integral of the slot error removes what a steady shortfall of the realised velocity leaves
+//! (docs/equations.md, The slot error's integral):
+//! ```text
+//! V_F += k_I s,   ṡ = b̂ e   (per axis, held while |k_I s| ≥ the limit and e grows it)
+//! ```
+//! (`guidance.integral_gain_per_s2`, 0 for none, and `integral_limit_fps`).
 //!
-//! State: `[r_cf (3)]`, the shaping filter.
+//! State: `[r_cf (3), s (3)]`, the shaping filter and the error's integral, ft·s.
 
 use super::shaping::CommandShaping;
 use super::signals::{ExcitationErrors, FollowerCommand, GuidanceInput, GuidanceOutput};
@@ -21,13 +27,17 @@ use crate::frames::Vec3;
 use crate::scenario::GuidanceSection;
 
 /// Length of the law's state.
-pub const STATE_LEN: usize = 3;
+pub const STATE_LEN: usize = 6;
+
+/// Where the error's integral s starts in the state.
+const INTEGRAL: usize = 3;
 
 /// The velocity law on the estimator's estimates.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VelocityOnEstimate {
     feedback_gain_per_s: f64,
     lead_s: f64,
+    integral: ErrorIntegral,
     shaping: CommandShaping,
     /// V_F before the first estimate: b̂(0) d̂(0), as the adaptive law's.
     idle_velocity_ned_fps: Vec3,
@@ -39,14 +49,26 @@ impl VelocityOnEstimate {
         Self {
             feedback_gain_per_s,
             lead_s: section.velocity_lead_s,
+            integral: ErrorIntegral {
+                gain_per_s2: section.integral_gain_per_s2,
+                limit_fps: section.integral_limit_fps,
+            },
             shaping: CommandShaping::of(section),
             idle_velocity_ned_fps: Vec3::from(section.d0_per_s) * section.b0_ft,
         }
     }
 
-    /// Initial state: the shaping filter at the first measurement r(0).
+    /// Initial state: the shaping filter at the first measurement r(0), no integral.
     pub fn initial_state(&self, r0: &Vec3) -> Vec<f64> {
-        r0.as_slice().to_vec()
+        let mut x = vec![0.0; STATE_LEN];
+        self.start_at(&mut x, r0);
+        x
+    }
+
+    /// Restarts the shaping filter at the first measurement and empties the integral.
+    pub fn start_at(&self, x: &mut [f64], r0: &Vec3) {
+        x[..INTEGRAL].copy_from_slice(r0.as_slice());
+        x[INTEGRAL..].fill(0.0);
     }
 
     /// Before the first estimate: nothing moves and the follower cruises at b̂(0) d̂(0).
@@ -66,14 +88,19 @@ impl VelocityOnEstimate {
             return self.idle(x, dx);
         };
         let b_hat = estimate.b_hat_ft;
-        let filter = Vec3::from_column_slice(x);
+        let filter = Vec3::from_column_slice(&x[..INTEGRAL]);
+        let integral_ft_s = Vec3::from_column_slice(&x[INTEGRAL..]);
         let command = self.shaping.command(&filter, b_hat, input);
         let error = estimate.r - command.value;
         let g = error * self.feedback_gain_per_s + estimate.d_per_s - command.rate(0.0)
             + estimate.a_per_s2 * self.lead_s;
-        dx.copy_from_slice(command.filter_rate.as_slice());
+        dx[..INTEGRAL].copy_from_slice(command.filter_rate.as_slice());
+        let integral_rate = self.integral.rate(&integral_ft_s, &(error * b_hat));
+        dx[INTEGRAL..].copy_from_slice(integral_rate.as_slice());
         GuidanceOutput {
-            command: FollowerCommand::Velocity(g * b_hat),
+            command: FollowerCommand::Velocity(
+                g * b_hat + integral_ft_s * self.integral.gain_per_s2,
+            ),
             r_command: command.value,
             excitation_errors: ExcitationErrors {
                 measured: input.r_measured.map_or(error, |r| r - command.value),
@@ -84,11 +111,39 @@ impl VelocityOnEstimate {
     }
 }
 
+/// The integral of the slot error in feet, s, and its term k_I s in V_F with its bound.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ErrorIntegral {
+    /// k_I, 1/s².
+    gain_per_s2: f64,
+    /// The bound of |k_I s| per axis, ft/s.
+    limit_fps: f64,
+}
+
+impl ErrorIntegral {
+    /// ṡ = b̂ e per axis, but zero on an axis whose term is at its bound and which the error
+    /// would push further (conditional integration); zero throughout without a gain, so the
+    /// state stays inert in the seed's law.
+    fn rate(&self, integral_ft_s: &Vec3, error_ft: &Vec3) -> Vec3 {
+        if self.gain_per_s2 == 0.0 {
+            return Vec3::zeros();
+        }
+        Vec3::from_fn(|i, _| {
+            let term_fps = self.gain_per_s2 * integral_ft_s[i];
+            let saturated = term_fps.abs() >= self.limit_fps && term_fps * error_ft[i] > 0.0;
+            if saturated { 0.0 } else { error_ft[i] }
+        })
+    }
+}
+
 /// The names of the state slice's elements (for messages).
 pub fn state_names() -> Vec<String> {
     crate::state_block::element_names(
         "guidance",
-        &[("shaping filter r_cf", crate::state_block::XYZ)],
+        &[
+            ("shaping filter r_cf", crate::state_block::XYZ),
+            ("slot error integral s", crate::state_block::XYZ),
+        ],
     )
 }
 
@@ -139,5 +194,76 @@ mod tests {
             out.command,
             FollowerCommand::Velocity(Vec3::new(54.0, 0.0, 0.0))
         );
+    }
+
+    /// A follower that flies 1.2 ft/s less downward than asked (a biased attitude or α vane)
+    /// settles at e = shortfall / k_F = 3 ft off the slot without the integral, and on the slot
+    /// with it; the integral's term then stands for the shortfall.
+    #[test]
+    fn integral_removes_a_steady_shortfall() {
+        let shortfall_fps = Vec3::new(0.0, 0.0, -1.2);
+        let settle = |gain_per_s2: f64| {
+            let section = GuidanceSection {
+                shaping_pole_rps: 0.0,
+                integral_gain_per_s2: gain_per_s2,
+                ..GuidanceSection::default()
+            };
+            fly_with_shortfall(&VelocityOnEstimate::new(&section, 0.4), shortfall_fps)
+        };
+        let (error_ft, _) = settle(0.0);
+        assert!((error_ft.z - 3.0).abs() < 0.05, "{error_ft}");
+        let (error_ft, x) = settle(0.02);
+        assert!(error_ft.norm() < 0.05, "{error_ft}");
+        let term_fps = x[INTEGRAL + 2] * 0.02;
+        assert!((term_fps - 1.2).abs() < 0.05, "{term_fps}");
+    }
+
+    /// The integral's term stops at its bound while the error would grow it further, and
+    /// unwinds as soon as the error turns.
+    #[test]
+    fn integral_stops_at_its_bound() {
+        let integral = ErrorIntegral {
+            gain_per_s2: 0.02,
+            limit_fps: 5.0,
+        };
+        let at_bound = Vec3::new(250.0, -250.0, 100.0);
+        let error_ft = Vec3::new(1.0, -1.0, 1.0);
+        assert_eq!(
+            integral.rate(&at_bound, &error_ft),
+            Vec3::new(0.0, 0.0, 1.0)
+        );
+        assert_eq!(integral.rate(&at_bound, &-error_ft), -error_ft);
+        let off = ErrorIntegral {
+            gain_per_s2: 0.0,
+            ..integral
+        };
+        assert_eq!(off.rate(&Vec3::zeros(), &error_ft), Vec3::zeros());
+    }
+
+    /// Flies the law for 400 s (Euler, 10 ms) against a target at 50 ft/s north with b = b̂ =
+    /// 8 ft and the estimate exact, the follower realising V_F + `shortfall_fps`; returns the
+    /// final error R - R_c, ft, and the law's state.
+    fn fly_with_shortfall(law: &VelocityOnEstimate, shortfall_fps: Vec3) -> (Vec3, Vec<f64>) {
+        let slot_ft = Vec3::new(32.0, 8.0, 0.0);
+        let target_fps = Vec3::new(50.0, 0.0, 0.0);
+        let dt_s = 0.01;
+        let mut relative_ft = slot_ft;
+        let mut x = law.initial_state(&(slot_ft / 8.0));
+        let mut dx = vec![0.0; STATE_LEN];
+        for _ in 0..40_000 {
+            let input = GuidanceInput {
+                estimate: Some(estimate(relative_ft / 8.0)),
+                ..GuidanceInput::steady(relative_ft / 8.0, slot_ft)
+            };
+            let FollowerCommand::Velocity(v_fps) = law.derivative(&x, &input, &mut dx).command
+            else {
+                panic!("a velocity command");
+            };
+            relative_ft += (target_fps - v_fps - shortfall_fps) * dt_s;
+            for (xi, dxi) in x.iter_mut().zip(&dx) {
+                *xi += dxi * dt_s;
+            }
+        }
+        (relative_ft - slot_ft, x)
     }
 }

@@ -276,6 +276,15 @@ pub struct GuidanceSection {
     /// Beyond the seed, for the law on the Kalman estimate: the target's estimated
     /// acceleration is fed forward over this lead, V_F += b̂ â τ, s (0: none).
     pub velocity_lead_s: f64,
+    /// Beyond the seed, for the law on the Kalman estimate: k_I of the integral term
+    /// V_F += k_I ∫ b̂ (r̂ - r_c) dt, 1/s² (0: none, the seed's law). It removes the slot
+    /// error a steady shortfall of the realised velocity leaves, e = shortfall / k_F, whatever
+    /// its source (navigation's attitude error, air-data biases, the airframe model's trim):
+    /// docs/equations.md, The slot error's integral.
+    pub integral_gain_per_s2: f64,
+    /// The integral term's bound per axis, ft/s: its integration stops on an axis whose term
+    /// has reached it and whose error would grow it further (anti-windup).
+    pub integral_limit_fps: f64,
     /// Adaptation gain σ of b̂, (4.5).
     pub sigma: f64,
     /// Adaptation gain G of d̂ (G = gamma_d I), (4.5).
@@ -326,6 +335,8 @@ impl Default for GuidanceSection {
             k: 3.5,
             k_aircraft: 0.5,
             velocity_lead_s: 0.0,
+            integral_gain_per_s2: 0.0,
+            integral_limit_fps: 5.0,
             sigma: 39.0,
             gamma_d: 40.0,
             b0_ft: 4.0,
@@ -365,6 +376,18 @@ impl GuidanceSection {
             100.0,
         )?;
         check::in_closed("guidance.velocity_lead_s", self.velocity_lead_s, 0.0, 100.0)?;
+        check::in_closed(
+            "guidance.integral_gain_per_s2",
+            self.integral_gain_per_s2,
+            0.0,
+            10.0,
+        )?;
+        check::in_closed(
+            "guidance.integral_limit_fps",
+            self.integral_limit_fps,
+            0.0,
+            1e3,
+        )?;
         check::in_closed(
             "guidance.approach_speed_max_fps",
             self.approach_speed_max_fps,
