@@ -2,23 +2,13 @@
 //! right), with the formation drawn as it stood every 20 s (each follower joined to the
 //! aircraft it tracks).
 
-use super::plots::{PlotError, font_available};
+use super::plots::{PALETTE, PlotError, font_available};
 use crate::sim::group::Group;
 use plotters::prelude::*;
 use std::path::Path;
 
 /// Seconds between the formation's drawn instants.
 const SNAPSHOT_EVERY_S: f64 = 20.0;
-
-/// The colours of the aircraft's tracks, targets first.
-const COLOURS: [RGBColor; 6] = [
-    RGBColor(0, 0, 0),
-    RGBColor(214, 39, 40),
-    RGBColor(31, 119, 180),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-];
 
 /// A named track: (east, north) points, ft.
 struct Track {
@@ -101,7 +91,7 @@ pub fn draw_formation(path: &Path, group: &Group) -> Result<(), PlotError> {
         .draw()
         .map_err(|e| draw_error(&e))?;
     for (k, track) in tracks.iter().enumerate() {
-        let colour = COLOURS[k % COLOURS.len()];
+        let colour = PALETTE[k % PALETTE.len()];
         chart
             .draw_series(LineSeries::new(track.points.iter().copied(), colour))
             .map_err(|e| draw_error(&e))?

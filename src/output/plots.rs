@@ -141,6 +141,19 @@ impl Panel {
     }
 }
 
+/// Line colours of a set of like curves (a study's cases, a group's aircraft), one palette
+/// for every figure.
+pub const PALETTE: [RGBColor; 8] = [
+    RGBColor(20, 60, 200),
+    RGBColor(210, 40, 40),
+    RGBColor(20, 150, 60),
+    RGBColor(240, 150, 0),
+    RGBColor(120, 50, 170),
+    RGBColor(0, 160, 170),
+    RGBColor(120, 120, 120),
+    RGBColor(170, 110, 40),
+];
+
 /// Colours for measured/true (blue) and command/reference (red) curves, and a third.
 pub const TRUTH: RGBColor = RGBColor(20, 60, 200);
 /// Command or reference curves.

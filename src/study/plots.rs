@@ -384,8 +384,8 @@ fn apparent_size_maps(
 
 #[cfg(test)]
 mod tests {
-    use super::lines::PALETTE;
     use super::*;
+    use crate::output::plots::PALETTE;
     use plotters::style::RGBColor;
     use serde_json::Value;
 

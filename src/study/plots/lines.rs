@@ -10,17 +10,7 @@ use crate::output::plots::{Chart, PlotError, draw_error, draw_y_description};
 use plotters::prelude::*;
 use std::path::Path;
 
-/// Line colours.
-pub const PALETTE: [RGBColor; 8] = [
-    RGBColor(20, 60, 200),
-    RGBColor(210, 40, 40),
-    RGBColor(20, 150, 60),
-    RGBColor(240, 150, 0),
-    RGBColor(120, 50, 170),
-    RGBColor(0, 160, 170),
-    RGBColor(120, 120, 120),
-    RGBColor(170, 110, 40),
-];
+use crate::output::plots::PALETTE;
 
 /// The colour of the cases left out of the medians.
 pub const STOPPED: RGBColor = RGBColor(220, 0, 0);
