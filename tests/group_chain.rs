@@ -56,6 +56,29 @@ fn platoon_links_track_their_leaders() {
     }
 }
 
+/// With `output.plots`, a group's folder has the formation seen from above and, in each
+/// follower's folder, the figures a single run of it would have.
+#[test]
+fn group_plots_the_formation_and_each_follower() {
+    let path = repo_root().join("scenarios/platoon.toml");
+    let sets = [
+        "run.duration_s=2",
+        "output.plots=true",
+        "output.frames_every=0",
+    ]
+    .map(String::from);
+    let group = load_checked(&path, &sets).expect("valid").expect("a group");
+    let dir = tempfile::tempdir().expect("temp dir");
+    run_group_to_directory(&group, "platoon", dir.path(), None, |_| {}).expect("run");
+    assert!(dir.path().join("formation.png").is_file());
+    for name in ["f1", "f2", "f3"] {
+        for figure in ["relative_position.png", "size_estimate.png"] {
+            let file = dir.path().join(name).join("plots").join(figure);
+            assert!(file.is_file(), "{}", file.display());
+        }
+    }
+}
+
 /// Per row: the follower's position (`fol`) or the tracked aircraft's (`tgt`: rel + fol),
 /// NED, ft.
 fn positions(path: &std::path::Path, which: &str) -> Vec<[f64; 3]> {

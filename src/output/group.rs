@@ -236,7 +236,8 @@ pub fn slot_rms(logged: &[Snapshot], window_s: f64) -> [f64; 3] {
     [0, 1, 2].map(|i| (rows.iter().map(|e| e[i] * e[i]).sum::<f64>() / n).sqrt())
 }
 
-/// Writes follower `member`'s folder: its scenario, telemetry and summary.
+/// Writes follower `member`'s folder: its scenario, telemetry, summary and, with
+/// `output.plots`, the single run's figures.
 fn write_member(out_dir: &Path, name: &str, member: &GroupMember) -> Result<(), RunError> {
     let dir = out_dir.join(&member.name);
     let io = |path: &Path| {
@@ -261,7 +262,8 @@ fn write_member(out_dir: &Path, name: &str, member: &GroupMember) -> Result<(), 
         .and_then(|e| stopped_status(e, &member.sim));
     let run_name = format!("{name}/{}", member.name);
     let wall_s = member.wall.as_secs_f64();
-    let summary = Summary::build(&run_name, &member.logged, &member.sim, wall_s, stopped);
-    let summary_path = dir.join("summary.json");
-    std::fs::write(&summary_path, summary.to_json()).map_err(io(&summary_path))
+    let mut summary = Summary::build(&run_name, &member.logged, &member.sim, wall_s, stopped);
+    let summary_path = dir.join(super::SUMMARY_FILE);
+    super::write_outputs_after_telemetry(&dir, member.sim.scenario(), &member.logged, &mut summary)
+        .map_err(io(&summary_path))
 }
