@@ -265,3 +265,42 @@ fn shipped_studies_are_valid() {
         assert_eq!(plan.cases.len(), cases, "{name}");
     }
 }
+
+/// A study of a group scenario runs the group in every case: one column per follower's
+/// number, named after it, and the group's status (it ran the pair alone, silently, before).
+#[test]
+fn a_group_study_runs_every_follower() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let study = common::write_study(
+        dir.path(),
+        "platoon.toml",
+        "platoon",
+        "replicates = 2\nset = [\"run.duration_s=2\", \"output.plots=false\", \"output.frames_every=0\"]\n",
+    );
+    let out = dir.path().join("out");
+    sweep(&study, &out, &[]);
+    let rows = common::results_without_timing(&out);
+    let column = |name: &str| {
+        rows[0]
+            .iter()
+            .position(|c| c == name)
+            .unwrap_or_else(|| panic!("no column {name}"))
+    };
+    assert_eq!(rows.len(), 3, "a header and two cases");
+    for row in &rows[1..] {
+        assert_eq!(row[column("status")], "completed");
+        for follower in ["f1", "f2", "f3"] {
+            let b_hat: f64 = row[column(&format!("{follower}.b_hat_final_ft"))]
+                .parse()
+                .expect("a number");
+            assert!(b_hat > 0.0, "{follower}: {b_hat}");
+            assert!(
+                out.join("cases/000000")
+                    .join(follower)
+                    .join("summary.json")
+                    .is_file()
+            );
+        }
+        assert_eq!(row[column("f1.wall_s")], "", "a timing column");
+    }
+}

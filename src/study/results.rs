@@ -199,12 +199,19 @@ fn flatten(name: &str, value: &Value, out: &mut Vec<Column>) {
     }
 }
 
-/// Whether a column holds wall-clock time (differs from run to run).
+/// Whether a column holds wall-clock time (differs from run to run), a group's follower's
+/// (`f1.wall_s`) included.
 pub fn is_timing_column(name: &str) -> bool {
-    name == "wall_s"
-        || name == "realtime_factor"
-        || name.starts_with("per_frame_ms.")
-        || name.starts_with("stage_wall_s.")
+    let timing = |name: &str| {
+        name == "wall_s"
+            || name == "realtime_factor"
+            || name.starts_with("per_frame_ms.")
+            || name.starts_with("stage_wall_s.")
+    };
+    timing(name)
+        || name
+            .match_indices('.')
+            .any(|(at, _)| timing(&name[at + 1..]))
 }
 
 /// Why results could not be read or written.
@@ -329,7 +336,8 @@ mod tests {
         assert_eq!(get("intercept_time_s"), None);
         assert_eq!(get("scenario"), None);
         assert!(is_timing_column("wall_s") && is_timing_column("per_frame_ms.render"));
-        assert!(!is_timing_column("min_range_ft"));
+        assert!(is_timing_column("f1.wall_s") && is_timing_column("f2.per_frame_ms.render"));
+        assert!(!is_timing_column("min_range_ft") && !is_timing_column("f1.min_range_ft"));
     }
 
     #[test]

@@ -14,8 +14,10 @@ use super::results::{
 use super::spec::StudyKind;
 use super::workers::Workers;
 use super::{StudyError, outputs};
+use crate::output::group::{load_checked, run_group_to_directory};
 use crate::output::run_to_directory_on;
 use crate::render::GpuContext;
+use crate::scenario::group::GroupScenario;
 use crate::scenario::{Scenario, SensorMode};
 use rayon::prelude::*;
 use std::panic::AssertUnwindSafe;
@@ -155,14 +157,15 @@ fn run_case(plan: &Plan, case: &Case, dir: &Path, workers: &Workers) -> CaseReco
         return record;
     }
     let overrides = case.scenario_overrides(&plan.set);
-    let outcome = Scenario::load(&plan.scenario_path, &overrides)
-        .map_err(|e| e.to_string())
-        .and_then(|scenario| match plan.kind {
-            StudyKind::Sweep => Ok(run_scenario(&plan.layout, &scenario, dir, workers)),
-            StudyKind::ApparentSize => workers
-                .measure_view(overrides, scenario, case, dir)
-                .map(|columns| ("completed".to_string(), None, columns)),
-        });
+    let group = match plan.kind {
+        StudyKind::Sweep => load_checked(&plan.scenario_path, &overrides),
+        StudyKind::ApparentSize => Ok(None),
+    };
+    let outcome = match group {
+        Ok(Some(group)) => Ok(run_group(&group, &plan.scenario_path, dir, workers)),
+        Ok(None) => run_pair(plan, case, overrides, dir, workers),
+        Err(e) => Err(e.to_string()),
+    };
     match outcome {
         Ok((status, message, columns)) => {
             record.status = status;
@@ -172,6 +175,70 @@ fn run_case(plan: &Plan, case: &Case, dir: &Path, workers: &Workers) -> CaseReco
         Err(message) => record.message = Some(message),
     }
     record
+}
+
+/// A case of a single pair's scenario: a sweep's run or an apparent-size view.
+fn run_pair(
+    plan: &Plan,
+    case: &Case,
+    overrides: Vec<String>,
+    dir: &Path,
+    workers: &Workers,
+) -> Result<(String, Option<String>, Vec<Column>), String> {
+    Scenario::load(&plan.scenario_path, &overrides)
+        .map_err(|e| e.to_string())
+        .and_then(|scenario| match plan.kind {
+            StudyKind::Sweep => Ok(run_scenario(&plan.layout, &scenario, dir, workers)),
+            StudyKind::ApparentSize => workers
+                .measure_view(overrides, scenario, case, dir)
+                .map(|columns| ("completed".to_string(), None, columns)),
+        })
+}
+
+/// A sweep case of a group scenario (`[group]`): the group's run into `dir`, on the worker's
+/// device; its status is the first stopped follower's (`completed` when none stopped), its
+/// numbers every follower's summary's, each named after the follower (`f1.b_hat_final_ft`),
+/// and the group's `duration_s`, `wall_s` and `realtime_factor`.
+fn run_group(
+    group: &GroupScenario,
+    scenario_path: &Path,
+    dir: &Path,
+    workers: &Workers,
+) -> (String, Option<String>, Vec<Column>) {
+    let name = scenario_path
+        .file_stem()
+        .map_or_else(|| "group".to_string(), |s| s.to_string_lossy().into_owned());
+    let ran = workers.with_gpu(|gpu| match gpu {
+        Ok(gpu) => {
+            run_group_to_directory(group, &name, dir, Some(gpu), |_| {}).map_err(|e| e.to_string())
+        }
+        Err(message) => Err(message.to_string()),
+    });
+    let summary = match ran {
+        Ok(summary) => summary,
+        Err(message) => return (FAILED.into(), Some(message), vec![]),
+    };
+    let mut columns: Vec<Column> = vec![
+        ("duration_s".into(), summary.duration_s.into()),
+        ("wall_s".into(), summary.wall_s.into()),
+        ("realtime_factor".into(), summary.realtime_factor.into()),
+    ];
+    let mut status = "completed".to_string();
+    for follower in &summary.followers {
+        let own = std::fs::read_to_string(dir.join(&follower.name).join("summary.json"))
+            .ok()
+            .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok());
+        let Some(own) = own else { continue };
+        let own_status = own["status"].as_str().unwrap_or(FAILED);
+        if status == "completed" && own_status != "completed" {
+            status = own_status.to_string();
+        }
+        let prefixed = summary_columns(&own)
+            .into_iter()
+            .map(|(column, value)| (format!("{}.{column}", follower.name), value));
+        columns.extend(prefixed);
+    }
+    (status, summary.stopped_by, columns)
 }
 
 /// A sweep case: `wingman run` into `dir`; the status, message and numbers of the summary it
