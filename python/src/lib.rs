@@ -68,6 +68,19 @@ fn stem(path: &Path) -> String {
     )
 }
 
+/// A group scenario (`[group]`) is not one pair: `Simulation` would fly its base pair alone.
+fn refuse_group(scenario: &Path, overrides: &[String]) -> PyResult<()> {
+    match wingman::output::group::load_checked(scenario, overrides) {
+        Ok(None) => Ok(()),
+        Ok(Some(_)) => Err(ScenarioError::new_err(format!(
+            "{}: a group scenario ([group]); Simulation steps one follower and its target: \
+             run the group with `wingman run` or study it with `wingman.sweep`",
+            scenario.display()
+        ))),
+        Err(e) => Err(ScenarioError::new_err(e.to_string())),
+    }
+}
+
 #[pymethods]
 impl Simulation {
     /// Loads and checks the scenario with its `section.key=value` overrides, as `wingman
@@ -75,6 +88,7 @@ impl Simulation {
     #[new]
     #[pyo3(signature = (scenario, overrides = Vec::new()))]
     fn new(scenario: PathBuf, overrides: Vec<String>) -> PyResult<Self> {
+        refuse_group(&scenario, &overrides)?;
         let loaded = preflight::load(&scenario, &overrides)
             .map_err(|e| ScenarioError::new_err(e.to_string()))?;
         let name = stem(&scenario);

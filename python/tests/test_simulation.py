@@ -84,6 +84,11 @@ def test_bad_scenario_raises_the_command_lines_message(root, cli):
     assert issubclass(wingman.ScenarioError, ValueError)
 
 
+def test_group_scenario_is_refused_not_flown_as_a_pair(root):
+    with pytest.raises(wingman.ScenarioError, match=r"group scenario"):
+        wingman.Simulation(root / "scenarios/platoon.toml")
+
+
 def test_command_offset_moves_the_follower(root):
     base = {**SHORT, "sensor.mode": "perfect", "run.duration_s": 4.0}
     plain = wingman.Simulation(root / "scenarios/formation.toml", base)
