@@ -5,8 +5,8 @@
 //! that aircraft's truth (the target's state, or the leading follower's carried over the tick
 //! with its velocity and acceleration), and its camera draws every other aircraft of the
 //! group at the frame's instant, carried there likewise. So the followers' steps within a
-//! tick do not depend on one another, and they are taken on threads of their own on the
-//! ticks their cameras take a frame. The followers' estimators and guidance see their
+//! tick do not depend on one another, and every tick takes them on the thread pool at once
+//! (their frames drawn and measured at once on frame ticks). The followers' estimators and guidance see their
 //! pixels alone. The group stops at the first tick any follower's run ends (lost, falsely locked,
 //! diverged, or a stop asked for), or at the end of the run.
 
@@ -21,6 +21,7 @@ use crate::sensing::{OtherAircraft, SensorError};
 use crate::world::aircraft::AircraftParams;
 use crate::world::relay::{Relay, carried};
 use crate::world::target::{TargetModel, TargetState};
+use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
 /// What a follower tracks.
@@ -209,9 +210,8 @@ impl Group {
     /// Takes one tick of every follower (nothing once [`Self::is_over`]); `stop_asked` as
     /// [`Simulation::run_tick`]'s. Every follower is given its leader and the other aircraft
     /// at the tick's end as this tick's states carry them there (the targets' own: they have
-    /// moved first), so that the followers' steps are independent: a tick on which their
-    /// cameras take a frame steps them on threads of their own, their frames drawn and
-    /// measured at once (docs/findings.md, Group tracking, the cost).
+    /// moved first), so that the followers' steps are independent: every tick takes them on
+    /// the thread pool at once (docs/findings.md, Group tracking, the cost).
     pub fn step(&mut self, stop_asked: impl Fn() -> bool + Sync) -> Result<(), SimError> {
         if self.is_over() {
             return Ok(());
@@ -239,18 +239,10 @@ impl Group {
             })
             .collect();
         let (t_next_s, dt_s, stop_asked) = (t_next_s, self.dt_s, &stop_asked);
-        let members = self.members.iter_mut().zip(views);
-        if frame_tick {
-            std::thread::scope(|scope| {
-                for (member, view) in members {
-                    scope.spawn(move || member.step(t_next_s, dt_s, view, stop_asked));
-                }
-            });
-        } else {
-            for (member, view) in members {
-                member.step(t_next_s, dt_s, view, stop_asked);
-            }
-        }
+        let members: Vec<_> = self.members.iter_mut().zip(views).collect();
+        members
+            .into_par_iter()
+            .for_each(|(member, view)| member.step(t_next_s, dt_s, view, stop_asked));
         self.tick += 1;
         if self.tick.is_multiple_of(self.log_every) {
             self.target_tracks.push(self.target_positions());
