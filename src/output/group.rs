@@ -7,17 +7,12 @@ use super::frame_images::{FrameSaver, gimbal_captions};
 use super::summary::{RunStatus, Summary};
 use super::telemetry::{TelemetryWriter, row_of};
 use super::{RunError, folder, interrupt, lock, stopped_status};
-use crate::frames::Vec3;
 use crate::render::GpuContext;
 use crate::scenario::group::GroupScenario;
 use crate::scenario::{ScenarioError, ScenarioSource};
-use crate::sim::Snapshot;
 use crate::sim::group::{Group, GroupMember};
 use std::path::Path;
 use std::time::Instant;
-
-/// The window at the run's end over which the slot's RMS is taken, s.
-pub const SLOT_RMS_WINDOW_S: f64 = 20.0;
 
 /// One follower's result in `group.json`.
 #[derive(Debug, Clone, serde::Serialize)]
@@ -39,7 +34,8 @@ pub struct FollowerResult {
     pub b_hat_final_ft: f64,
     /// (b̂ - b) / b at the end.
     pub b_hat_error_fraction: f64,
-    /// RMS of R - R_c per NED axis over the last [`SLOT_RMS_WINDOW_S`] s, ft.
+    /// RMS of R - R_c per NED axis over the last 20 s, ft (its summary's
+    /// `rms_error_last20s_ft`).
     pub slot_rms_last_20s_ft: [f64; 3],
     /// Wall time of its set-up and steps, s (the followers step at once on frame ticks).
     pub wall_s: f64,
@@ -141,10 +137,12 @@ pub fn run_group_to_directory(
         eprintln!("warning: {warning}");
     }
     let wall_s = started.elapsed().as_secs_f64();
-    let summary = group_summary(&run, name, wall_s);
+    let mut results = Vec::new();
     for member in run.members() {
-        write_member(out_dir, name, member)?;
+        let summary = write_member(out_dir, name, member)?;
+        results.push(follower_result(member, &summary));
     }
+    let summary = group_summary(&run, name, wall_s, results);
     let path = out_dir.join("group.json");
     let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
     std::fs::write(&path, json + "\n").map_err(|source| RunError::Io { path, source })?;
@@ -184,8 +182,13 @@ fn save_frames(run: &Group, savers: &mut [Option<FrameSaver>], warnings: &mut Ve
     }
 }
 
-/// The group's summary after its run.
-fn group_summary(run: &Group, name: &str, wall_s: f64) -> GroupSummary {
+/// The group's summary after its run, with each follower's result.
+fn group_summary(
+    run: &Group,
+    name: &str,
+    wall_s: f64,
+    followers: Vec<FollowerResult>,
+) -> GroupSummary {
     let duration_s = run.time_s();
     let stopped_by = run.members().iter().find_map(|m| {
         let (status, message) = stopped_status(m.end.as_ref()?, &m.sim)?;
@@ -197,48 +200,30 @@ fn group_summary(run: &Group, name: &str, wall_s: f64) -> GroupSummary {
         wall_s,
         realtime_factor: duration_s / wall_s.max(1e-9),
         stopped_by,
-        followers: run.members().iter().map(follower_result).collect(),
+        followers,
     }
 }
 
-/// One follower's line of `group.json`.
-pub fn follower_result(m: &GroupMember) -> FollowerResult {
-    let status = (m.end.as_ref())
-        .and_then(|end| stopped_status(end, &m.sim))
-        .map_or(RunStatus::Completed, |(status, _)| status);
-    let b_true_ft = m.sim.scenario().target.size_ft;
-    let b_hat_final_ft = m.logged.last().map_or(f64::NAN, |s| s.b_hat_ft);
-    let frames = |episodes: Vec<crate::sensing::losses::LossEpisode>| -> u64 {
-        episodes.iter().map(|e| e.frames).sum()
-    };
+/// One follower's line of `group.json`, from its own summary (`summary.json`'s numbers).
+fn follower_result(m: &GroupMember, summary: &Summary) -> FollowerResult {
+    let (b_true_ft, b_hat_final_ft) = (summary.b_true_ft, summary.b_hat_final_ft);
     FollowerResult {
         name: m.name.clone(),
         tracks: m.tracks.clone(),
-        status,
-        lost_frames: frames(m.sim.loss_episodes()),
-        false_lock_frames: frames(m.sim.false_lock_episodes()),
+        status: summary.status,
+        lost_frames: summary.lost_frames,
+        false_lock_frames: summary.track_check.off_target_frames,
         b_true_ft,
         b_hat_final_ft,
         b_hat_error_fraction: (b_hat_final_ft - b_true_ft) / b_true_ft,
-        slot_rms_last_20s_ft: slot_rms(&m.logged, SLOT_RMS_WINDOW_S),
+        slot_rms_last_20s_ft: summary.rms_error_last20s_ft,
         wall_s: m.wall.as_secs_f64(),
     }
 }
 
-/// RMS of R - R_c per NED axis over the rows of the last `window_s` of `logged`, ft.
-pub fn slot_rms(logged: &[Snapshot], window_s: f64) -> [f64; 3] {
-    let end_s = logged.last().map_or(0.0, |s| s.t_s);
-    let rows: Vec<Vec3> = (logged.iter())
-        .filter(|s| s.t_s >= end_s - window_s)
-        .map(|s| s.relative_ned_ft - s.command_ned_ft)
-        .collect();
-    let n = rows.len().max(1) as f64;
-    [0, 1, 2].map(|i| (rows.iter().map(|e| e[i] * e[i]).sum::<f64>() / n).sqrt())
-}
-
 /// Writes follower `member`'s folder: its scenario, telemetry, summary and, with
-/// `output.plots`, the single run's figures.
-fn write_member(out_dir: &Path, name: &str, member: &GroupMember) -> Result<(), RunError> {
+/// `output.plots`, the single run's figures; returns its summary.
+fn write_member(out_dir: &Path, name: &str, member: &GroupMember) -> Result<Summary, RunError> {
     let dir = out_dir.join(&member.name);
     let io = |path: &Path| {
         let path = path.to_path_buf();
@@ -265,5 +250,6 @@ fn write_member(out_dir: &Path, name: &str, member: &GroupMember) -> Result<(), 
     let mut summary = Summary::build(&run_name, &member.logged, &member.sim, wall_s, stopped);
     let summary_path = dir.join(super::SUMMARY_FILE);
     super::write_outputs_after_telemetry(&dir, member.sim.scenario(), &member.logged, &mut summary)
-        .map_err(io(&summary_path))
+        .map_err(io(&summary_path))?;
+    Ok(summary)
 }
