@@ -17,6 +17,7 @@ use wingman::output::group::{load_checked, run_group_to_directory};
 fn platoon_links_track_their_leaders() {
     let path = repo_root().join("scenarios/platoon.toml");
     let sets = [
+        "run.seed=1",
         "run.duration_s=6",
         "output.plots=false",
         "output.frames_every=0",

@@ -27,6 +27,8 @@ fn through_crossing(selection: &str) -> wingman::output::group::FollowerResult {
     let path = dir.path().join("crossing.toml");
     std::fs::write(&path, text).expect("write");
     let sets = [
+        // Stream 1 (the one measured in docs/findings.md, Group tracking, with streams 2-5).
+        "run.seed=1".to_string(),
         "run.duration_s=45".to_string(),
         "output.plots=false".to_string(),
         "output.frames_every=0".to_string(),
