@@ -16,6 +16,7 @@ use super::workers::Workers;
 use super::{StudyError, outputs};
 use crate::output::group::{load_checked, run_group_to_directory};
 use crate::output::run_to_directory_on;
+use crate::output::summary::RunStatus;
 use crate::render::GpuContext;
 use crate::scenario::group::GroupScenario;
 use crate::scenario::{Scenario, SensorMode};
@@ -162,7 +163,7 @@ fn run_case(plan: &Plan, case: &Case, dir: &Path, workers: &Workers) -> CaseReco
         StudyKind::ApparentSize => Ok(None),
     };
     let outcome = match group {
-        Ok(Some(group)) => Ok(run_group(&group, &plan.scenario_path, dir, workers)),
+        Ok(Some(group)) => Ok(run_group(&group, &plan.layout.study, dir, workers)),
         Ok(None) => run_pair(plan, case, overrides, dir, workers),
         Err(e) => Err(e.to_string()),
     };
@@ -195,22 +196,20 @@ fn run_pair(
         })
 }
 
-/// A sweep case of a group scenario (`[group]`): the group's run into `dir`, on the worker's
-/// device; its status is the first stopped follower's (`completed` when none stopped), its
-/// numbers every follower's summary's, each named after the follower (`f1.b_hat_final_ft`),
-/// and the group's `duration_s`, `wall_s` and `realtime_factor`.
+/// A sweep case of a group scenario (`[group]`): the group's run into `dir`, named `name` (the
+/// study's, as a pair's case is), on the worker's device; its status is the first stopped
+/// follower's (`completed` when none stopped), its numbers every follower's summary's, each
+/// named after the follower (`f1.b_hat_final_ft`), and the group's `duration_s`, `wall_s` and
+/// `realtime_factor`.
 fn run_group(
     group: &GroupScenario,
-    scenario_path: &Path,
+    name: &str,
     dir: &Path,
     workers: &Workers,
 ) -> (String, Option<String>, Vec<Column>) {
-    let name = scenario_path
-        .file_stem()
-        .map_or_else(|| "group".to_string(), |s| s.to_string_lossy().into_owned());
     let ran = workers.with_gpu(|gpu| match gpu {
         Ok(gpu) => {
-            run_group_to_directory(group, &name, dir, Some(gpu), |_| {}).map_err(|e| e.to_string())
+            run_group_to_directory(group, name, dir, Some(gpu), |_| {}).map_err(|e| e.to_string())
         }
         Err(message) => Err(message.to_string()),
     });
@@ -223,22 +222,21 @@ fn run_group(
         ("wall_s".into(), summary.wall_s.into()),
         ("realtime_factor".into(), summary.realtime_factor.into()),
     ];
-    let mut status = "completed".to_string();
+    let status = (summary.followers.iter())
+        .map(|f| f.status)
+        .find(|s| *s != RunStatus::Completed)
+        .unwrap_or(RunStatus::Completed);
     for follower in &summary.followers {
         let own = std::fs::read_to_string(dir.join(&follower.name).join("summary.json"))
             .ok()
             .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok());
         let Some(own) = own else { continue };
-        let own_status = own["status"].as_str().unwrap_or(FAILED);
-        if status == "completed" && own_status != "completed" {
-            status = own_status.to_string();
-        }
         let prefixed = summary_columns(&own)
             .into_iter()
             .map(|(column, value)| (format!("{}.{column}", follower.name), value));
         columns.extend(prefixed);
     }
-    (status, summary.stopped_by, columns)
+    (status.name().to_string(), summary.stopped_by, columns)
 }
 
 /// A sweep case: `wingman run` into `dir`; the status, message and numbers of the summary it
