@@ -2,8 +2,9 @@
 //! (`scenarios/platoon.toml`: target → f1 → f2 → f3), run end to end for its first seconds.
 //!
 //! Invariants: (1) the aircraft each follower tracks is, in its telemetry, where the leader's
-//! own simulation put it at every logged instant, within a thousandth of a foot (the relay of
-//! the leader's truth, carried over one tick with its velocity and acceleration);
+//! own simulation put it at every logged instant, within a hundredth of a foot (the relay of
+//! the leader's truth, carried from the last frame's tick over at most one frame interval,
+//! 33 ms, with its velocity and acceleration: 1.1 thousandths at worst on this run);
 //! (2) every frame any follower measured was of the aircraft it tracks, by the truth (no
 //! teammate captured a track) and none went unmeasured; (3) the outputs: one folder per
 //! follower with today's files, and `group.json` with the followers leaders first.
@@ -52,7 +53,7 @@ fn platoon_links_track_their_leaders() {
         assert_eq!(ahead.len(), seen.len());
         for (a, s) in ahead.iter().zip(&seen) {
             let off: f64 = (0..3).map(|i| (a[i] - s[i]).abs()).sum();
-            assert!(off < 1e-3, "{follower} sees {leader} {off} ft off");
+            assert!(off < 1e-2, "{follower} sees {leader} {off} ft off");
         }
     }
 }
@@ -99,4 +100,25 @@ fn positions(path: &std::path::Path, which: &str) -> Vec<[f64; 3]> {
             })
         })
         .collect()
+}
+
+/// A group steps from one frame's tick to the next (the followers' barrier is per frame):
+/// with 30 Hz cameras and 1/300 s ticks a step takes 10 ticks, and the last step stops at the
+/// run's end.
+#[test]
+fn a_group_steps_a_frame_interval_at_a_time() {
+    let path = repo_root().join("scenarios/platoon.toml");
+    let sets = ["run.duration_s=0.35", "output.plots=false"].map(String::from);
+    let group = load_checked(&path, &sets).expect("valid").expect("a group");
+    let mut run = wingman::sim::group::Group::new(&group, None).expect("set up");
+    let mut times_s = Vec::new();
+    while !run.is_over() {
+        run.step(|| false).expect("step");
+        times_s.push(run.time_s());
+    }
+    let steps: Vec<f64> = times_s.windows(2).map(|w| w[1] - w[0]).collect();
+    for step_s in &steps[..steps.len() - 1] {
+        assert!((step_s - 1.0 / 30.0).abs() < 1e-9, "a step of {step_s} s");
+    }
+    assert!((times_s[times_s.len() - 1] - 0.35).abs() < 1e-9);
 }

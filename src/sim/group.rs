@@ -2,13 +2,14 @@
 //! [`Simulation`] per follower (set up leaders first), stepped in lockstep.
 //!
 //! The group moves the targets. Each follower tracks its aircraft through a [`Relay`] of
-//! that aircraft's truth (the target's state, or the leading follower's carried over the tick
-//! with its velocity and acceleration), and its camera draws every other aircraft of the
-//! group at the frame's instant, carried there likewise. So the followers' steps within a
-//! tick do not depend on one another, and every tick takes them on the thread pool at once
-//! (their frames drawn and measured at once on frame ticks). The followers' estimators and guidance see their
-//! pixels alone. The group stops at the first tick any follower's run ends (lost, falsely locked,
-//! diverged, or a stop asked for), or at the end of the run.
+//! that aircraft's truth (the target's state at each tick, or the leading follower's carried
+//! from the last frame's tick with its velocity and acceleration), and its camera draws every
+//! other aircraft of the group at the frame's instant, carried there over one tick likewise.
+//! So the followers' steps from one frame's tick to the next do not depend on one another,
+//! and each such stretch takes them on the thread pool at once, one task per follower. The
+//! followers' estimators and guidance see their pixels alone. The group stops at the end of
+//! the stretch in which any follower's run ends (lost, falsely locked, diverged, or a stop
+//! asked for), or at the end of the run.
 
 use super::build::target_of;
 use super::{RunEnd, SimError, Simulation, Snapshot};
@@ -207,52 +208,105 @@ impl Group {
         self.tick >= self.total_ticks || self.members.iter().any(|m| m.end.is_some())
     }
 
-    /// Takes one tick of every follower (nothing once [`Self::is_over`]); `stop_asked` as
-    /// [`Simulation::run_tick`]'s. Every follower is given its leader and the other aircraft
-    /// at the tick's end as this tick's states carry them there (the targets' own: they have
-    /// moved first), so that the followers' steps are independent: every tick takes them on
-    /// the thread pool at once (docs/findings.md, Group tracking, the cost).
+    /// Takes the next stretch of ticks of every follower (nothing once [`Self::is_over`]):
+    /// up to the next tick at which any camera takes a frame, so that a stretch holds at most
+    /// one frame, on its first tick; `stop_asked` as [`Simulation::run_tick`]'s. The targets
+    /// move through the stretch first. Every follower is given its leader at each tick of the
+    /// stretch (a target's own state; a leading follower's carried there from the stretch's
+    /// start, as only the renderer, on the first tick, and the truth outputs read it) and the
+    /// other aircraft at the first tick, so that the followers' steps are independent: each
+    /// stretch takes them on the thread pool at once, one task per follower
+    /// (docs/findings.md, Group tracking, the cost). A follower whose run ends stops there;
+    /// the others finish the stretch.
     pub fn step(&mut self, stop_asked: impl Fn() -> bool + Sync) -> Result<(), SimError> {
         if self.is_over() {
             return Ok(());
         }
-        let t_s = self.time_s();
-        let t_next_s = t_s + self.dt_s;
-        for target in &mut self.targets {
-            target
-                .model
-                .advance(t_s, self.dt_s)
-                .map_err(|diverged| SimError::Diverged {
-                    t_s: t_next_s,
-                    what: format!("target {}: {}", target.name, diverged.what),
-                })?;
-        }
-        let frame_tick = self
-            .members
-            .iter()
-            .any(|m| (m.sim.camera()).is_some_and(|c| c.is_frame_tick(m.sim.tick() + 1)));
+        let ticks = self.stretch_ticks();
+        let target_states = self.advance_targets(ticks)?;
+        let frame_tick = self.is_any_frame_tick(self.tick + 1);
         // The others are drawn only in frames: they are placed on frame ticks alone.
-        let views: Vec<(TargetState, Option<Vec<OtherAircraft>>)> = (0..self.members.len())
-            .map(|j| {
-                let leader = self.leader_state(self.members[j].leader, t_next_s);
-                (leader, frame_tick.then(|| self.others_seen_by(j, t_next_s)))
+        let views: Vec<MemberView> = (0..self.members.len())
+            .map(|j| MemberView {
+                leader: (1..=ticks)
+                    .map(|i| self.state_in(self.members[j].leader, i, &target_states))
+                    .collect(),
+                others: frame_tick.then(|| self.others_seen_by(j, &target_states)),
             })
             .collect();
-        let (t_next_s, dt_s, stop_asked) = (t_next_s, self.dt_s, &stop_asked);
+        let (dt_s, stop_asked) = (self.dt_s, &stop_asked);
         let members: Vec<_> = self.members.iter_mut().zip(views).collect();
         members
             .into_par_iter()
-            .for_each(|(member, view)| member.step(t_next_s, dt_s, view, stop_asked));
-        self.tick += 1;
-        if self.tick.is_multiple_of(self.log_every) {
-            self.target_tracks.push(self.target_positions());
-        }
+            .for_each(|(member, view)| member.step(dt_s, view, stop_asked));
+        self.tick += ticks;
         Ok(())
     }
 
-    /// Every aircraft follower `j`'s camera draws at `t_s` (the group's next tick): all but
-    /// itself and the one it tracks.
-    fn others_seen_by(&self, j: usize, t_s: f64) -> Vec<OtherAircraft> {
+    /// The ticks of the next stretch: up to, not including, the next tick after the first at
+    /// which any follower's camera takes a frame, and not beyond the run's end.
+    fn stretch_ticks(&self) -> u64 {
+        let left = self.total_ticks - self.tick;
+        (2..=left)
+            .find(|i| self.is_any_frame_tick(self.tick + i))
+            .map_or(left, |i| i - 1)
+    }
+
+    /// Whether any follower's camera takes a frame at the group's tick `tick`.
+    fn is_any_frame_tick(&self, tick: u64) -> bool {
+        (self.members.iter()).any(|m| (m.sim.camera()).is_some_and(|c| c.is_frame_tick(tick)))
+    }
+
+    /// Moves the targets through the next `ticks` ticks: their states at each (the targets'
+    /// order), their track sampled every `run.log_every` ticks.
+    fn advance_targets(&mut self, ticks: u64) -> Result<Vec<Vec<TargetState>>, SimError> {
+        let mut states: Vec<Vec<TargetState>> = Vec::new();
+        for i in 1..=ticks {
+            let (t_s, t_next_s) = (self.tick_end_s(i) - self.dt_s, self.tick_end_s(i));
+            for target in &mut self.targets {
+                target
+                    .model
+                    .advance(t_s, self.dt_s)
+                    .map_err(|diverged| SimError::Diverged {
+                        t_s: t_next_s,
+                        what: format!("target {}: {}", target.name, diverged.what),
+                    })?;
+            }
+            let now: Vec<TargetState> = (self.targets.iter())
+                .map(|t| t.model.state(t_next_s))
+                .collect();
+            if (self.tick + i).is_multiple_of(self.log_every) {
+                (self.target_tracks).push(now.iter().map(|s| s.position_ned_ft).collect());
+            }
+            states.push(now);
+        }
+        Ok(states)
+    }
+
+    /// The state of `aircraft` at the end of the stretch's tick `i` (from 1), with that time:
+    /// a target's from `target_states`, a follower's carried there from the stretch's start.
+    fn state_in(
+        &self,
+        aircraft: Leader,
+        i: u64,
+        target_states: &[Vec<TargetState>],
+    ) -> (f64, TargetState) {
+        let t_s = self.tick_end_s(i);
+        match aircraft {
+            Leader::Target(k) => (t_s, target_states[(i - 1) as usize][k]),
+            follower => (t_s, self.leader_state(follower, t_s)),
+        }
+    }
+
+    /// The time at the end of the stretch's tick `i` (from 1), s.
+    fn tick_end_s(&self, i: u64) -> f64 {
+        (self.tick + i - 1) as f64 * self.dt_s + self.dt_s
+    }
+
+    /// Every aircraft follower `j`'s camera draws at the end of the stretch's first tick (the
+    /// targets' states through the stretch in `target_states`): all but itself and the one
+    /// it tracks.
+    fn others_seen_by(&self, j: usize, target_states: &[Vec<TargetState>]) -> Vec<OtherAircraft> {
         let leader = self.members[j].leader;
         let targets = (0..self.targets.len())
             .filter(|i| leader != Leader::Target(*i))
@@ -263,7 +317,7 @@ impl Group {
         targets
             .chain(followers)
             .map(|(aircraft, size_ft)| {
-                let state = self.leader_state(aircraft, t_s);
+                let (_, state) = self.state_in(aircraft, 1, target_states);
                 OtherAircraft {
                     position_ned_ft: state.position_ned_ft,
                     attitude: state.attitude,
@@ -274,27 +328,36 @@ impl Group {
     }
 }
 
+/// What a follower is given for a stretch of ticks: its leader at each tick, and the other
+/// aircraft at the first when a camera takes a frame there.
+struct MemberView {
+    /// The leader's state and its time at the end of each tick, s.
+    leader: Vec<(f64, TargetState)>,
+    others: Option<Vec<OtherAircraft>>,
+}
+
 impl GroupMember {
-    /// One tick of this follower, its leader and (on frame ticks) the others at the tick's
-    /// end `t_next_s` given in `view`; its true state then, the acceleration from the tick's
-    /// change of velocity over `dt_s`.
-    fn step(
-        &mut self,
-        t_next_s: f64,
-        dt_s: f64,
-        (leader, others): (TargetState, Option<Vec<OtherAircraft>>),
-        stop_asked: &(impl Fn() -> bool + Sync),
-    ) {
+    /// The ticks of a stretch of this follower, each `dt_s` long, its leader and the others
+    /// given in `view`; its true state after it, the acceleration from its last tick's change
+    /// of velocity. Stops where its run ends.
+    fn step(&mut self, dt_s: f64, view: MemberView, stop_asked: &(impl Fn() -> bool + Sync)) {
         let started = Instant::now();
-        self.relay.set(t_next_s, leader);
-        if let Some(others) = others {
+        if let Some(others) = view.others {
             self.sim.set_other_aircraft(&others);
         }
-        let tick = self.sim.run_tick(stop_asked);
-        self.logged.extend(tick.logged);
-        self.end = tick.end;
+        let mut velocity_before = self.truth.velocity_ned_fps;
+        for (t_s, leader) in view.leader {
+            if self.end.is_some() {
+                break;
+            }
+            velocity_before = self.sim.own_state().velocity_ned_fps;
+            self.relay.set(t_s, leader);
+            let tick = self.sim.run_tick(stop_asked);
+            self.logged.extend(tick.logged);
+            self.end = tick.end;
+        }
         let mut truth = self.sim.own_state();
-        truth.accel_ned_fps2 = (truth.velocity_ned_fps - self.truth.velocity_ned_fps) / dt_s;
+        truth.accel_ned_fps2 = (truth.velocity_ned_fps - velocity_before) / dt_s;
         self.truth = truth;
         self.wall += started.elapsed();
     }

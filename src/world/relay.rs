@@ -30,7 +30,7 @@ impl Relay {
 }
 
 /// The tracked aircraft as a target model: the relayed state, carried to any time with its
-/// velocity and acceleration (within a tick of the state's time).
+/// velocity and acceleration (within a frame interval of the state's time).
 #[derive(Debug)]
 struct RelayedTarget(Relay);
 
