@@ -317,6 +317,22 @@ fn quiet_mesa_runtime_dir() {
     }
 }
 
+/// Gives lavapipe's rasterizer threads the number that suits the frames of `scenarios`, when
+/// the user set none (`wingman::render::gpu::lavapipe_threads_to_set`): before the first GPU
+/// context, and only while the program still has one thread.
+fn set_lavapipe_threads(scenarios: &[&Scenario]) {
+    use wingman::scenario::SceneKind;
+    let world = scenarios.iter().any(|s| s.scene.kind == SceneKind::World);
+    let one_thread = std::fs::read_dir("/proc/self/task").is_ok_and(|tasks| tasks.count() == 1);
+    if let (Some(threads), true) = (
+        wingman::render::gpu::lavapipe_threads_to_set(world),
+        one_thread,
+    ) {
+        // SAFETY: no other thread runs (checked above), so none reads the environment now.
+        unsafe { std::env::set_var("LP_NUM_THREADS", threads) };
+    }
+}
+
 /// Loads the scenario and checks its assets and resources; the error line on failure.
 fn load_checked(path: &Path, overrides: &[String]) -> Result<Scenario, String> {
     preflight::load(path, overrides).map_err(|e| e.to_string())
@@ -412,7 +428,11 @@ fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> 
     let name = stem(path);
     let out_dir = out.unwrap_or_else(|| PathBuf::from("runs").join(&name));
     match wingman::output::group::load_checked(path, overrides) {
-        Ok(Some(group)) => return run_group(&group, &name, &out_dir, quiet),
+        Ok(Some(group)) => {
+            let scenarios = group.followers.iter().map(|f| &f.scenario);
+            set_lavapipe_threads(scenarios.collect::<Vec<_>>().as_slice());
+            return run_group(&group, &name, &out_dir, quiet);
+        }
         Ok(None) => {}
         Err(e) => {
             eprintln!("error: {e}");
@@ -431,6 +451,7 @@ fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> 
             return ExitCode::from(2);
         }
     };
+    set_lavapipe_threads(&[&scenario]);
     if let Err(e) = interrupt::install_stop_handlers() {
         eprintln!("warning: Ctrl-C and SIGTERM will not stop the run cleanly: {e}");
     }

@@ -67,6 +67,18 @@ pub fn runtime_dir_to_set() -> Option<std::path::PathBuf> {
     Some(dir)
 }
 
+/// The value to give `LP_NUM_THREADS` (lavapipe's rasterizer threads) before the first GPU
+/// context is made, when it is unset: "0", so lavapipe draws on its queue's own thread, unless
+/// the frames shade the whole image every time (`shades_whole_frames`: a world scene). A
+/// tracking window of a few thousand pixels gains nothing from the rasterizer's threads,
+/// while every draw pays their barrier and wake-ups, and the simulation already keeps the
+/// cores busy: formation.toml runs about 20% faster, the platoon about 7%, a world scene
+/// 13% slower (docs/findings.md, Speed). Frames are the same either way.
+pub fn lavapipe_threads_to_set(shades_whole_frames: bool) -> Option<&'static str> {
+    let unset = std::env::var_os("LP_NUM_THREADS").is_none();
+    (unset && !shades_whole_frames).then_some("0")
+}
+
 /// A wgpu device and queue without a surface, with the adapter's description. A clone shares
 /// the device and queue.
 #[derive(Debug, Clone)]
