@@ -74,6 +74,16 @@ impl PendingFrame {
     }
 }
 
+/// What a frame whose commands are encoded, not yet submitted, will read back.
+struct EncodedFrame {
+    /// The part of the image drawn.
+    region: ImageRegion,
+    /// The part of the image copied into the staging buffer.
+    read: ImageRegion,
+    /// As [`PendingFrame::window_part`].
+    window_part: Option<ImageRegion>,
+}
+
 /// Wall-clock times of the last frame, s.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RenderTimings {
@@ -370,6 +380,59 @@ impl Renderer {
         pose: &TargetPoseInCamera,
         region: &ImageRegion,
     ) -> Result<PendingFrame, RenderError> {
+        let (encoded, commands) = self.encode(pose, region)?;
+        let submission = self.queue.submit([commands]);
+        Ok(self.launched(encoded, submission))
+    }
+
+    /// Starts drawing a frame in each renderer of `frames` (each its pose and region, as
+    /// [`Self::begin_frame_in`]) in one submission to their shared queue: one frame's work
+    /// per camera, one hand-over to the GPU (or lavapipe's queue) for them all. Each frame is
+    /// read back by its own renderer's [`Self::finish_frame`].
+    pub fn begin_frames(
+        frames: &mut [(&mut Renderer, TargetPoseInCamera, ImageRegion)],
+    ) -> Result<Vec<PendingFrame>, RenderError> {
+        let start = Instant::now();
+        let mut encoded = Vec::new();
+        let mut commands = Vec::new();
+        for (renderer, pose, region) in frames.iter_mut() {
+            let region = renderer.clipped(region);
+            let (frame, buffer) = renderer.encode(pose, &region)?;
+            encoded.push(frame);
+            commands.push(buffer);
+        }
+        let Some((first, _, _)) = frames.first() else {
+            return Ok(Vec::new());
+        };
+        let submission = first.queue.submit(commands);
+        let submit_s = start.elapsed().as_secs_f64() / frames.len() as f64;
+        let pending = (frames.iter_mut().zip(encoded))
+            .map(|((renderer, _, _), frame)| {
+                renderer.timings.submit_s = submit_s;
+                renderer.launched(frame, submission.clone())
+            })
+            .collect();
+        Ok(pending)
+    }
+
+    /// The frame `encoded` in flight after `submission`: the staging buffer's mapping started.
+    fn launched(&self, encoded: EncodedFrame, submission: wgpu::SubmissionIndex) -> PendingFrame {
+        PendingFrame {
+            submission,
+            region: encoded.region,
+            mapped: self.staging.map(&encoded.read),
+            window_part: encoded.window_part,
+        }
+    }
+
+    /// Writes the uniforms for `pose` and encodes the passes of its frame plan in `region`
+    /// and the copy of what is read back into the staging buffer: the commands, not yet
+    /// submitted, and what they will read back.
+    fn encode(
+        &mut self,
+        pose: &TargetPoseInCamera,
+        region: &ImageRegion,
+    ) -> Result<(EncodedFrame, wgpu::CommandBuffer), RenderError> {
         if !(pose.position_body_ft.iter().all(|x| x.is_finite())
             && pose.body_from_target.iter().all(|x| x.is_finite()))
         {
@@ -417,13 +480,12 @@ impl Renderer {
                 .copy_region(&mut encoder, &self.image.resolve_texture, region);
             *region
         };
-        let submission = self.queue.submit([encoder.finish()]);
-        Ok(PendingFrame {
-            submission,
+        let encoded = EncodedFrame {
             region: *region,
-            mapped: self.staging.map(&read),
+            read,
             window_part,
-        })
+        };
+        Ok((encoded, encoder.finish()))
     }
 
     /// The part of the target's window inside the image, when a whole frame is composed on
