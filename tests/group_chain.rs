@@ -122,3 +122,62 @@ fn a_group_steps_a_frame_interval_at_a_time() {
     }
     assert!((times_s[times_s.len() - 1] - 0.35).abs() < 1e-9);
 }
+
+/// The first frame (t = 0) of each camera draws the others too: f3's, cued at f2, shows f2,
+/// f1 (14° from it) and the target (600 ft away, 7 px, its thin wing in one or two pieces):
+/// three blobs off the sky or more (four on lavapipe); one (f2) when the others are missing.
+#[test]
+fn the_first_frame_draws_every_other_aircraft() {
+    let path = repo_root().join("scenarios/platoon.toml");
+    let sets = [
+        "run.duration_s=0.05",
+        "output.plots=false",
+        "output.frames_every=1",
+    ]
+    .map(String::from);
+    let group = load_checked(&path, &sets).expect("valid").expect("a group");
+    let dir = tempfile::tempdir().expect("temp dir");
+    run_group_to_directory(&group, "platoon", dir.path(), None, |_| {}).expect("run");
+    let frame = image::open(dir.path().join("f3/frames/000000.png"))
+        .expect("frame 0 saved")
+        .to_rgb8();
+    let blobs = blobs_off_the_sky(&frame);
+    assert!(blobs >= 3, "{blobs} blobs in f3's first frame");
+}
+
+/// Connected groups (8-neighbours) of pixels off the sky's colour (taken at the image's
+/// right edge), below the caption's rows.
+fn blobs_off_the_sky(frame: &image::RgbImage) -> usize {
+    let (width, height) = frame.dimensions();
+    let sky = frame.get_pixel(width - 1, height / 2).0;
+    let off = |x: u32, y: u32| {
+        let p = frame.get_pixel(x, y).0;
+        (0..3).map(|c| p[c].abs_diff(sky[c]) as u32).sum::<u32>() > 24
+    };
+    let mut seen = vec![false; (width * height) as usize];
+    let mut blobs = 0;
+    for y0 in 40..height {
+        for x0 in 0..width {
+            if seen[(y0 * width + x0) as usize] || !off(x0, y0) {
+                continue;
+            }
+            blobs += 1;
+            let mut stack = vec![(x0, y0)];
+            seen[(y0 * width + x0) as usize] = true;
+            while let Some((x, y)) = stack.pop() {
+                for (dx, dy) in (-1i32..=1).flat_map(|dx| (-1i32..=1).map(move |dy| (dx, dy))) {
+                    let (nx, ny) = (x as i32 + dx, y as i32 + dy);
+                    if nx < 0 || ny < 40 || nx >= width as i32 || ny >= height as i32 {
+                        continue;
+                    }
+                    let (nx, ny) = (nx as u32, ny as u32);
+                    if !seen[(ny * width + nx) as usize] && off(nx, ny) {
+                        seen[(ny * width + nx) as usize] = true;
+                        stack.push((nx, ny));
+                    }
+                }
+            }
+        }
+    }
+    blobs
+}

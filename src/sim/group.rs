@@ -115,6 +115,7 @@ impl Group {
             let member = built.member(follower, gpu)?;
             built.members.push(member);
         }
+        built.take_first_frames()?;
         Ok(built)
     }
 
@@ -129,20 +130,34 @@ impl Group {
             scenario.target.initial_position_ft = ahead.sim.scenario().follower.initial_position_ft;
         }
         let relay = Relay::new(0.0, self.leader_state(leader, 0.0));
-        let sim = Simulation::with_target(&scenario, Some(gpu), relay.target())?;
-        let logged = vec![sim.snapshot()];
+        let sim = Simulation::with_target_unsensed(&scenario, Some(gpu), relay.target())?;
         Ok(GroupMember {
             name: follower.name.clone(),
             tracks: follower.tracks.clone(),
             truth: sim.own_state(),
             size_ft: drawn_size_ft(&scenario)?,
             sim,
-            logged,
+            logged: Vec::new(),
             end: None,
             wall: started.elapsed(),
             leader,
             relay,
         })
+    }
+
+    /// Every follower's sensors act at t = 0, every other aircraft of the group in its
+    /// camera: the first frames, and the first row of each follower's telemetry.
+    fn take_first_frames(&mut self) -> Result<(), SimError> {
+        let targets_now: Vec<TargetState> =
+            (self.targets.iter()).map(|t| t.model.state(0.0)).collect();
+        for j in 0..self.members.len() {
+            let others = self.others_seen_by(j, &targets_now, 0.0);
+            let member = &mut self.members[j];
+            member.sim.set_other_aircraft(&others);
+            member.sim.sense_first()?;
+            member.logged.push(member.sim.snapshot());
+        }
+        Ok(())
     }
 
     /// The aircraft named `name` (the scenario's checks found it).
@@ -229,9 +244,14 @@ impl Group {
         let views: Vec<MemberView> = (0..self.members.len())
             .map(|j| MemberView {
                 leader: (1..=ticks)
-                    .map(|i| self.state_in(self.members[j].leader, i, &target_states))
+                    .map(|i| {
+                        let t_s = self.tick_end_s(i);
+                        let targets_now = &target_states[(i - 1) as usize];
+                        (t_s, self.state_at(self.members[j].leader, targets_now, t_s))
+                    })
                     .collect(),
-                others: frame_tick.then(|| self.others_seen_by(j, &target_states)),
+                others: frame_tick
+                    .then(|| self.others_seen_by(j, &target_states[0], self.tick_end_s(1))),
             })
             .collect();
         let (dt_s, stop_asked) = (self.dt_s, &stop_asked);
@@ -283,18 +303,12 @@ impl Group {
         Ok(states)
     }
 
-    /// The state of `aircraft` at the end of the stretch's tick `i` (from 1), with that time:
-    /// a target's from `target_states`, a follower's carried there from the stretch's start.
-    fn state_in(
-        &self,
-        aircraft: Leader,
-        i: u64,
-        target_states: &[Vec<TargetState>],
-    ) -> (f64, TargetState) {
-        let t_s = self.tick_end_s(i);
+    /// The state of `aircraft` at `t_s`: a target's from `targets_now` (the targets' states
+    /// then), a follower's carried there from its last tick.
+    fn state_at(&self, aircraft: Leader, targets_now: &[TargetState], t_s: f64) -> TargetState {
         match aircraft {
-            Leader::Target(k) => (t_s, target_states[(i - 1) as usize][k]),
-            follower => (t_s, self.leader_state(follower, t_s)),
+            Leader::Target(k) => targets_now[k],
+            follower => self.leader_state(follower, t_s),
         }
     }
 
@@ -303,10 +317,14 @@ impl Group {
         (self.tick + i - 1) as f64 * self.dt_s + self.dt_s
     }
 
-    /// Every aircraft follower `j`'s camera draws at the end of the stretch's first tick (the
-    /// targets' states through the stretch in `target_states`): all but itself and the one
-    /// it tracks.
-    fn others_seen_by(&self, j: usize, target_states: &[Vec<TargetState>]) -> Vec<OtherAircraft> {
+    /// Every aircraft follower `j`'s camera draws at `t_s` (the targets' states then in
+    /// `targets_now`): all but itself and the one it tracks.
+    fn others_seen_by(
+        &self,
+        j: usize,
+        targets_now: &[TargetState],
+        t_s: f64,
+    ) -> Vec<OtherAircraft> {
         let leader = self.members[j].leader;
         let targets = (0..self.targets.len())
             .filter(|i| leader != Leader::Target(*i))
@@ -317,7 +335,7 @@ impl Group {
         targets
             .chain(followers)
             .map(|(aircraft, size_ft)| {
-                let (_, state) = self.state_in(aircraft, 1, target_states);
+                let state = self.state_at(aircraft, targets_now, t_s);
                 OtherAircraft {
                     position_ned_ft: state.position_ned_ft,
                     attitude: state.attitude,

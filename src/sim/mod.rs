@@ -170,12 +170,16 @@ impl Simulation {
     /// [`Self::new`], with a camera rendering on `gpu` when given (a device shared by the
     /// runs of a sweep) and on a device of its own otherwise.
     pub fn on_gpu(scenario: &Scenario, gpu: Option<&GpuContext>) -> Result<Self, SimError> {
-        Self::with_target(scenario, gpu, target_of(scenario)?)
+        let mut sim = Self::with_target_unsensed(scenario, gpu, target_of(scenario)?)?;
+        sim.sense_first()?;
+        Ok(sim)
     }
 
     /// [`Self::on_gpu`] with the target `target` instead of the one `[target]` describes
-    /// (a group's relayed aircraft, `sim::group`).
-    pub fn with_target(
+    /// (a group's relayed aircraft, `sim::group`), before its sensors act at t = 0: the group
+    /// first places every other aircraft in its camera ([`Self::set_other_aircraft`]), then
+    /// calls [`Self::sense_first`].
+    pub(crate) fn with_target_unsensed(
         scenario: &Scenario,
         gpu: Option<&GpuContext>,
         target: Box<dyn TargetModel>,
@@ -252,8 +256,13 @@ impl Simulation {
         let first = sim.evaluate().guidance.command;
         let follower_x = sim.layout.split_mut(&mut sim.state).follower;
         sim.follower.align_with_first_command(follower_x, &first);
-        sim.sense()?;
         Ok(sim)
+    }
+
+    /// The sensors act at t = 0 (the first frame): the last step of setting up a simulation
+    /// made by [`Self::with_target_unsensed`].
+    pub(crate) fn sense_first(&mut self) -> Result<(), SimError> {
+        self.sense()
     }
 
     /// Adds `offset` to the guidance's command from the next tick on, until it is changed
