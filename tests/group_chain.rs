@@ -12,21 +12,27 @@
 mod common;
 
 use common::repo_root;
-use wingman::output::group::{load_checked, run_group_to_directory};
+use wingman::output::group::{GroupSummary, load_checked, run_group_to_directory};
+
+/// `scenarios/platoon.toml` with `sets` run into a temporary folder: the folder and the
+/// group's summary.
+fn run_platoon(sets: &[&str]) -> (tempfile::TempDir, GroupSummary) {
+    let path = repo_root().join("scenarios/platoon.toml");
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let group = load_checked(&path, &sets).expect("valid").expect("a group");
+    let dir = tempfile::tempdir().expect("temp dir");
+    let summary = run_group_to_directory(&group, "platoon", dir.path(), None, |_| {}).expect("run");
+    (dir, summary)
+}
 
 #[test]
 fn platoon_links_track_their_leaders() {
-    let path = repo_root().join("scenarios/platoon.toml");
-    let sets = [
+    let (dir, summary) = run_platoon(&[
         "run.seed=1",
         "run.duration_s=6",
         "output.plots=false",
         "output.frames_every=0",
-    ]
-    .map(String::from);
-    let group = load_checked(&path, &sets).expect("valid").expect("a group");
-    let dir = tempfile::tempdir().expect("temp dir");
-    let summary = run_group_to_directory(&group, "platoon", dir.path(), None, |_| {}).expect("run");
+    ]);
     assert_eq!(summary.stopped_by, None);
     let names: Vec<&str> = summary.followers.iter().map(|f| f.name.as_str()).collect();
     assert_eq!(names, ["f1", "f2", "f3"]);
@@ -62,16 +68,11 @@ fn platoon_links_track_their_leaders() {
 /// follower's folder, the figures a single run of it would have.
 #[test]
 fn group_plots_the_formation_and_each_follower() {
-    let path = repo_root().join("scenarios/platoon.toml");
-    let sets = [
+    let (dir, _) = run_platoon(&[
         "run.duration_s=2",
         "output.plots=true",
         "output.frames_every=0",
-    ]
-    .map(String::from);
-    let group = load_checked(&path, &sets).expect("valid").expect("a group");
-    let dir = tempfile::tempdir().expect("temp dir");
-    run_group_to_directory(&group, "platoon", dir.path(), None, |_| {}).expect("run");
+    ]);
     assert!(dir.path().join("formation.png").is_file());
     for name in ["f1", "f2", "f3"] {
         for figure in ["relative_position.png", "size_estimate.png"] {
@@ -128,16 +129,11 @@ fn a_group_steps_a_frame_interval_at_a_time() {
 /// three blobs off the sky or more (four on lavapipe); one (f2) when the others are missing.
 #[test]
 fn the_first_frame_draws_every_other_aircraft() {
-    let path = repo_root().join("scenarios/platoon.toml");
-    let sets = [
+    let (dir, _) = run_platoon(&[
         "run.duration_s=0.05",
         "output.plots=false",
         "output.frames_every=1",
-    ]
-    .map(String::from);
-    let group = load_checked(&path, &sets).expect("valid").expect("a group");
-    let dir = tempfile::tempdir().expect("temp dir");
-    run_group_to_directory(&group, "platoon", dir.path(), None, |_| {}).expect("run");
+    ]);
     let frame = image::open(dir.path().join("f3/frames/000000.png"))
         .expect("frame 0 saved")
         .to_rgb8();
