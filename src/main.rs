@@ -235,6 +235,9 @@ fn sweep(
         Ok(plan) => plan,
         Err(e) => return study_failure(&e),
     };
+    if plan.kind == wingman::study::spec::StudyKind::Sweep {
+        set_lavapipe_threads(&cases_scenarios(&plan).iter().collect::<Vec<_>>());
+    }
     let name = stem(path);
     let out_dir = out.unwrap_or_else(|| match shard {
         Some(s) => PathBuf::from("runs").join(format!("{name}-shard-{}-of-{}", s.index, s.count)),
@@ -331,6 +334,21 @@ fn set_lavapipe_threads(scenarios: &[&Scenario]) {
         // SAFETY: no other thread runs (checked above), so none reads the environment now.
         unsafe { std::env::set_var("LP_NUM_THREADS", threads) };
     }
+}
+
+/// The scenarios a sweep's cases fly (every follower's for a group file; a case that does not
+/// load is left out: its run reports why).
+fn cases_scenarios(plan: &Plan) -> Vec<Scenario> {
+    let mut scenarios = Vec::new();
+    for case in &plan.cases {
+        let overrides = case.scenario_overrides(&plan.set);
+        match wingman::output::group::load_checked(&plan.scenario_path, &overrides) {
+            Ok(Some(group)) => scenarios.extend(group.followers.into_iter().map(|f| f.scenario)),
+            Ok(None) => scenarios.extend(Scenario::load(&plan.scenario_path, &overrides).ok()),
+            Err(_) => {}
+        }
+    }
+    scenarios
 }
 
 /// Loads the scenario and checks its assets and resources; the error line on failure.

@@ -72,8 +72,9 @@ pub fn runtime_dir_to_set() -> Option<std::path::PathBuf> {
 /// the frames shade the whole image every time (`shades_whole_frames`: a world scene). A
 /// tracking window of a few thousand pixels gains nothing from the rasterizer's threads,
 /// while every draw pays their barrier and wake-ups, and the simulation already keeps the
-/// cores busy: formation.toml runs about 20% faster, the platoon about 7%, a world scene
-/// 13% slower (docs/findings.md, Speed). Frames are the same either way.
+/// cores busy: formation.toml runs about 20% faster, the platoon about 7%, a sweep of two
+/// jobs 23%, a world scene 13% slower (docs/findings.md, Speed). Frames are the same either
+/// way.
 pub fn lavapipe_threads_to_set(shades_whole_frames: bool) -> Option<&'static str> {
     let unset = std::env::var_os("LP_NUM_THREADS").is_none();
     (unset && !shades_whole_frames).then_some("0")
