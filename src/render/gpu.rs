@@ -170,3 +170,17 @@ impl GpuContext {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::lavapipe_threads_to_set;
+
+    /// A world scene keeps lavapipe's rasterizer threads whatever the environment; window
+    /// frames turn them off unless the user set their number.
+    #[test]
+    fn rasterizer_threads_stay_for_world_scenes_and_user_settings() {
+        assert_eq!(lavapipe_threads_to_set(true), None);
+        let user_set = std::env::var_os("LP_NUM_THREADS").is_some();
+        assert_eq!(lavapipe_threads_to_set(false).is_none(), user_set);
+    }
+}
