@@ -282,7 +282,7 @@ impl Group {
     fn advance_targets(&mut self, ticks: u64) -> Result<Vec<Vec<TargetState>>, SimError> {
         let mut states: Vec<Vec<TargetState>> = Vec::new();
         for i in 1..=ticks {
-            let (t_s, t_next_s) = (self.tick_end_s(i) - self.dt_s, self.tick_end_s(i));
+            let (t_s, t_next_s) = (self.tick_start_s(i), self.tick_end_s(i));
             for target in &mut self.targets {
                 target
                     .model
@@ -312,9 +312,14 @@ impl Group {
         }
     }
 
+    /// The time at the start of the stretch's tick `i` (from 1), s.
+    fn tick_start_s(&self, i: u64) -> f64 {
+        (self.tick + i - 1) as f64 * self.dt_s
+    }
+
     /// The time at the end of the stretch's tick `i` (from 1), s.
     fn tick_end_s(&self, i: u64) -> f64 {
-        (self.tick + i - 1) as f64 * self.dt_s + self.dt_s
+        self.tick_start_s(i) + self.dt_s
     }
 
     /// Every aircraft follower `j`'s camera draws at `t_s` (the targets' states then in
