@@ -15,6 +15,7 @@ use wingman::output::video_encoders::Encoder;
 use wingman::output::{RunReport, folder, interrupt, preflight, run_to_directory};
 use wingman::scenario::Scenario;
 use wingman::study::results::Tally;
+use wingman::study::run::load_case;
 use wingman::study::{Plan, Progress, Shard, StudyError, SweepOptions, merge_shards, run_sweep};
 
 #[derive(Parser)]
@@ -236,7 +237,10 @@ fn sweep(
         Err(e) => return study_failure(&e),
     };
     if plan.kind == wingman::study::spec::StudyKind::Sweep {
-        set_lavapipe_threads(&cases_scenarios(&plan).iter().collect::<Vec<_>>());
+        let cases: Vec<_> = (plan.cases.iter())
+            .filter_map(|case| load_case(&plan, &case.scenario_overrides(&plan.set)).ok())
+            .collect();
+        set_lavapipe_threads(&cases.iter().flat_map(|c| c.scenarios()).collect::<Vec<_>>());
     }
     let name = stem(path);
     let out_dir = out.unwrap_or_else(|| match shard {
@@ -336,21 +340,6 @@ fn set_lavapipe_threads(scenarios: &[&Scenario]) {
     }
 }
 
-/// The scenarios a sweep's cases fly (every follower's for a group file; a case that does not
-/// load is left out: its run reports why).
-fn cases_scenarios(plan: &Plan) -> Vec<Scenario> {
-    let mut scenarios = Vec::new();
-    for case in &plan.cases {
-        let overrides = case.scenario_overrides(&plan.set);
-        match wingman::output::group::load_checked(&plan.scenario_path, &overrides) {
-            Ok(Some(group)) => scenarios.extend(group.followers.into_iter().map(|f| f.scenario)),
-            Ok(None) => scenarios.extend(Scenario::load(&plan.scenario_path, &overrides).ok()),
-            Err(_) => {}
-        }
-    }
-    scenarios
-}
-
 /// Loads the scenario and checks its assets and resources; the error line on failure.
 fn load_checked(path: &Path, overrides: &[String]) -> Result<Scenario, String> {
     preflight::load(path, overrides).map_err(|e| e.to_string())
@@ -447,8 +436,8 @@ fn run(path: &Path, out: Option<PathBuf>, overrides: &[String], quiet: bool) -> 
     let out_dir = out.unwrap_or_else(|| PathBuf::from("runs").join(&name));
     match wingman::output::group::load_checked(path, overrides) {
         Ok(Some(group)) => {
-            let scenarios = group.followers.iter().map(|f| &f.scenario);
-            set_lavapipe_threads(scenarios.collect::<Vec<_>>().as_slice());
+            let scenarios: Vec<_> = group.followers.iter().map(|f| &f.scenario).collect();
+            set_lavapipe_threads(&scenarios);
             return run_group(&group, &name, &out_dir, quiet);
         }
         Ok(None) => {}

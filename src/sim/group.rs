@@ -369,11 +369,14 @@ impl GroupMember {
             self.sim.set_other_aircraft(&others);
         }
         let mut velocity_before = self.truth.velocity_ned_fps;
-        for (t_s, leader) in view.leader {
+        let last = view.leader.len().saturating_sub(1);
+        for (i, (t_s, leader)) in view.leader.into_iter().enumerate() {
             if self.end.is_some() {
                 break;
             }
-            velocity_before = self.sim.own_state().velocity_ned_fps;
+            if i == last {
+                velocity_before = self.sim.own_state().velocity_ned_fps;
+            }
             self.relay.set(t_s, leader);
             let tick = self.sim.run_tick(stop_asked);
             self.logged.extend(tick.logged);

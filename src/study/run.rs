@@ -158,14 +158,15 @@ fn run_case(plan: &Plan, case: &Case, dir: &Path, workers: &Workers) -> CaseReco
         return record;
     }
     let overrides = case.scenario_overrides(&plan.set);
-    let group = match plan.kind {
-        StudyKind::Sweep => load_checked(&plan.scenario_path, &overrides),
-        StudyKind::ApparentSize => Ok(None),
-    };
-    let outcome = match group {
-        Ok(Some(group)) => Ok(run_group(&group, &plan.layout.study, dir, workers)),
-        Ok(None) => run_pair(plan, case, overrides, dir, workers),
-        Err(e) => Err(e.to_string()),
+    let outcome = match plan.kind {
+        StudyKind::Sweep => load_case(plan, &overrides).map(|flown| match flown {
+            CaseScenario::Group(group) => run_group(&group, &plan.layout.study, dir, workers),
+            CaseScenario::Pair(scenario) => run_scenario(&plan.layout, &scenario, dir, workers),
+        }),
+        StudyKind::ApparentSize => Scenario::load(&plan.scenario_path, &overrides)
+            .map_err(|e| e.to_string())
+            .and_then(|scenario| workers.measure_view(overrides, scenario, case, dir))
+            .map(|columns| ("completed".to_string(), None, columns)),
     };
     match outcome {
         Ok((status, message, columns)) => {
@@ -178,22 +179,33 @@ fn run_case(plan: &Plan, case: &Case, dir: &Path, workers: &Workers) -> CaseReco
     record
 }
 
-/// A case of a single pair's scenario: a sweep's run or an apparent-size view.
-fn run_pair(
-    plan: &Plan,
-    case: &Case,
-    overrides: Vec<String>,
-    dir: &Path,
-    workers: &Workers,
-) -> Result<(String, Option<String>, Vec<Column>), String> {
-    Scenario::load(&plan.scenario_path, &overrides)
-        .map_err(|e| e.to_string())
-        .and_then(|scenario| match plan.kind {
-            StudyKind::Sweep => Ok(run_scenario(&plan.layout, &scenario, dir, workers)),
-            StudyKind::ApparentSize => workers
-                .measure_view(overrides, scenario, case, dir)
-                .map(|columns| ("completed".to_string(), None, columns)),
-        })
+/// What a sweep case flies.
+pub enum CaseScenario {
+    /// A group scenario (`[group]`).
+    Group(GroupScenario),
+    /// A single pair.
+    Pair(Box<Scenario>),
+}
+
+impl CaseScenario {
+    /// Every follower's scenario (the pair's alone for a pair).
+    pub fn scenarios(&self) -> Vec<&Scenario> {
+        match self {
+            Self::Group(group) => group.followers.iter().map(|f| &f.scenario).collect(),
+            Self::Pair(scenario) => vec![scenario.as_ref()],
+        }
+    }
+}
+
+/// The scenario a sweep case with `overrides` flies; the error line when it does not load.
+pub fn load_case(plan: &Plan, overrides: &[String]) -> Result<CaseScenario, String> {
+    match load_checked(&plan.scenario_path, overrides) {
+        Ok(Some(group)) => Ok(CaseScenario::Group(group)),
+        Ok(None) => Scenario::load(&plan.scenario_path, overrides)
+            .map(|scenario| CaseScenario::Pair(Box::new(scenario)))
+            .map_err(|e| e.to_string()),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 /// A sweep case of a group scenario (`[group]`): the group's run into `dir`, named `name` (the
