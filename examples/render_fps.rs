@@ -1,8 +1,10 @@
 //! Frames per second of render + readback on this machine's adapter (lavapipe in CI).
 //!
 //! `cargo run --release --example render_fps [FRAMES] [OUT_DIR]` renders the target 33 ft ahead,
-//! turning a little each frame, at 640x480 and 1920x1080 with 1 and 4 samples (and with a
-//! noisy gradient sky, which needs a full-screen background pass), and prints
+//! turning a little each frame, at 640x480 and 1920x1080 with 1 and 4 samples, with a noisy
+//! gradient sky (a full-screen background pass), and with formation_scene.toml's world (ground
+//! 300 ft below, 30% cloud 600 ft above, sun 30° up; the camera level, looking north across
+//! the horizon), and prints
 //! frames/s with the split between submission and readback. With OUT_DIR it also saves the
 //! first frame of each run as a PNG there.
 
@@ -12,8 +14,58 @@ use std::time::Instant;
 use wingman::frames::{EulerAngles, Vec3};
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{
-    Background, GpuContext, PixelNoise, RenderSettings, Renderer, Sky, TargetMesh,
+    Background, CameraInWorld, Clouds, GpuContext, Ground, PixelNoise, RenderSettings, Renderer,
+    Sky, Sun, TargetMesh, WorldScene,
 };
+
+/// The backgrounds measured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Backdrop {
+    /// The default uniform sky.
+    Uniform,
+    /// A vertical gradient with pixel noise.
+    GradientNoise,
+    /// formation_scene.toml's world.
+    World,
+}
+
+/// The background of `backdrop`.
+fn background(backdrop: Backdrop) -> Background {
+    match backdrop {
+        Backdrop::Uniform => Background::default(),
+        Backdrop::GradientNoise => Background {
+            sky: Sky::VerticalGradient {
+                top_rgb: [120, 160, 215],
+                bottom_rgb: [215, 220, 225],
+            },
+            noise: Some(PixelNoise {
+                std_grey_levels: 4.0,
+                seed: 1,
+            }),
+        },
+        Backdrop::World => Background {
+            sky: Sky::World(WorldScene {
+                zenith_rgb: [70, 110, 190],
+                horizon_rgb: [200, 212, 228],
+                ground: Some(Ground {
+                    down_ft: 300.0,
+                    field_ft: 400.0,
+                    road_every_fields: 4,
+                    road_width_ft: 30.0,
+                }),
+                clouds: Some(Clouds {
+                    down_ft: -600.0,
+                    cell_ft: 800.0,
+                    coverage: 0.3,
+                }),
+                sun: Sun::at(180.0, 30.0, 0.0),
+                visibility_ft: 10_000.0,
+                seed: 1,
+            }),
+            noise: None,
+        },
+    }
+}
 
 fn main() -> anyhow::Result<()> {
     let frames: u32 = match std::env::args().nth(1) {
@@ -25,23 +77,19 @@ fn main() -> anyhow::Result<()> {
     println!("adapter: {}", gpu.description());
     let mesh = TargetMesh::target_aircraft(1.0)?;
     for (width, height) in [(640, 480), (1920, 1080)] {
-        for (msaa, noisy) in [(1, false), (4, false), (1, true)] {
+        for (msaa, backdrop) in [
+            (1, Backdrop::Uniform),
+            (4, Backdrop::Uniform),
+            (1, Backdrop::GradientNoise),
+            (1, Backdrop::World),
+            (4, Backdrop::World),
+        ] {
             let mut settings =
                 RenderSettings::new(CameraIntrinsics::from_hfov(width, height, 60.0));
             settings.msaa_samples = msaa;
-            if noisy {
-                settings.background = Background {
-                    sky: Sky::VerticalGradient {
-                        top_rgb: [120, 160, 215],
-                        bottom_rgb: [215, 220, 225],
-                    },
-                    noise: Some(PixelNoise {
-                        std_grey_levels: 4.0,
-                        seed: 1,
-                    }),
-                };
-            }
+            settings.background = background(backdrop);
             let mut renderer = Renderer::new(&gpu, settings, &mesh)?;
+            renderer.set_camera_in_world(&CameraInWorld::default());
             let pose = |k: u32| TargetPoseInCamera {
                 position_body_ft: Vec3::new(33.0, 8.0, 0.5),
                 body_from_target: EulerAngles::new(0.3, 0.1, 0.02 * f64::from(k))
@@ -50,7 +98,7 @@ fn main() -> anyhow::Result<()> {
             };
             let first = renderer.render(&pose(0), 0)?;
             if let Some(dir) = &out_dir {
-                let name = format!("target_{width}x{height}_msaa{msaa}_noise{noisy}.png");
+                let name = format!("target_{width}x{height}_msaa{msaa}_{backdrop:?}.png");
                 first.save_png(&dir.join(name))?;
             }
             let (mut submit_s, mut readback_s, mut noise_s) = (0.0, 0.0, 0.0);
@@ -65,7 +113,7 @@ fn main() -> anyhow::Result<()> {
             let wall_s = start.elapsed().as_secs_f64();
             let n = f64::from(frames);
             println!(
-                "{width}x{height} msaa {msaa} gradient+noise {noisy}: {:.0} frames/s (submit {:.2} ms, readback {:.2} ms, noise {:.2} ms per frame)",
+                "{width}x{height} msaa {msaa} {backdrop:?}: {:.0} frames/s (submit {:.2} ms, readback {:.2} ms, noise {:.2} ms per frame)",
                 n / wall_s,
                 1e3 * submit_s / n,
                 1e3 * readback_s / n,
