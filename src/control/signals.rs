@@ -20,7 +20,7 @@ pub struct AutopilotInput {
     /// elevator's lift in α_ref.
     pub actuators: Controls,
     /// The side of an S-turn leg, +1 right or -1 left of the commanded course (see
-    /// `weave_period_s`; unused with it 0).
+    /// `weave_period_s`; unused with it 0); 0: no S-turn (a slot beside the target).
     pub weave_side: f64,
     /// The course of the slot's line (the target's estimated track), rad, with S-turns by
     /// geometry (`weave_half_width_ft`): their legs are placed about it; `None`: about the

@@ -19,6 +19,8 @@
 //!   which keeps the commanded speed along the course; `weave_half_width_ft` alternates the
 //!   side by geometry instead ([`slot_weave_side`]), reversing when the follower is that far
 //!   off the slot's line (both loops; the clock's S-turns are the Chapter 7 loop's only).
+//!   A side of 0 flies no S-turn: the follower sends it while its slot lies beside the target
+//!   ([`crate::follower::SlotLine::behind_the_target`]).
 
 use super::control_law::ControlLaw;
 use super::nominal_model::NominalModel;
@@ -209,6 +211,9 @@ impl ControlLaw {
         course_rad: Option<f64>,
     ) -> Option<f64> {
         let g = &self.gains;
+        if input.weave_side == 0.0 {
+            return course_rad;
+        }
         let offset_rad = self.weave_offset_rad(air_velocity_cmd, flight_path_cmd_rad);
         match input.slot_track_rad {
             Some(track_rad) if offset_rad > 0.0 && g.weave_half_width_ft > 0.0 => {

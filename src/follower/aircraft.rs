@@ -69,6 +69,20 @@ pub struct SlotLine {
     pub track_rad: f64,
     /// The follower's offset to its right, ft.
     pub cross_track_ft: f64,
+    /// How far the target is ahead of the slot along its track, ft.
+    pub slot_lead_ft: f64,
+    /// How far the target is to the right of the slot across its track, ft.
+    pub slot_offset_ft: f64,
+}
+
+impl SlotLine {
+    /// Whether the slot lies behind the target (at least as far behind as beside it), where
+    /// a follower that overtakes runs onto the target's track and S-turns are flown; a
+    /// follower beside its target moves ahead of its slot instead, where a leg across the
+    /// slot's line would carry it under or into the target.
+    pub fn behind_the_target(&self) -> bool {
+        self.slot_lead_ft >= self.slot_offset_ft.abs()
+    }
 }
 
 /// What the flight controller decided at one instant, with what it saw.
@@ -106,6 +120,8 @@ pub struct AircraftFollower {
     slot_weave_side: f64,
     /// The course of the slot's line, rad (`None`: unknown).
     slot_track_rad: Option<f64>,
+    /// Whether the slot lies beside the target, not behind it: no S-turns then.
+    slot_beside_target: bool,
     /// What the navigation and air data read above the truth over the current step (`None`:
     /// perfect), for the wind estimate.
     own_state_errors: Option<OwnStateErrors>,
@@ -157,6 +173,7 @@ impl AircraftFollower {
                 weave_half_width_ft: config.autopilot.weave_half_width_ft,
                 slot_weave_side: 1.0,
                 slot_track_rad: None,
+                slot_beside_target: false,
                 own_state_errors: None,
             },
             x,
@@ -210,17 +227,24 @@ impl AircraftFollower {
         self.flown_s += dt_s;
     }
 
-    /// Whether the S-turns alternate by geometry (`weave_half_width_ft` > 0): the simulation
-    /// then hands in the follower's offset from the slot's line each tick.
+    /// Whether the S-turns alternate by geometry (`weave_half_width_ft` > 0).
     pub fn weaves_by_geometry(&self) -> bool {
         self.weave_half_width_ft > 0.0
     }
 
+    /// Whether the follower flies S-turns (by the clock or by geometry): the simulation then
+    /// hands in the slot's line each tick.
+    pub fn weaves(&self) -> bool {
+        self.weaves_by_geometry() || self.weave_period_s > 0.0
+    }
+
     /// Before a step: the slot's line (`None` without an estimate: the side holds and the
     /// legs are placed about the command's course); the follower's offset from it reverses
-    /// the S-turn beyond its half width.
+    /// the S-turn by geometry beyond its half width, and a slot beside the target
+    /// ([`SlotLine::behind_the_target`]) stops the S-turns.
     pub fn hold_slot_line(&mut self, line: Option<SlotLine>) {
-        if let Some(l) = line {
+        self.slot_beside_target = line.is_some_and(|l| !l.behind_the_target());
+        if let Some(l) = line.filter(|_| self.weaves_by_geometry()) {
             self.slot_weave_side = slot_weave_side(
                 self.slot_weave_side,
                 l.cross_track_ft,
@@ -270,7 +294,9 @@ impl AircraftFollower {
                 .map_or(air_data, |e| e.sensed_air_data(&air_data)),
             air_data,
             actuators: state.actuators,
-            weave_side: if self.weaves_by_geometry() {
+            weave_side: if self.slot_beside_target {
+                0.0
+            } else if self.weaves_by_geometry() {
                 self.slot_weave_side
             } else {
                 weave_side(self.flown_s, self.weave_period_s)
@@ -315,5 +341,29 @@ impl AircraftFollower {
     /// The aircraft's data (actuator limits for the summary).
     pub fn params(&self) -> &AircraftParams {
         self.aircraft.params()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SlotLine;
+
+    fn slot(lead_ft: f64, offset_ft: f64) -> SlotLine {
+        SlotLine {
+            track_rad: 0.0,
+            cross_track_ft: 0.0,
+            slot_lead_ft: lead_ft,
+            slot_offset_ft: offset_ft,
+        }
+    }
+
+    #[test]
+    fn s_turns_are_flown_behind_the_target_not_beside_it() {
+        assert!(slot(32.0, 8.0).behind_the_target());
+        assert!(slot(32.0, -8.0).behind_the_target());
+        assert!(slot(30.0, 0.0).behind_the_target());
+        assert!(!slot(0.0, 30.0).behind_the_target());
+        assert!(!slot(0.0, -30.0).behind_the_target());
+        assert!(!slot(-20.0, 0.0).behind_the_target());
     }
 }

@@ -135,6 +135,21 @@ impl FormationCommand {
         }
     }
 
+    /// Where the slot lies from the target, ft: how far the target is ahead of it and to its
+    /// right, along and across the target's track, for the S-turns. In the target's velocity
+    /// frame these are R_c's own x and y (the frame's heading follows the estimate once it
+    /// is trusted, through its lag); in any other frame, `command_ned_ft` (R_c, NED) along
+    /// the estimated track's horizontal unit `along`.
+    pub fn slot_lead_and_offset_ft(&self, command_ned_ft: &Vec3, along: &Vec3) -> (f64, f64) {
+        match self.frame {
+            CommandFrame::Target => (self.command_ft.x, self.command_ft.y),
+            _ => (
+                command_ned_ft.dot(along),
+                command_ned_ft.dot(&Vec3::new(-along.y, along.x, 0.0)),
+            ),
+        }
+    }
+
     /// Initial state: the heading and target frames start at the follower's heading, level.
     pub fn initial_state(follower_attitude: &EulerAngles) -> [f64; STATE_LEN] {
         [follower_attitude.psi_rad, 0.0]

@@ -147,15 +147,17 @@ pub struct AutopilotSection {
     /// S-turns, s per pair of legs (0: none, the seed's). When the commanded horizontal air
     /// speed is below the slowest the aircraft flies, it flies that speed off the commanded
     /// course, to the right for half a period and to the left for the other half, so that it
-    /// keeps the commanded speed along the course instead of overtaking a slower target.
+    /// keeps the commanded speed along the course instead of overtaking a slower target. Only
+    /// while the slot lies behind the target (as far behind as beside it, at least): a leg
+    /// from a slot beside the target would cross under it.
     pub weave_period_s: f64,
     /// S-turns by geometry, ft off the slot's line (0: none, the seed's): when the commanded
     /// horizontal air speed is below the slowest the aircraft flies, it flies that speed off
     /// the commanded course, as the clock's S-turns do, but keeps each side until it is this
     /// far to that side of the slot's line (the target's estimated track through the slot,
     /// from the Kalman estimate), then turns to the other. It takes the place of
-    /// `weave_period_s` and applies to both outer loops. 10 ft would keep a 32 ft slot's
-    /// follower within about 17° of the target's track.
+    /// `weave_period_s` and applies to both outer loops, behind the target only as they do.
+    /// 10 ft would keep a 32 ft slot's follower within about 17° of the target's track.
     pub weave_half_width_ft: f64,
     /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
     /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below

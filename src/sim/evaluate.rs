@@ -81,10 +81,12 @@ impl Simulation {
         )
     }
 
-    /// The slot's line at (t, x) for the S-turns by geometry (`autopilot.weave_half_width_ft`):
-    /// the course of the target's estimated velocity, and the follower's offset to its right,
-    /// (R_c - R̂)·n, n the line's horizontal right-hand normal, R̂ = b̂ r̂ the Kalman
-    /// estimate; `None` without an estimate or with a target not moving horizontally.
+    /// The slot's line at (t, x) for the S-turns (`autopilot.weave_period_s`,
+    /// `weave_half_width_ft`): the course of the target's estimated velocity (unit u), the
+    /// follower's offset to its right, (R_c - R̂)·n, n the line's horizontal right-hand
+    /// normal, R̂ = b̂ r̂ the Kalman estimate, and where the slot lies from the target
+    /// ([`crate::guidance::command::FormationCommand::slot_lead_and_offset_ft`]); `None` without an
+    /// estimate or with a target not moving horizontally.
     pub(super) fn slot_line(&self, t_s: f64, x: &[f64]) -> Option<SlotLine> {
         let measurement = self.guidance_measurement(t_s, x);
         let GuidanceMeasurement::Now {
@@ -97,10 +99,16 @@ impl Simulation {
         let (command_ned_ft, _) = self.command.command(self.layout.split(x).command, &input);
         let horizontal = e.d_per_s.x.hypot(e.d_per_s.y);
         (horizontal > 0.0).then(|| {
-            let right = Vec3::new(-e.d_per_s.y, e.d_per_s.x, 0.0) / horizontal;
+            let along = Vec3::new(e.d_per_s.x, e.d_per_s.y, 0.0) / horizontal;
+            let right = Vec3::new(-along.y, along.x, 0.0);
+            let (slot_lead_ft, slot_offset_ft) = self
+                .command
+                .slot_lead_and_offset_ft(&command_ned_ft, &along);
             SlotLine {
                 track_rad: e.d_per_s.y.atan2(e.d_per_s.x),
                 cross_track_ft: (command_ned_ft - e.r * e.b_hat_ft).dot(&right),
+                slot_lead_ft,
+                slot_offset_ft,
             }
         })
     }

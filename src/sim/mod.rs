@@ -465,11 +465,7 @@ impl Simulation {
         let integrate_started = Instant::now();
         let t_s = self.time_s();
         let dt_s = self.scenario.run.dt_s;
-        if self
-            .follower
-            .aircraft()
-            .is_some_and(|a| a.weaves_by_geometry())
-        {
+        if self.follower.aircraft().is_some_and(|a| a.weaves()) {
             let line = self.slot_line(t_s, &self.state);
             self.follower.hold_slot_line(line);
         }
