@@ -316,15 +316,15 @@ impl VisionPipeline {
     /// gate of a `NearestWithin` selection (where the target was expected).
     fn keep_frame(&mut self, frame: &RgbaView<'_>, label: Option<u32>, selection: BlobSelection) {
         if let Some(motion) = &mut self.motion {
+            let labels = &self.labeller.labels;
+            let target = self.segmenter.mask.iter().map(|&i| i as usize);
+            let on_label = |i: &usize| label.is_some_and(|l| labels[*i] == l);
             let exclusion = match label {
-                Some(label) => {
-                    let target = self.segmenter.mask.iter().map(|&i| i as usize);
-                    let labels = &self.labeller.labels;
-                    motion.exclusion_about(target.filter(|&i| labels[i] == label), frame.width)
-                }
+                Some(_) => motion.exclusion_about(target.clone().filter(on_label), frame.width),
                 None => expected_box(selection),
             };
             motion.keep(frame, exclusion);
+            motion.mark_target(target.filter(on_label));
         }
     }
 

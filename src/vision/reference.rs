@@ -21,7 +21,10 @@
 //!    the pixel, of a radius beyond the target's half length, or mixture of two of them (the
 //!    local colour model): around a pixel of a compact target the ring lies on background
 //!    whose colours it does not match; a pixel of a field, a road or the sky has pixels of its
-//!    own kind on the ring. A strip at the image's edge is taken for background.
+//!    own kind on the ring. For a pixel where the previous frame measured the target, the
+//!    ring takes no colours where that target lay: the ring about a wing tip crosses the
+//!    fuselage and the other wing, whose colour would explain the tip. A strip at the
+//!    image's edge is taken for background.
 //!
 //! Assumptions, and where it breaks (docs/findings.md, The scene and the vision against it):
 //! the background is at infinity or on the flat ground; the target's colour differs from
@@ -90,6 +93,8 @@ impl ViewGeometry {
 struct StoredFrame {
     rgb: Vec<[f32; 3]>,
     usable: Vec<bool>,
+    /// The target measured in it, its mask grown by [`TARGET_MARGIN_PX`].
+    target: Vec<bool>,
     origin: [usize; 2],
     width: usize,
     height: usize,
@@ -97,6 +102,18 @@ struct StoredFrame {
 }
 
 impl StoredFrame {
+    /// Whether image position (u, v) lay on the target measured in this frame (its grown
+    /// mask).
+    fn was_target(&self, u_px: f64, v_px: f64) -> bool {
+        let x = u_px - self.origin[0] as f64;
+        let y = v_px - self.origin[1] as f64;
+        if !(x >= 0.0 && y >= 0.0) {
+            return false;
+        }
+        let (i, j) = (x as usize, y as usize);
+        i < self.width && j < self.height && self.target[j * self.width + i]
+    }
+
     /// The colour at image position (u, v) (pixel centres at i + 0.5), bilinear, when the
     /// four pixels around it are inside the frame and usable.
     fn sample(&self, u_px: f64, v_px: f64) -> Seen {
@@ -160,6 +177,11 @@ pub(crate) struct MotionReference {
     /// The remembered background in the direction of each pixel of the frame being measured,
     /// where the memory has one, row-major.
     carried: Vec<Option<[f32; 3]>>,
+    /// Where each pixel of the frame being measured lies in the memory's image, row-major.
+    in_previous: Vec<Option<(f64, f64)>>,
+    /// Whether each pixel of the frame being measured lay on the target the memory measured
+    /// (the ring does not take its colours there), row-major.
+    on_previous_target: Vec<bool>,
     /// The geometry of the next frame to be measured.
     geometry: Option<ViewGeometry>,
 }
@@ -215,6 +237,7 @@ impl MotionReference {
         }
         let to_previous = self.views_to_previous();
         let (w, h) = (frame.width, frame.height);
+        self.locate_in_previous(frame, to_previous.as_ref());
         self.reference.clear();
         self.reference.reserve(w * h);
         self.carried.clear();
@@ -223,10 +246,7 @@ impl MotionReference {
         for v in 0..h {
             for u in 0..w {
                 let p = rgb_f32(frame, v * w + u);
-                let at = to_previous.as_ref().and_then(|warp| {
-                    let (iu, iv) = (u + frame.origin[0], v + frame.origin[1]);
-                    warp.position(iu as f64 + 0.5, iv as f64 + 0.5)
-                });
+                let at = self.in_previous[v * w + u];
                 let seen = at.map_or(Seen::Outside, |(x, y)| self.previous.sample(x, y));
                 self.carried.push(match seen {
                     Seen::Colour(c) => Some(c),
@@ -255,6 +275,24 @@ impl MotionReference {
             }
         }
         noise_sigma(&mut differences, floor)
+    }
+
+    /// Where each pixel of `frame` lies in the memory's image, and whether it lay on the
+    /// target the memory measured there.
+    fn locate_in_previous(&mut self, frame: &RgbaView<'_>, to_previous: Option<&Warp>) {
+        let (w, h) = (frame.width, frame.height);
+        self.in_previous.clear();
+        self.in_previous.extend((0..w * h).map(|i| {
+            let (iu, iv) = (i % w + frame.origin[0], i / w + frame.origin[1]);
+            to_previous.and_then(|warp| warp.position(iu as f64 + 0.5, iv as f64 + 0.5))
+        }));
+        let previous = &self.previous;
+        self.on_previous_target.clear();
+        self.on_previous_target.extend(
+            self.in_previous
+                .iter()
+                .map(|at| at.is_some_and(|(x, y)| previous.was_target(x, y))),
+        );
     }
 
     /// The colour nearest `p` among the remembered background at position (x, y) of the
@@ -305,8 +343,10 @@ impl MotionReference {
     }
 
     /// The colour nearest `p` among the pixels on a ring of radius `ring_radius_px` around
-    /// (u, v) (those inside the frame) and their pairwise mixtures: a pixel an edge between
-    /// two fields cuts is a mixture of the two, and the ring crosses both.
+    /// (u, v) (those inside the frame and not on the target the memory measured) and their
+    /// pairwise mixtures: a pixel an edge between two fields cuts is a mixture of the two,
+    /// and the ring crosses both. The ring around a pixel near one end of the target crosses
+    /// the target's other parts, whose colour would explain it.
     fn nearest_on_ring(
         &mut self,
         frame: &RgbaView<'_>,
@@ -318,8 +358,17 @@ impl MotionReference {
         for &(du, dv) in &self.ring {
             let (uu, vv) = (u as isize + du, v as isize + dv);
             if uu >= 0 && vv >= 0 && (uu as usize) < frame.width && (vv as usize) < frame.height {
-                let q = rgb_f32(frame, vv as usize * frame.width + uu as usize);
-                self.ring_colours.push(q);
+                let i = vv as usize * frame.width + uu as usize;
+                let centre = v * frame.width + u;
+                let skip = self
+                    .on_previous_target
+                    .get(centre)
+                    .copied()
+                    .unwrap_or(false)
+                    && self.on_previous_target.get(i).copied().unwrap_or(false);
+                if !skip {
+                    self.ring_colours.push(rgb_f32(frame, i));
+                }
             }
         }
         nearest_mixture(&self.ring_colours, p)
@@ -353,6 +402,8 @@ impl MotionReference {
         kept.rgb.extend((0..w * h).map(|i| rgb_f32(frame, i)));
         kept.usable.clear();
         kept.usable.resize(w * h, true);
+        kept.target.clear();
+        kept.target.resize(w * h, false);
         kept.origin = frame.origin;
         (kept.width, kept.height) = (w, h);
         kept.geometry = self.geometry;
@@ -365,6 +416,22 @@ impl MotionReference {
                 match carried.and_then(|c| c[i]) {
                     Some(c) => kept.rgb[i] = c,
                     None => kept.usable[i] = false,
+                }
+            }
+        }
+    }
+
+    /// Marks the pixels `target` (of the frame kept last, row-major) as its measured target,
+    /// grown by [`TARGET_MARGIN_PX`]: the next frame's ring takes no colours there.
+    pub fn mark_target(&mut self, target: impl Iterator<Item = usize>) {
+        let kept = &mut self.pending;
+        let (w, h) = (kept.width, kept.height);
+        let m = TARGET_MARGIN_PX;
+        for i in target {
+            let (u, v) = (i % w, i / w);
+            for vv in v.saturating_sub(m)..=(v + m).min(h.saturating_sub(1)) {
+                for uu in u.saturating_sub(m)..=(u + m).min(w.saturating_sub(1)) {
+                    kept.target[vv * w + uu] = true;
                 }
             }
         }
