@@ -8,15 +8,16 @@
 //! frames/s with the split between submission and readback. With OUT_DIR it also saves the
 //! first frame of each run as a PNG there.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use wingman::frames::{EulerAngles, Vec3};
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{
-    Background, CameraInWorld, Clouds, GpuContext, Ground, PixelNoise, RenderSettings, Renderer,
-    Sky, Sun, TargetMesh, WorldScene,
+    Background, CameraInWorld, GpuContext, PixelNoise, RenderSettings, Renderer, Sky, TargetMesh,
 };
+use wingman::scenario::Scenario;
+use wingman::sensing::camera::world_scene;
 
 /// The backgrounds measured.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -25,7 +26,7 @@ enum Backdrop {
     Uniform,
     /// A vertical gradient with pixel noise.
     GradientNoise,
-    /// formation_scene.toml's world.
+    /// formation_scene.toml's world (its `[scene]`, the start at NED down 0).
     World,
 }
 
@@ -43,27 +44,14 @@ fn background(backdrop: Backdrop) -> Background {
                 seed: 1,
             }),
         },
-        Backdrop::World => Background {
-            sky: Sky::World(WorldScene {
-                zenith_rgb: [70, 110, 190],
-                horizon_rgb: [200, 212, 228],
-                ground: Some(Ground {
-                    down_ft: 300.0,
-                    field_ft: 400.0,
-                    road_every_fields: 4,
-                    road_width_ft: 30.0,
-                }),
-                clouds: Some(Clouds {
-                    down_ft: -600.0,
-                    cell_ft: 800.0,
-                    coverage: 0.3,
-                }),
-                sun: Sun::at(180.0, 30.0, 0.0),
-                visibility_ft: 10_000.0,
-                seed: 1,
-            }),
-            noise: None,
-        },
+        Backdrop::World => {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/formation_scene.toml");
+            let scenario = Scenario::load(&path, &[]).expect("the shipped scenario loads");
+            Background {
+                sky: Sky::World(world_scene(&scenario.scene, 0.0)),
+                noise: None,
+            }
+        }
     }
 }
 

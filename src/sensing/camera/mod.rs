@@ -33,7 +33,7 @@ mod setup;
 pub use audit::MeasurementErrors;
 pub use backdrop::{BackdropFrames, BackgroundCounts};
 pub use drawing::WindowCounts;
-pub use setup::{SensorError, load_target_mesh};
+pub use setup::{SensorError, load_target_mesh, world_scene};
 
 use super::config::CameraConfig;
 use super::geometry::{CaptureGeometry, OtherAircraft};

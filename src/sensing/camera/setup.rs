@@ -67,7 +67,7 @@ pub(super) fn render_settings(config: &CameraConfig) -> RenderSettings {
 
 /// The world of a `[scene]` section whose heights refer to a start at NED down
 /// `start_down_ft`.
-pub(super) fn world_scene(scene: &SceneSection, start_down_ft: f64) -> WorldScene {
+pub fn world_scene(scene: &SceneSection, start_down_ft: f64) -> WorldScene {
     WorldScene {
         zenith_rgb: scene.zenith_rgb,
         horizon_rgb: scene.horizon_rgb,
