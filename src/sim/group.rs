@@ -80,18 +80,11 @@ pub struct Group {
 }
 
 impl Group {
-    /// Sets up the targets and every follower (on `gpu` when given, else on one device
-    /// opened here for all of them), leaders first.
+    /// Sets up the targets and every follower (on `gpu` when given, else each on a device
+    /// of its own opened here), leaders first. On lavapipe a device is a queue thread: the
+    /// followers' frames, drawn on threads of their own, are then drawn at once rather than
+    /// one after another on a shared queue.
     pub fn new(group: &GroupScenario, gpu: Option<&GpuContext>) -> Result<Self, SimError> {
-        let own_gpu;
-        let gpu = match gpu {
-            Some(gpu) => gpu,
-            None => {
-                own_gpu = GpuContext::new()
-                    .map_err(|e| SimError::Sensor(Box::new(SensorError::Gpu(e))))?;
-                &own_gpu
-            }
-        };
         let mut targets = Vec::new();
         for t in &group.targets {
             targets.push(GroupTargetTruth {
@@ -112,6 +105,15 @@ impl Group {
         };
         built.target_tracks.push(built.target_positions());
         for follower in &group.followers {
+            let own_gpu;
+            let gpu = match gpu {
+                Some(gpu) => gpu,
+                None => {
+                    own_gpu = GpuContext::new()
+                        .map_err(|e| SimError::Sensor(Box::new(SensorError::Gpu(e))))?;
+                    &own_gpu
+                }
+            };
             let member = built.member(follower, gpu)?;
             built.members.push(member);
         }
