@@ -13,6 +13,7 @@ mod common;
 
 use common::repo_root;
 use wingman::output::group::{GroupSummary, load_checked, run_group_to_directory};
+use wingman::vision::{BlobSelection, BlobSummary, VisionConfig, VisionPipeline};
 
 /// `scenarios/platoon.toml` with `sets` run into a temporary folder: the folder and the
 /// group's summary.
@@ -124,56 +125,46 @@ fn a_group_steps_a_frame_interval_at_a_time() {
     assert!((times_s[times_s.len() - 1] - 0.35).abs() < 1e-9);
 }
 
-/// The first frame (t = 0) of each camera draws the others too: f3's, cued at f2, shows f2,
-/// f1 (14° from it) and the target (600 ft away, 7 px, its thin wing in one or two pieces):
-/// three blobs off the sky or more (four on lavapipe); one (f2) when the others are missing.
+/// The first frame (t = 0) of each camera draws the others too: f3's, cued at f2 (200 ft
+/// ahead: a 14 px fuselage and wing pieces beside it), shows f1 (14°, about 140 px, from it)
+/// and the target (600 ft away, a few pixels). In the image pipeline's blobs, two lie more
+/// than 20 px from f2's (measured: at 94 and 141 px); none when the others are missing.
 #[test]
 fn the_first_frame_draws_every_other_aircraft() {
     let (dir, _) = run_platoon(&[
         "run.duration_s=0.05",
         "output.plots=false",
+        "output.overlay=false",
         "output.frames_every=1",
     ]);
     let frame = image::open(dir.path().join("f3/frames/000000.png"))
         .expect("frame 0 saved")
-        .to_rgb8();
-    let blobs = blobs_off_the_sky(&frame);
-    assert!(blobs >= 3, "{blobs} blobs in f3's first frame");
-}
-
-/// Connected groups (8-neighbours) of pixels off the sky's colour (taken at the image's
-/// right edge), below the caption's rows.
-fn blobs_off_the_sky(frame: &image::RgbImage) -> usize {
-    let (width, height) = frame.dimensions();
-    let sky = frame.get_pixel(width - 1, height / 2).0;
-    let off = |x: u32, y: u32| {
-        let p = frame.get_pixel(x, y).0;
-        (0..3).map(|c| p[c].abs_diff(sky[c]) as u32).sum::<u32>() > 24
+        .to_rgba8();
+    let mut vision = VisionPipeline::new(VisionConfig::default()).expect("default vision");
+    vision
+        .measure(
+            frame.as_raw(),
+            frame.width(),
+            frame.height(),
+            BlobSelection::Largest,
+        )
+        .expect("frame size");
+    let centre = |b: &BlobSummary| {
+        let p = b.bbox;
+        (
+            f64::from(p.min_u + p.max_u) / 2.0,
+            f64::from(p.min_v + p.max_v) / 2.0,
+        )
     };
-    let mut seen = vec![false; (width * height) as usize];
-    let mut blobs = 0;
-    for y0 in 40..height {
-        for x0 in 0..width {
-            if seen[(y0 * width + x0) as usize] || !off(x0, y0) {
-                continue;
-            }
-            blobs += 1;
-            let mut stack = vec![(x0, y0)];
-            seen[(y0 * width + x0) as usize] = true;
-            while let Some((x, y)) = stack.pop() {
-                for (dx, dy) in (-1i32..=1).flat_map(|dx| (-1i32..=1).map(move |dy| (dx, dy))) {
-                    let (nx, ny) = (x as i32 + dx, y as i32 + dy);
-                    if nx < 0 || ny < 40 || nx >= width as i32 || ny >= height as i32 {
-                        continue;
-                    }
-                    let (nx, ny) = (nx as u32, ny as u32);
-                    if !seen[(ny * width + nx) as usize] && off(nx, ny) {
-                        seen[(ny * width + nx) as usize] = true;
-                        stack.push((nx, ny));
-                    }
-                }
-            }
-        }
-    }
-    blobs
+    let blobs = vision.blobs();
+    let leader = blobs.iter().max_by_key(|b| b.pixel_count).expect("f2 seen");
+    let (u0, v0) = centre(leader);
+    let apart = blobs
+        .iter()
+        .filter(|b| {
+            let (u, v) = centre(b);
+            (u - u0).hypot(v - v0) > 20.0
+        })
+        .count();
+    assert!(apart >= 2, "{apart} blobs away from f2 in f3's first frame");
 }
