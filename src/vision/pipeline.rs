@@ -312,20 +312,21 @@ impl VisionPipeline {
 
 impl VisionPipeline {
     /// Keeps `frame` for the next frame's background (`motion_reference` only), the pixels
-    /// around the mask of blob `label` (the target measured `Ok`) kept out; without one, the
-    /// gate of a `NearestWithin` selection (where the target was expected).
+    /// around the mask of blob `label` (the target measured `Ok`) kept out and that mask
+    /// marked for the next frame's ring; without one, the gate of a `NearestWithin`
+    /// selection (where the target was expected) kept out.
     fn keep_frame(&mut self, frame: &RgbaView<'_>, label: Option<u32>, selection: BlobSelection) {
-        if let Some(motion) = &mut self.motion {
-            let labels = &self.labeller.labels;
-            let target = self.segmenter.mask.iter().map(|&i| i as usize);
-            let on_label = |i: &usize| label.is_some_and(|l| labels[*i] == l);
-            let exclusion = match label {
-                Some(_) => motion.exclusion_about(target.clone().filter(on_label), frame.width),
-                None => expected_box(selection),
-            };
-            motion.keep(frame, exclusion);
-            motion.mark_target(target.filter(on_label));
-        }
+        let Some(motion) = &mut self.motion else {
+            return;
+        };
+        let Some(label) = label else {
+            return motion.keep(frame, expected_box(selection));
+        };
+        let labels = &self.labeller.labels;
+        let target =
+            || (self.segmenter.mask.iter().map(|&i| i as usize)).filter(|&i| labels[i] == label);
+        motion.keep(frame, motion.exclusion_about(target(), frame.width));
+        motion.mark_target(target());
     }
 
     /// How close to an inner edge of a region a blob may come, px, before the region's

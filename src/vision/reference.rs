@@ -355,18 +355,13 @@ impl MotionReference {
         p: [f32; 3],
     ) -> Option<[f32; 3]> {
         self.ring_colours.clear();
+        let on_target = &self.on_previous_target;
+        let from_target = on_target[v * frame.width + u];
         for &(du, dv) in &self.ring {
             let (uu, vv) = (u as isize + du, v as isize + dv);
             if uu >= 0 && vv >= 0 && (uu as usize) < frame.width && (vv as usize) < frame.height {
                 let i = vv as usize * frame.width + uu as usize;
-                let centre = v * frame.width + u;
-                let skip = self
-                    .on_previous_target
-                    .get(centre)
-                    .copied()
-                    .unwrap_or(false)
-                    && self.on_previous_target.get(i).copied().unwrap_or(false);
-                if !skip {
+                if !(from_target && on_target[i]) {
                     self.ring_colours.push(rgb_f32(frame, i));
                 }
             }
