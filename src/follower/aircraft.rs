@@ -118,10 +118,8 @@ pub struct AircraftFollower {
     weave_half_width_ft: f64,
     /// The side of the S-turn by geometry, +1 right or -1 left ([`slot_weave_side`]).
     slot_weave_side: f64,
-    /// The course of the slot's line, rad (`None`: unknown).
-    slot_track_rad: Option<f64>,
-    /// Whether the slot lies beside the target, not behind it: no S-turns then.
-    slot_beside_target: bool,
+    /// The slot's line held for the step (`None`: unknown).
+    slot_line: Option<SlotLine>,
     /// What the navigation and air data read above the truth over the current step (`None`:
     /// perfect), for the wind estimate.
     own_state_errors: Option<OwnStateErrors>,
@@ -172,8 +170,7 @@ impl AircraftFollower {
                 weave_period_s: config.autopilot.weave_period_s,
                 weave_half_width_ft: config.autopilot.weave_half_width_ft,
                 slot_weave_side: 1.0,
-                slot_track_rad: None,
-                slot_beside_target: false,
+                slot_line: None,
                 own_state_errors: None,
             },
             x,
@@ -243,7 +240,6 @@ impl AircraftFollower {
     /// the S-turn by geometry beyond its half width, and a slot beside the target
     /// ([`SlotLine::behind_the_target`]) stops the S-turns.
     pub fn hold_slot_line(&mut self, line: Option<SlotLine>) {
-        self.slot_beside_target = line.is_some_and(|l| !l.behind_the_target());
         if let Some(l) = line.filter(|_| self.weaves_by_geometry()) {
             self.slot_weave_side = slot_weave_side(
                 self.slot_weave_side,
@@ -251,7 +247,7 @@ impl AircraftFollower {
                 self.weave_half_width_ft,
             );
         }
-        self.slot_track_rad = line.map(|l| l.track_rad);
+        self.slot_line = line;
     }
 
     /// Holds what the follower's navigation and air data read above the truth over the
@@ -294,14 +290,14 @@ impl AircraftFollower {
                 .map_or(air_data, |e| e.sensed_air_data(&air_data)),
             air_data,
             actuators: state.actuators,
-            weave_side: if self.slot_beside_target {
+            weave_side: if self.slot_line.is_some_and(|l| !l.behind_the_target()) {
                 0.0
             } else if self.weaves_by_geometry() {
                 self.slot_weave_side
             } else {
                 weave_side(self.flown_s, self.weave_period_s)
             },
-            slot_track_rad: self.slot_track_rad,
+            slot_track_rad: self.slot_line.map(|l| l.track_rad),
         };
         let autopilot = self.autopilot.derivative(
             &x[AUTOPILOT..VELOCITY_CMD],
