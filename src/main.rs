@@ -237,7 +237,9 @@ fn sweep(
         Err(e) => return study_failure(&e),
     };
     if plan.kind == wingman::study::spec::StudyKind::Sweep {
+        // The cases this process runs (its shard's): whether any of them draws a world.
         let cases: Vec<_> = (plan.cases.iter())
+            .filter(|case| shard.is_none_or(|s| s.holds(case.index)))
             .filter_map(|case| load_case(&plan, &case.scenario_overrides(&plan.set)).ok())
             .collect();
         set_lavapipe_threads(&cases.iter().flat_map(|c| c.scenarios()).collect::<Vec<_>>());
