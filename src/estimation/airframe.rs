@@ -14,12 +14,26 @@
 //! sight v = (cos ψ cos θ, -sin ψ, cos ψ sin θ) in target-body axes, ψ ∈ [-90°, 90°] the
 //! yaw of the target relative to it (90°: side-on, nose to the right) and θ ∈ (-180°, 180°]
 //! the pitch (0: seen from behind, 90°: from above, 180°: from the front).
+//!
+//! The image pipeline measures a point of the silhouette (its centroid, or the midpoint of
+//! its maximal length's ends: `camera.bearing_point`), not the image of the target's
+//! reference point that the filter estimates. The two lie apart by up to a tenth of the size
+//! (from the side the fin and tail pull the centroid up and aft; from behind the wing tips'
+//! midpoint lies at the wing, below and ahead of the reference point), and the offset moves
+//! with the view, so a follower whose own motion changes the view would read it as the
+//! target's motion and bias its range from own motion. [`AirframeShape`] predicts the
+//! offset per frame by drawing the shape in perspective where the filter puts it, in units
+//! of the size: the image of a target at R is that of the shape at unit size at R / b, so b
+//! is not needed.
 
 use crate::frames::EulerAngles;
+use crate::frames::Mat3;
 use crate::frames::Vec3;
-use crate::render::camera::CameraIntrinsics;
+use crate::render::camera::{CameraIntrinsics, TargetPoseInCamera};
+use crate::scenario::BearingPoint;
 use crate::sensing::CaptureGeometry;
 use crate::vision::TruthProjector;
+use crate::vision::silhouette::SilhouetteCentroid;
 
 /// The table's step in both angles, deg.
 const STEP_DEG: f64 = 2.5;
@@ -147,6 +161,76 @@ impl AirframeTable {
     }
 }
 
+/// The target's shape at unit size, for the offset of the measured bearing point from the
+/// reference point (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct AirframeShape {
+    /// The mesh's vertices over its size, target-body axes.
+    unit_vertices: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    bearing_point: BearingPoint,
+    silhouette: SilhouetteCentroid,
+    projector: TruthProjector,
+}
+
+impl AirframeShape {
+    /// The shape of a mesh (`vertices_ft`, `triangles`) whose size is `size_ft`, its bearing
+    /// measured to `bearing_point`.
+    pub fn of_mesh(
+        vertices_ft: &[Vec3],
+        triangles: &[[u32; 3]],
+        size_ft: f64,
+        bearing_point: BearingPoint,
+    ) -> Self {
+        Self {
+            unit_vertices: vertices_ft.iter().map(|v| v / size_ft).collect(),
+            triangles: triangles.to_vec(),
+            bearing_point,
+            silhouette: SilhouetteCentroid::default(),
+            projector: TruthProjector::new(),
+        }
+    }
+
+    /// Where the bearing point lies from the image of the reference point, (yI, zI), px, for
+    /// the target at `scaled_position_camera` (R / b, camera axes) in the attitude
+    /// `camera_from_body`, seen with focal length `focal_px`; `None` where part of the shape
+    /// is behind the camera or its silhouette has no area.
+    pub fn bearing_offset_px(
+        &mut self,
+        scaled_position_camera: &Vec3,
+        camera_from_body: &Mat3,
+        focal_px: f64,
+    ) -> Option<[f64; 2]> {
+        let camera = CameraIntrinsics {
+            width_px: 1,
+            height_px: 1,
+            focal_px,
+        };
+        let pose = TargetPoseInCamera {
+            position_body_ft: *scaled_position_camera,
+            body_from_target: *camera_from_body,
+        };
+        let (y, z) = match self.bearing_point {
+            BearingPoint::Centroid => {
+                self.silhouette
+                    .centroid(&self.unit_vertices, &self.triangles, &pose, &camera)?
+            }
+            BearingPoint::LengthMidpoint => {
+                let ends = self
+                    .projector
+                    .image_truth(&self.unit_vertices, &pose, &camera)?
+                    .feret;
+                camera.image_from_pixel(
+                    0.5 * (ends.start.u_px + ends.end.u_px),
+                    0.5 * (ends.start.v_px + ends.end.v_px),
+                )
+            }
+        };
+        let (y_reference, z_reference) = camera.image_from_body(scaled_position_camera)?;
+        Some([y - y_reference, z - z_reference])
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -203,5 +287,80 @@ mod tests {
             "{n:?}"
         );
         assert!(n.per_pitch_rad.abs() < 1e-6, "{n:?}");
+    }
+
+    /// The cross of the test above with a triangular fin on its tail (x-z plane): its
+    /// vertices, its triangles (the cross as a rhombus) and its size.
+    fn cross_with_fin() -> (Vec<Vec3>, Vec<[u32; 3]>, f64) {
+        let vertices = vec![
+            Vec3::new(0.0, 4.0, 0.0),
+            Vec3::new(0.0, -4.0, 0.0),
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(-3.0, 0.0, 0.0),
+            Vec3::new(-2.0, 0.0, 0.0),
+            Vec3::new(-3.0, 0.0, -1.5),
+        ];
+        (vertices, vec![[0, 1, 2], [0, 1, 3], [3, 4, 5]], 8.0)
+    }
+
+    /// Seen side-on from far away (the target flying north, the camera looking east, so its
+    /// right is the target's aft): the rhombus has no area, the centroid is the fin's,
+    /// (-8/3, 0, -1/2) ft from the reference point, and the maximal length runs from the
+    /// nose (3, 0, 0) to the fin's tip (-3, 0, -1.5), its midpoint (0, 0, -0.75) ft; in the
+    /// image, focal length times those over the range.
+    #[test]
+    fn the_bearing_offset_is_the_measured_points_from_the_reference_point() {
+        let (vertices, triangles, size_ft) = cross_with_fin();
+        let camera_from_body = Mat3::new(0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0);
+        let range_sizes = 1e4;
+        let focal_px = 1e6;
+        let scaled_position = Vec3::new(range_sizes, 0.0, 0.0);
+        let px_per_ft = focal_px / (range_sizes * size_ft);
+        for (point, expected_ft) in [
+            (BearingPoint::Centroid, [8.0 / 3.0, 0.5]),
+            (BearingPoint::LengthMidpoint, [0.0, 0.75]),
+        ] {
+            let mut shape = AirframeShape::of_mesh(&vertices, &triangles, size_ft, point);
+            let offset = shape
+                .bearing_offset_px(&scaled_position, &camera_from_body, focal_px)
+                .expect("in front");
+            for k in 0..2 {
+                assert!(
+                    (offset[k] - expected_ft[k] * px_per_ft).abs() < 1e-4 * px_per_ft,
+                    "{point:?}: {offset:?} px"
+                );
+            }
+        }
+    }
+
+    /// Close up, in perspective, the unit shape at R / b gives the offset of the shape at its
+    /// size at R, whatever b: the image of the target drawn at its size, less the image of
+    /// its reference point.
+    #[test]
+    fn the_bearing_offset_needs_no_size() {
+        let (vertices, triangles, size_ft) = cross_with_fin();
+        let camera = CameraIntrinsics {
+            width_px: 1,
+            height_px: 1,
+            focal_px: 500.0,
+        };
+        let attitude = EulerAngles::new(0.2, -0.3, 1.1);
+        let position_ft = Vec3::new(30.0, 6.0, -4.0);
+        let pose = TargetPoseInCamera {
+            position_body_ft: position_ft,
+            body_from_target: attitude.body_from_ned(),
+        };
+        let (y, z) = SilhouetteCentroid::default()
+            .centroid(&vertices, &triangles, &pose, &camera)
+            .expect("an area");
+        let (y0, z0) = camera.image_from_body(&position_ft).expect("in front");
+        let mut shape =
+            AirframeShape::of_mesh(&vertices, &triangles, size_ft, BearingPoint::Centroid);
+        let offset = shape
+            .bearing_offset_px(&(position_ft / size_ft), &pose.body_from_target, 500.0)
+            .expect("in front");
+        assert!((offset[0] - (y - y0)).abs() < 1e-9, "{offset:?}");
+        assert!((offset[1] - (z - z0)).abs() < 1e-9, "{offset:?}");
+        assert!(offset[0].hypot(offset[1]) > 1.0, "{offset:?}");
     }
 }

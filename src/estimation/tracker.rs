@@ -5,7 +5,7 @@
 //! sensor, and answers, for any instant and follower position, the estimate the guidance flies
 //! on. It also records when b became known (σ_b / b̂ below a threshold).
 
-use super::airframe::{AirframeTable, ViewAngles};
+use super::airframe::{AirframeShape, AirframeTable, ViewAngles};
 use super::aspect::{body_axes_ned, pitched_by_alpha, target_span_aspect};
 use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, TargetFilter};
 use super::trim_alpha::AlphaSchedule;
@@ -57,6 +57,8 @@ pub struct KalmanTracker {
 pub struct AirframeModel {
     /// n over view directions.
     pub table: AirframeTable,
+    /// The shape at unit size, for the bearing point's offset from the reference point.
+    pub shape: AirframeShape,
     /// σ of the inferred view direction beyond the filter's heading uncertainty, rad.
     pub view_sigma_rad: f64,
     /// How much the measured length reads short, px.
@@ -72,10 +74,11 @@ pub struct AirframeModel {
 }
 
 impl AirframeModel {
-    /// The model of an `[estimator]` section for the shape `table`.
-    pub fn new(section: &EstimatorSection, table: AirframeTable) -> Self {
+    /// The model of an `[estimator]` section for the shape `shape` and its `table`.
+    pub fn new(section: &EstimatorSection, table: AirframeTable, shape: AirframeShape) -> Self {
         Self {
             table,
+            shape,
             view_sigma_rad: section.airframe_view_sigma_deg.to_radians(),
             length_bias_px: section.airframe_length_bias_px,
             length_sigma_px: section.airframe_length_sigma_px,
@@ -128,6 +131,8 @@ pub struct PredictedView {
     pub angles: ViewAngles,
     /// n there.
     pub normalised_length: f64,
+    /// Where the model put the bearing point from the reference point's image, (yI, zI), px.
+    pub bearing_offset_px: [f64; 2],
 }
 
 impl KalmanTracker {
@@ -189,7 +194,8 @@ impl KalmanTracker {
     /// With the airframe model once the filter runs: the frame's r* and covariance from its
     /// length corrected for the vision's short reading and divided by the normalised length
     /// n of the view the filter's estimate implies, the length's variance widened by n's
-    /// slope times the view's uncertainty (`docs/equations.md`, The airframe's shape).
+    /// slope times the view's uncertainty, and r* moved from the silhouette's centroid to the
+    /// reference point by that view's offset c (`docs/equations.md`, The airframe's shape).
     fn airframe_measurement(
         &mut self,
         record: &FrameRecord,
@@ -197,34 +203,49 @@ impl KalmanTracker {
     ) -> Option<(Vec3, Mat3)> {
         self.airframe.as_ref()?;
         let (velocity, acceleration) = self.predicted_target_motion(record)?;
-        let model = self.airframe.as_ref()?;
-        let filter = self.filter.as_ref()?;
+        let heading_sigma_rad = self.filter.as_ref()?.heading_sigma_rad();
+        let focal_px = self.focal_px;
+        let model = self.airframe.as_mut()?;
         let ned_from_body = model.body_axes_ned(&velocity, &acceleration)?;
-        let sight_camera = Vec3::new(self.focal_px, pixels.y_i_px, -pixels.z_i_px);
+        let sight_camera = Vec3::new(focal_px, pixels.y_i_px, -pixels.z_i_px);
         let sight_body = ned_from_body.transpose() * record.ned_from_camera * sight_camera;
         let angles = ViewAngles::of_line_of_sight(&sight_body)?;
         let n = model.table.at(&angles);
-        let view_sigma_rad = filter.heading_sigma_rad().hypot(model.view_sigma_rad);
-        let corrected = ImageMeasurement {
+        let view_sigma_rad = heading_sigma_rad.hypot(model.view_sigma_rad);
+        let lengthened = ImageMeasurement {
             b_i_px: pixels.b_i_px + model.length_bias_px,
             ..*pixels
+        };
+        // The bearing point's offset for the target where this frame puts it.
+        let camera_from_ned = record.ned_from_camera.transpose();
+        let bearing_offset_px = model
+            .shape
+            .bearing_offset_px(
+                &(camera_from_ned
+                    * scaled_relative_position(&lengthened, focal_px, &camera_from_ned)
+                    * n.length),
+                &(camera_from_ned * ned_from_body),
+                focal_px,
+            )
+            .unwrap_or([0.0; 2]);
+        let corrected = ImageMeasurement {
+            y_i_px: pixels.y_i_px - bearing_offset_px[0],
+            z_i_px: pixels.z_i_px - bearing_offset_px[1],
+            ..lengthened
         };
         let relative_sigma = n.sigma(angles.yaw_rad, view_sigma_rad) / n.length;
         let length_variance_px2 = model.length_sigma_px(corrected.b_i_px).powi(2)
             + (corrected.b_i_px * relative_sigma).powi(2);
         let mut pixel_covariance = self.pixel_covariance_px2;
         pixel_covariance[(2, 2)] = length_variance_px2 * self.measurement_inflation;
-        let jacobian = scaled_position_jacobian(&corrected, self.focal_px, &record.ned_from_camera);
-        let r = scaled_relative_position(
-            &corrected,
-            self.focal_px,
-            &record.ned_from_camera.transpose(),
-        ) * n.length;
+        let jacobian = scaled_position_jacobian(&corrected, focal_px, &record.ned_from_camera);
+        let r = scaled_relative_position(&corrected, focal_px, &camera_from_ned) * n.length;
         let covariance = jacobian * pixel_covariance * jacobian.transpose() * n.length.powi(2);
         self.views.push(PredictedView {
             t_s: record.t_s,
             angles,
             normalised_length: n.length,
+            bearing_offset_px,
         });
         Some((r, covariance))
     }

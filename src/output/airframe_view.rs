@@ -25,6 +25,11 @@ pub struct AirframeView {
     pub predicted_normalised_length: f64,
     /// The projected mesh's maximal length over the target's size at the true range (mean).
     pub true_normalised_length: f64,
+    /// Where the model put the bearing point (`camera.bearing_point`) from the image of the
+    /// target's reference point, (yI, zI), px (mean).
+    pub predicted_bearing_offset_px: [f64; 2],
+    /// Where the vision measured it from the true image of the reference point, px (mean).
+    pub measured_bearing_offset_px: [f64; 2],
 }
 
 impl AirframeView {
@@ -40,7 +45,7 @@ impl AirframeView {
     ) -> Option<Self> {
         let (predicted_yaw_deg, predicted_pitch_deg) =
             mean_angles(predicted.iter().map(|v| v.angles))?;
-        let mut truths: Vec<(ViewAngles, f64)> = Vec::new();
+        let mut truths: Vec<(ViewAngles, f64, [f64; 2])> = Vec::new();
         let mut last_index = None;
         for s in logged.iter().filter(|s| s.t_s >= from_s - 1e-9) {
             let Some(frame) = s.frame.filter(|f| last_index != Some(f.index)) else {
@@ -48,11 +53,17 @@ impl AirframeView {
             };
             last_index = Some(frame.index);
             let sight_body = s.target.attitude.body_from_ned() * s.relative_ned_ft;
-            if let (Some(truth), Some(angles)) =
-                (frame.truth, ViewAngles::of_line_of_sight(&sight_body))
-            {
+            if let (Some(truth), Some(measured), Some(angles)) = (
+                frame.truth,
+                frame.measured,
+                ViewAngles::of_line_of_sight(&sight_body),
+            ) {
                 let n = truth.apparent_size_ft(focal_px, frame.range_ft) / size_ft;
-                truths.push((angles, n));
+                let offset = [
+                    measured.y_i_px - truth.y_i_px,
+                    measured.z_i_px - truth.z_i_px,
+                ];
+                truths.push((angles, n, offset));
             }
         }
         let (true_yaw_deg, true_pitch_deg) = mean_angles(truths.iter().map(|t| t.0))?;
@@ -67,6 +78,9 @@ impl AirframeView {
             true_pitch_deg,
             predicted_normalised_length: mean(&mut predicted.iter().map(|v| v.normalised_length)),
             true_normalised_length: mean(&mut truths.iter().map(|t| t.1)),
+            predicted_bearing_offset_px: [0, 1]
+                .map(|k| mean(&mut predicted.iter().map(|v| v.bearing_offset_px[k]))),
+            measured_bearing_offset_px: [0, 1].map(|k| mean(&mut truths.iter().map(|t| t.2[k]))),
         })
     }
 }

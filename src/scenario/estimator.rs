@@ -34,7 +34,9 @@ pub enum SizeModel {
     /// `camera.mesh`: each frame's length is divided by the normalised maximal length of that
     /// shape seen from the view the estimated velocity and acceleration imply
     /// (`estimation::airframe`), corrected for the vision's short reading, and weighted by
-    /// how steeply that length changes with the view.
+    /// how steeply that length changes with the view; its bearing is moved from the point the
+    /// vision measures (`camera.bearing_point`) to the target's reference point by that
+    /// shape's offset between them in the same view.
     Airframe,
 }
 

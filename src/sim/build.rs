@@ -3,7 +3,7 @@
 //! model, the excitation's cap from the camera's field of view, the camera's mount.
 
 use super::SimError;
-use crate::estimation::airframe::AirframeTable;
+use crate::estimation::airframe::{AirframeShape, AirframeTable};
 use crate::estimation::trim_alpha::AlphaSchedule;
 use crate::estimation::{AirframeModel, Estimator, KalmanTracker, MeasurementHold, TargetTracker};
 use crate::follower::aircraft::DRYDEN_SEED_SALT;
@@ -172,7 +172,13 @@ fn airframe_model(scenario: &Scenario) -> Result<Option<AirframeModel>, SimError
                 scenario.camera.mesh.clone().into(),
             )))
         })?;
-    let model = AirframeModel::new(&scenario.estimator, table);
+    let shape = AirframeShape::of_mesh(
+        &mesh.vertices_ft,
+        &mesh.triangles,
+        scenario.target.size_ft,
+        scenario.camera.bearing_point,
+    );
+    let model = AirframeModel::new(&scenario.estimator, table, shape);
     Ok(Some(match scenario.estimator.airframe_angle_of_attack {
         AirframeAlpha::Zero => model,
         AirframeAlpha::Trim => model.with_alpha(target_alpha_schedule(scenario)?),
