@@ -53,9 +53,11 @@ impl AirframeView {
             };
             last_index = Some(frame.index);
             let sight_body = s.target.attitude.body_from_ned() * s.relative_ned_ft;
+            // A frame measured `Ok` (the only ones with an r*, and the only ones fused).
+            let measured = frame.measured.filter(|_| frame.r_measured.is_some());
             if let (Some(truth), Some(measured), Some(angles)) = (
                 frame.truth,
-                frame.measured,
+                measured,
                 ViewAngles::of_line_of_sight(&sight_body),
             ) {
                 let n = truth.apparent_size_ft(focal_px, frame.range_ft) / size_ft;
