@@ -8,7 +8,9 @@
 //! aft of and above the reference point:
 //! - with `size_model = "airframe"` the filter reads the view from its estimate, and the
 //!   length and the bearing point's offset from it, and b̂ ends within 2% of 8 ft, the truth
-//!   inside ±3σ_b, with either bearing point;
+//!   inside ±3σ_b, with either bearing point (this straight, level pass hardly turns the
+//!   view, so the offset barely moves here and the pass would hold without it; the closed
+//!   loop that needs it is tests/seed_ch7_velocity_camera.rs's airframe test);
 //! - with the seed's `apparent` model b̂ ends near the fuselage's 6 ft (below 6.5 ft);
 //! - when every length reads 4% long (a systematic error no averaging removes, as the
 //!   vision's short reading changing with the aspect), b̂ ends about 4% high, and the floor

@@ -168,9 +168,16 @@ pub struct AirframeShape {
     /// The mesh's vertices over its size, target-body axes.
     unit_vertices: Vec<Vec3>,
     triangles: Vec<[u32; 3]>,
-    bearing_point: BearingPoint,
-    silhouette: SilhouetteCentroid,
-    projector: TruthProjector,
+    point: BearingPointFinder,
+}
+
+/// What finds the bearing point in a drawing of the shape, with its buffers.
+#[derive(Debug, Clone, PartialEq)]
+enum BearingPointFinder {
+    /// The centroid of the union of the projected triangles.
+    Centroid(SilhouetteCentroid),
+    /// The midpoint of the projected vertices' farthest pair.
+    LengthMidpoint(TruthProjector),
 }
 
 impl AirframeShape {
@@ -185,9 +192,14 @@ impl AirframeShape {
         Self {
             unit_vertices: vertices_ft.iter().map(|v| v / size_ft).collect(),
             triangles: triangles.to_vec(),
-            bearing_point,
-            silhouette: SilhouetteCentroid::default(),
-            projector: TruthProjector::new(),
+            point: match bearing_point {
+                BearingPoint::Centroid => {
+                    BearingPointFinder::Centroid(SilhouetteCentroid::default())
+                }
+                BearingPoint::LengthMidpoint => {
+                    BearingPointFinder::LengthMidpoint(TruthProjector::new())
+                }
+            },
         }
     }
 
@@ -210,14 +222,12 @@ impl AirframeShape {
             position_body_ft: *scaled_position_camera,
             body_from_target: *camera_from_body,
         };
-        let (y, z) = match self.bearing_point {
-            BearingPoint::Centroid => {
-                self.silhouette
-                    .centroid(&self.unit_vertices, &self.triangles, &pose, &camera)?
+        let (y, z) = match &mut self.point {
+            BearingPointFinder::Centroid(silhouette) => {
+                silhouette.centroid(&self.unit_vertices, &self.triangles, &pose, &camera)?
             }
-            BearingPoint::LengthMidpoint => {
-                let ends = self
-                    .projector
+            BearingPointFinder::LengthMidpoint(projector) => {
+                let ends = projector
                     .image_truth(&self.unit_vertices, &pose, &camera)?
                     .feret;
                 camera.image_from_pixel(

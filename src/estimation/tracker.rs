@@ -194,8 +194,9 @@ impl KalmanTracker {
     /// With the airframe model once the filter runs: the frame's r* and covariance from its
     /// length corrected for the vision's short reading and divided by the normalised length
     /// n of the view the filter's estimate implies, the length's variance widened by n's
-    /// slope times the view's uncertainty, and r* moved from the silhouette's centroid to the
-    /// reference point by that view's offset c (`docs/equations.md`, The airframe's shape).
+    /// slope times the view's uncertainty, and its bearing moved from the point the vision
+    /// measures to the reference point by the shape's offset between them where the frame
+    /// puts the target (`docs/equations.md`, The airframe's shape).
     fn airframe_measurement(
         &mut self,
         record: &FrameRecord,
@@ -216,7 +217,8 @@ impl KalmanTracker {
             b_i_px: pixels.b_i_px + model.length_bias_px,
             ..*pixels
         };
-        // The bearing point's offset for the target where this frame puts it.
+        // The bearing point's offset for the target where this frame puts it (r* in camera
+        // axes).
         let camera_from_ned = record.ned_from_camera.transpose();
         let bearing_offset_px = model
             .shape

@@ -157,25 +157,26 @@ pub(super) fn estimation_stage(
     })
 }
 
-/// The airframe size model of `estimator.size_model = "airframe"`: the table of the
-/// scenario's target mesh (`camera.mesh`, scaled to `target.size_ft`); `None` with the other
-/// size models.
+/// The airframe size model of `estimator.size_model = "airframe"`: the table and the shape
+/// of the scenario's target mesh (`camera.mesh`), each over the mesh's own largest dimension
+/// (b's definition), so the model knows the shape up to scale and not the target's true
+/// size; `None` with the other size models.
 fn airframe_model(scenario: &Scenario) -> Result<Option<AirframeModel>, SimError> {
     if scenario.estimator.size_model != SizeModel::Airframe {
         return Ok(None);
     }
     let mesh =
         load_target_mesh(&CameraConfig::of(scenario)).map_err(|e| SimError::Sensor(Box::new(e)))?;
-    let table =
-        AirframeTable::of_mesh(&mesh.vertices_ft, scenario.target.size_ft).ok_or_else(|| {
-            SimError::Sensor(Box::new(SensorError::MeshWithoutExtent(
-                scenario.camera.mesh.clone().into(),
-            )))
-        })?;
+    let shape_size_ft = mesh.max_dimension_ft();
+    let table = AirframeTable::of_mesh(&mesh.vertices_ft, shape_size_ft).ok_or_else(|| {
+        SimError::Sensor(Box::new(SensorError::MeshWithoutExtent(
+            scenario.camera.mesh.clone().into(),
+        )))
+    })?;
     let shape = AirframeShape::of_mesh(
         &mesh.vertices_ft,
         &mesh.triangles,
-        scenario.target.size_ft,
+        shape_size_ft,
         scenario.camera.bearing_point,
     );
     let model = AirframeModel::new(&scenario.estimator, table, shape);
