@@ -17,6 +17,7 @@ mod common;
 
 use std::path::Path;
 use wingman::study::results::{CaseRecord, read_record};
+use wingman::study::run::SWEEP_THREAD_PREFIX;
 use wingman::study::{Plan, run_sweep};
 
 const LENGTH_FT: f64 = 4.0;
@@ -81,8 +82,14 @@ fn box_face_on_and_edge_on_match_closed_forms() {
     let study = setup(dir.path());
     let plan = Plan::load(&study).unwrap_or_else(|e| panic!("{e}"));
     let out = dir.path().join("out");
-    let options = common::quiet_sweep_into(&out);
+    let mut options = common::quiet_sweep_into(&out);
+    options.jobs = 2;
     let report = run_sweep(&plan, &options).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        live_sweep_threads(),
+        Vec::<String>::new(),
+        "the sweep returned before its workers, which used GPU devices, had exited"
+    );
     assert_eq!(
         (report.cases, report.tally.counts.as_str()),
         (4, "4 completed"),
@@ -140,4 +147,18 @@ fn box_face_on_and_edge_on_match_closed_forms() {
         let ratio = number(&record, "ratio_measured_true");
         assert!((ratio - implied_ft / number(&record, "size_true_ft")).abs() < 1e-12);
     }
+}
+
+/// The names of this process's threads that are a sweep's workers (Linux's /proc): a worker
+/// still exiting when the process exits runs the graphics driver's thread-exit hooks after
+/// the driver may have been unloaded.
+fn live_sweep_threads() -> Vec<String> {
+    let Ok(tasks) = std::fs::read_dir("/proc/self/task") else {
+        return Vec::new();
+    };
+    tasks
+        .filter_map(|task| std::fs::read_to_string(task.ok()?.path().join("comm")).ok())
+        .map(|name| name.trim().to_string())
+        .filter(|name| name.starts_with(SWEEP_THREAD_PREFIX))
+        .collect()
 }

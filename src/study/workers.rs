@@ -1,8 +1,10 @@
 //! What each worker thread of a sweep keeps across its cases: its GPU device, opened at its
 //! first camera case, and the apparent-size camera while its cases share a scenario. The
-//! sweep owns them and drops them before it returns, on its own thread: devices left in the
-//! worker threads' thread-local storage were destroyed while the process exited, which
-//! crashed lavapipe (a segmentation fault in 8 of 40 sweeps run four at a time).
+//! sweep owns them and drops them before it returns, on its own thread, once its worker
+//! threads have exited: devices left in the worker threads' thread-local storage were
+//! destroyed while the process exited, which crashed lavapipe (a segmentation fault in 8 of
+//! 40 sweeps run four at a time), and workers that exited after the last device was dropped
+//! crashed NVIDIA's driver (`study::run`).
 
 use super::apparent_size::ViewCamera;
 use super::plan::Case;
