@@ -139,9 +139,13 @@ impl Excitation {
         if let Some((b_hat_ft, _)) = size_ft {
             self.size_ft = b_hat_ft;
         }
-        if self.mode == ExcitationMode::Uncertainty {
-            self.amplitude = size_ft.map_or(self.k1, |(_, sigma)| {
-                (self.k_sigma * sigma).min(self.k1 - self.k3) + self.k3
+        if self.mode.follows_the_filter() {
+            self.amplitude = size_ft.map_or(self.k1, |(b_hat_ft, sigma_ft)| {
+                let uncertainty = match self.mode {
+                    ExcitationMode::RelativeUncertainty => sigma_ft / b_hat_ft,
+                    _ => sigma_ft,
+                };
+                (self.k_sigma * uncertainty).min(self.k1 - self.k3) + self.k3
             });
             self.amplitude_rate = 0.0;
         } else {
@@ -157,7 +161,9 @@ impl Excitation {
     /// Records eᵀe over the step that ends at `t_end_s` and updates a(t) and ȧ(t).
     pub fn record(&mut self, t_end_s: f64, error_sq: f64) {
         match self.mode {
-            ExcitationMode::Off | ExcitationMode::Uncertainty => {}
+            ExcitationMode::Off
+            | ExcitationMode::Uncertainty
+            | ExcitationMode::RelativeUncertainty => {}
             ExcitationMode::Continuous => self.record_continuous(t_end_s, error_sq),
             ExcitationMode::PerPeriod => self.record_per_period(t_end_s, error_sq),
         }
@@ -309,6 +315,40 @@ mod tests {
             );
             assert!(offset_ft < 0.4 * b_hat_ft, "{b_hat_ft}: bound not applied");
         }
+    }
+
+    /// With the relative uncertainty, targets of 8 and 20 ft known to the same fraction are
+    /// swung by the same feet (k_σ σ_b / b̂); with the uncertainty in feet the larger one is
+    /// swung 2.5 times as far.
+    #[test]
+    fn relative_uncertainty_swings_every_size_alike() {
+        let amplitude_ft = |mode, b_hat_ft: f64| {
+            let section = ExcitationSection {
+                mode,
+                units: ExcitationUnits::Ft,
+                k1: 30.0,
+                k3: 0.0,
+                k_sigma: 63.0,
+                ..ExcitationSection::default()
+            };
+            let mut ex = Excitation::new(&section, 0.01, None, 4.0);
+            ex.record_errors(
+                0.01,
+                &ExcitationErrors::default(),
+                Some((b_hat_ft, 0.01 * b_hat_ft)),
+            );
+            ex.amplitude()
+        };
+        let relative = [8.0, 20.0].map(|b| amplitude_ft(ExcitationMode::RelativeUncertainty, b));
+        assert!(
+            relative.iter().all(|a| (a - 0.63).abs() < 1e-12),
+            "{relative:?}"
+        );
+        let absolute = [8.0, 20.0].map(|b| amplitude_ft(ExcitationMode::Uncertainty, b));
+        assert!(
+            (absolute[1] / absolute[0] - 2.5).abs() < 1e-12,
+            "{absolute:?}"
+        );
     }
 
     /// During the first period the amplitude is k1.

@@ -502,6 +502,20 @@ pub enum ExcitationMode {
     /// unknown, fading once known (needs `estimator.kind = "kalman"` or
     /// `estimator.log_kalman`).
     Uncertainty,
+    /// a(t) = min(k_sigma σ_b(t) / b̂(t), k1 - k3) + k3: as `uncertainty`, from the relative
+    /// uncertainty of b. The swing that reads b to a given relative precision depends on the
+    /// range and the bearing noise, not on b, so with `units = "ft"` a target of any size is
+    /// swung by the same feet at the same relative uncertainty, where `uncertainty` swings it
+    /// in proportion to b̂ (ft) or b̂² (scaled) (docs/equations.md, Range and size from the
+    /// follower's own motion).
+    RelativeUncertainty,
+}
+
+impl ExcitationMode {
+    /// Whether the amplitude follows the Kalman filter's σ_b.
+    pub fn follows_the_filter(self) -> bool {
+        matches!(self, Self::Uncertainty | Self::RelativeUncertainty)
+    }
 }
 
 /// Units of the excitation amplitude a (and of k1, k3).
@@ -676,11 +690,11 @@ impl Scenario {
         )?;
         self.excitation.validate()?;
         check::require(
-            self.excitation.mode != ExcitationMode::Uncertainty
+            !self.excitation.mode.follows_the_filter()
                 || self.estimator.kind == super::EstimatorKind::Kalman
                 || self.estimator.log_kalman,
             "excitation.mode",
-            "\"uncertainty\"",
+            toml::Value::try_from(self.excitation.mode).map_or(String::new(), |v| v.to_string()),
             "another mode unless estimator.kind = \"kalman\" or estimator.log_kalman = true \
              (the amplitude follows the Kalman filter's σ_b)",
         )?;
