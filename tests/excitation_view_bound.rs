@@ -54,30 +54,12 @@ fn a_large_target_is_kept_in_view_by_the_bound() {
     );
 }
 
-fn worst_axis_ft(s: &Summary) -> f64 {
-    s.rms_error_last20s_ft.iter().copied().fold(0.0, f64::max)
-}
-
 #[test]
 fn the_relative_excitation_holds_a_large_target_on_the_slot() {
-    let relative = run_20ft(140.0, &[]);
-    assert_eq!(
-        relative.status,
-        RunStatus::Completed,
-        "{:?}",
-        relative.message
-    );
-    assert_eq!(relative.lost_frames, 0, "{:?}", relative.loss_episodes);
-    let error = relative.b_hat_final_ft / relative.b_true_ft - 1.0;
-    assert!(error.abs() < 0.05, "b̂ {}", relative.b_hat_final_ft);
-    assert!(
-        worst_axis_ft(&relative) < 3.0,
-        "{:?}",
-        relative.rms_error_last20s_ft
-    );
+    common::assert_held_on_the_slot(&run_20ft(140.0, &[]));
     let scaled = run_20ft(140.0, &SCALED_LAW);
     assert!(
-        worst_axis_ft(&scaled) > 3.0,
+        common::worst_axis_ft(&scaled) > 3.0,
         "the scaled law's swing along the track: {:?}",
         scaled.rms_error_last20s_ft
     );

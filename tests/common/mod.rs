@@ -8,6 +8,22 @@ use wingman::output::{RunReport, run_to_directory};
 use wingman::scenario::Scenario;
 use wingman::study::{Progress, SweepOptions};
 
+/// The largest of a run's per-axis RMS errors of R - R_c over the last 20 s, ft.
+pub fn worst_axis_ft(s: &wingman::output::summary::Summary) -> f64 {
+    s.rms_error_last20s_ft.iter().copied().fold(0.0, f64::max)
+}
+
+/// A run that completed without a lost frame, with b̂ within 5% of the truth and every axis
+/// under 3 ft RMS over the last 20 s.
+pub fn assert_held_on_the_slot(s: &wingman::output::summary::Summary) {
+    use wingman::output::summary::RunStatus;
+    assert_eq!(s.status, RunStatus::Completed, "{:?}", s.message);
+    assert_eq!(s.lost_frames, 0, "{:?}", s.loss_episodes);
+    let error = s.b_hat_final_ft / s.b_true_ft - 1.0;
+    assert!(error.abs() < 0.05, "b̂ {}", s.b_hat_final_ft);
+    assert!(worst_axis_ft(s) < 3.0, "{:?}", s.rms_error_last20s_ft);
+}
+
 /// The repository root (where `scenarios/` lives).
 pub fn repo_root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
