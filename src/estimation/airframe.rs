@@ -163,7 +163,7 @@ impl AirframeTable {
 
 /// The target's shape at unit size, for the offset of the measured bearing point from the
 /// reference point (module docs).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct AirframeShape {
     /// The mesh's vertices over its size, target-body axes.
     unit_vertices: Vec<Vec3>,
@@ -172,7 +172,7 @@ pub struct AirframeShape {
 }
 
 /// What finds the bearing point in a drawing of the shape, with its buffers.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 enum BearingPointFinder {
     /// The centroid of the union of the projected triangles.
     Centroid(SilhouetteCentroid),

@@ -21,7 +21,7 @@ use crate::vision::ImageMeasurement;
 const BEARING_ONLY_LENGTH_SIGMAS: f64 = 10.0;
 
 /// The Kalman estimator of a run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct KalmanTracker {
     noise: FilterNoise,
     prior: FilterPrior,
@@ -53,7 +53,7 @@ pub struct KalmanTracker {
 }
 
 /// The airframe size model's set-up: the shape's table and the vision's length model.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct AirframeModel {
     /// n over view directions.
     pub table: AirframeTable,

@@ -41,7 +41,7 @@ fn cross(o: &PixelPoint, a: &PixelPoint, b: &PixelPoint) -> f64 {
 }
 
 /// Reusable hull buffer, so repeated diameters allocate nothing once it has grown.
-#[derive(Debug, Default, Clone, PartialEq)]
+#[derive(Debug, Default, Clone)]
 pub struct FeretFinder {
     hull: Vec<PixelPoint>,
 }

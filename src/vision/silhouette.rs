@@ -26,7 +26,7 @@ const MAX_LINES: f64 = 256.0;
 type Interval = (f64, f64);
 
 /// Computes silhouette centroids, keeping its buffers between frames.
-#[derive(Debug, Default, Clone, PartialEq)]
+#[derive(Debug, Default, Clone)]
 pub struct SilhouetteCentroid {
     projected: Vec<(f64, f64)>,
     /// The intervals of each scan line (a line's few intervals are sorted alone: sorting all

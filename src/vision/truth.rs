@@ -40,7 +40,7 @@ impl ImageTruth {
 }
 
 /// Computes [`ImageTruth`]s, keeping its point and hull buffers between frames.
-#[derive(Debug, Default, Clone, PartialEq)]
+#[derive(Debug, Default, Clone)]
 pub struct TruthProjector {
     points: Vec<PixelPoint>,
     feret: FeretFinder,
