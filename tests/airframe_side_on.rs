@@ -88,10 +88,10 @@ fn fly(
             BearingPoint::Centroid => silhouette
                 .centroid(&mesh.vertices_ft, &mesh.triangles, &pose, &camera)
                 .expect("an area"),
-            BearingPoint::LengthMidpoint => camera.image_from_pixel(
-                0.5 * (image.feret.start.u_px + image.feret.end.u_px),
-                0.5 * (image.feret.start.v_px + image.feret.end.v_px),
-            ),
+            BearingPoint::LengthMidpoint => {
+                let (u_px, v_px) = image.feret.midpoint_px();
+                camera.image_from_pixel(u_px, v_px)
+            }
         };
         let truth = image.image_measurement();
         let measured = ImageMeasurement {

@@ -230,10 +230,8 @@ impl AirframeShape {
                 let ends = projector
                     .image_truth(&self.unit_vertices, &pose, &camera)?
                     .feret;
-                camera.image_from_pixel(
-                    0.5 * (ends.start.u_px + ends.end.u_px),
-                    0.5 * (ends.start.v_px + ends.end.v_px),
-                )
+                let (u_px, v_px) = ends.midpoint_px();
+                camera.image_from_pixel(u_px, v_px)
             }
         };
         let (y_reference, z_reference) = camera.image_from_body(scaled_position_camera)?;

@@ -34,6 +34,16 @@ pub struct FeretDiameter {
     pub end: PixelPoint,
 }
 
+impl FeretDiameter {
+    /// The midpoint of its ends, (u, v), px: the bearing point `length_midpoint`.
+    pub fn midpoint_px(&self) -> (f64, f64) {
+        (
+            0.5 * (self.start.u_px + self.end.u_px),
+            0.5 * (self.start.v_px + self.end.v_px),
+        )
+    }
+}
+
 /// Twice the signed area of triangle (o, a, b); positive when o→a→b turns counter-clockwise
 /// in a u-right, v-up sense (clockwise on screen, where v grows down).
 fn cross(o: &PixelPoint, a: &PixelPoint, b: &PixelPoint) -> f64 {

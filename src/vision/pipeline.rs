@@ -121,10 +121,7 @@ impl BlobMeasurement {
             return None;
         }
         let (u_px, v_px) = match (point, self.feret) {
-            (BearingPoint::LengthMidpoint, Some(f)) => (
-                0.5 * (f.start.u_px + f.end.u_px),
-                0.5 * (f.start.v_px + f.end.v_px),
-            ),
+            (BearingPoint::LengthMidpoint, Some(f)) => f.midpoint_px(),
             _ => (self.centroid_u_px, self.centroid_v_px),
         };
         let (y_i_px, z_i_px) = camera.image_from_pixel(u_px, v_px);
