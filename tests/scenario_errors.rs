@@ -166,6 +166,19 @@ fn chapter_5_and_6_keys() {
     );
 }
 
+/// An excitation that follows the Kalman filter's σ_b needs the filter: the error names the
+/// mode as the scenario spells it.
+#[test]
+fn an_excitation_on_the_filters_uncertainty_needs_the_filter() {
+    for mode in ["uncertainty", "relative_uncertainty"] {
+        assert_rejected(
+            &format!("[excitation]\nmode = \"{mode}\"\n"),
+            &[],
+            &[&format!("excitation.mode = \"{mode}\""), "estimator.kind"],
+        );
+    }
+}
+
 /// The 6-DOF follower's keys: its step (the roll mode and servos are 10-25 ms fast), its
 /// trimmed start, the air it flies in and its controller are checked like every other key.
 #[test]
