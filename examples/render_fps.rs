@@ -112,11 +112,11 @@ fn time_frames(
         readback_s += t.readback_s;
         noise_s += t.noise_s;
     }
-    let n = f64::from(frames);
+    let (n, wall_s) = (f64::from(frames), start.elapsed().as_secs_f64());
     println!(
         "{label}: {:.0} frames/s, {:.3} ms per frame (submit {:.3} ms, readback {:.3} ms, noise {:.2} ms)",
-        n / start.elapsed().as_secs_f64(),
-        1e3 * start.elapsed().as_secs_f64() / n,
+        n / wall_s,
+        1e3 * wall_s / n,
         1e3 * submit_s / n,
         1e3 * readback_s / n,
         1e3 * noise_s / n
