@@ -1,6 +1,8 @@
 //! Per-frame cost of the range-and-size filter (`estimation::kalman`): one prediction to the
 //! next frame and one update, with the white-jerk model alone (the target-motion states
-//! inert, `estimator.target_gust_sigma_fps = 0`) and with the gust velocity's states. Run with
+//! inert, `estimator.target_gust_sigma_fps = 0`), with the gust velocity's states, and with
+//! those and the target's bank fused beside the frame (`estimator.target_bank = "measured"`:
+//! the iterated update of its acceleration across its velocity). Run with
 //! `cargo bench --bench target_filter`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -23,7 +25,12 @@ fn one_frame(c: &mut Criterion) {
     };
     let covariance = Mat3::identity() * 1e-4;
     let frame_s = 1.0 / 30.0;
-    for (name, noise) in [("white_jerk", white_jerk), ("gust", gust)] {
+    let cases = [
+        ("white_jerk", white_jerk, false),
+        ("gust", gust, false),
+        ("gust_and_bank", gust, true),
+    ];
+    for (name, noise, bank) in cases {
         let mut filter = TargetFilter::new(
             noise,
             &prior,
@@ -41,7 +48,12 @@ fn one_frame(c: &mut Criterion) {
                 let follower = Vec3::new(50.0 * t_s, (t_s * 2.0).sin(), 0.0);
                 filter.predict_to(t_s, &follower);
                 let r_star = Vec3::new(4.0, 1.0 - follower.y / 8.0, 0.0);
-                black_box(filter.update(black_box(&r_star), &covariance))
+                black_box(filter.update(black_box(&r_star), &covariance));
+                if bank {
+                    let across = Vec3::new(0.0, 1.0, 0.0);
+                    let turn_fps2 = 2.0 * (t_s * 0.5).sin();
+                    black_box(filter.update_lateral_acceleration(&across, turn_fps2, 1.0, 16.3));
+                }
             })
         });
     }

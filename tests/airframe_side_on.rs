@@ -113,6 +113,7 @@ fn fly(
             follower_position_ned_ft: follower,
             ned_from_camera,
             range_ft: relative.norm(),
+            length_direction: None,
         };
         let velocity = Vec3::new(SPEED_FPS + weave(t_s), 0.0, 0.0);
         tracker.fuse_frame(&record, &velocity);

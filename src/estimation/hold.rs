@@ -159,6 +159,7 @@ mod tests {
             follower_position_ned_ft: Vec3::new(10.0, 0.0, 0.0),
             ned_from_camera: crate::frames::Mat3::identity(),
             range_ft: 200.0,
+            length_direction: None,
         }
     }
 

@@ -9,6 +9,7 @@
 
 pub mod airframe;
 pub mod aspect;
+pub mod bank;
 pub mod hold;
 pub mod kalman;
 pub mod tracker;

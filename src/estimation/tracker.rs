@@ -7,11 +7,12 @@
 
 use super::airframe::{AirframeShape, AirframeTable, ViewAngles};
 use super::aspect::{body_axes_ned, pitched_by_alpha, target_span_aspect};
+use super::bank::{WingLine, lateral_acceleration};
 use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, TargetFilter};
 use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
-use crate::scenario::{EstimatorSection, SizeModel};
+use crate::scenario::{EstimatorSection, SizeModel, TargetBank};
 use crate::sensing::{FrameRecord, scaled_position_jacobian, scaled_relative_position};
 use crate::vision::ImageMeasurement;
 
@@ -50,6 +51,17 @@ pub struct KalmanTracker {
     airframe: Option<AirframeModel>,
     /// The airframe model's view of every frame it corrected.
     views: Vec<PredictedView>,
+    /// With `target_bank = "measured"`, how the wing line's bank is read.
+    bank: Option<BankReading>,
+}
+
+/// How a frame's wing line is read as the target's turn (`estimator.target_bank`).
+#[derive(Debug, Clone, Copy)]
+struct BankReading {
+    /// σ of each end of the line across it, px.
+    end_sigma_px: f64,
+    /// σ of the turn beyond the line's noise, ft/s².
+    accel_sigma_fps2: f64,
 }
 
 /// The airframe size model's set-up: the shape's table and the vision's length model.
@@ -179,6 +191,10 @@ impl KalmanTracker {
             gated_out: 0,
             airframe: None,
             views: Vec::new(),
+            bank: (section.target_bank == TargetBank::Measured).then_some(BankReading {
+                end_sigma_px: section.bank_end_sigma_px,
+                accel_sigma_fps2: section.bank_accel_sigma_fps2,
+            }),
         }
     }
 
@@ -284,7 +300,7 @@ impl KalmanTracker {
     }
 
     /// Predicts to the measurement's time and fuses it (or starts the filter on it), unless
-    /// its normalised innovation exceeds `estimator.innovation_gate`.
+    /// its normalised innovation exceeds `estimator.innovation_gate`; whether it was fused.
     fn fuse(
         &mut self,
         t_s: f64,
@@ -292,7 +308,7 @@ impl KalmanTracker {
         covariance: &Mat3,
         follower_position_ned_ft: &Vec3,
         follower_velocity_ned_fps: &Vec3,
-    ) {
+    ) -> bool {
         match self.filter.as_mut() {
             None => {
                 self.filter = Some(TargetFilter::new(
@@ -313,7 +329,7 @@ impl KalmanTracker {
                 let innovation = predicted.update_within(r_star, covariance, self.innovation_gate);
                 if !innovation.fused {
                     self.gated_out += 1;
-                    return;
+                    return false;
                 }
                 *filter = predicted;
                 self.innovations.push((t_s, innovation.normalised_sq));
@@ -322,6 +338,51 @@ impl KalmanTracker {
         self.fused += 1;
         if self.known_since_s.is_none() && self.size_is_known() {
             self.known_since_s = Some(t_s);
+        }
+        true
+    }
+
+    /// With `target_bank = "measured"`, fuses the frame's wing line as the target's
+    /// acceleration across its velocity (`estimation::bank`), at the frame's capture, where
+    /// the filter's view of the target puts the span at or above `span_aspect_min` (the line
+    /// is then the span, not the fuselage).
+    fn fuse_bank(&mut self, record: &FrameRecord, pixels: &ImageMeasurement) {
+        let (Some(reading), Some(direction)) = (self.bank, record.length_direction) else {
+            return;
+        };
+        let Some((velocity, acceleration)) = self.predicted_target_motion(record) else {
+            return;
+        };
+        let point_px = (pixels.y_i_px, pixels.z_i_px);
+        let ned_from_camera = &record.ned_from_camera;
+        let aspect = target_span_aspect(
+            &velocity,
+            &acceleration,
+            ned_from_camera,
+            point_px,
+            self.focal_px,
+        );
+        if aspect.is_none_or(|s| s < self.span_aspect_min) {
+            return;
+        }
+        let line = WingLine {
+            point_px,
+            direction,
+            length_px: pixels.b_i_px,
+        };
+        let Some(turn) = lateral_acceleration(
+            &line,
+            ned_from_camera,
+            self.focal_px,
+            &velocity,
+            reading.end_sigma_px,
+        ) else {
+            return;
+        };
+        let variance = turn.sigma_fps2.powi(2) + reading.accel_sigma_fps2.powi(2);
+        let gate = self.innovation_gate;
+        if let Some(filter) = self.filter.as_mut() {
+            filter.update_lateral_acceleration(&turn.across_ned, turn.accel_fps2, variance, gate);
         }
     }
 
@@ -374,7 +435,9 @@ impl TargetTracker for KalmanTracker {
         if let Some((r, covariance)) = self.airframe_measurement(record, &pixels) {
             let (position, velocity) =
                 (record.follower_position_ned_ft, *follower_velocity_ned_fps);
-            self.fuse(record.t_s, &r, &covariance, &position, &velocity);
+            if self.fuse(record.t_s, &r, &covariance, &position, &velocity) {
+                self.fuse_bank(record, &pixels);
+            }
             return;
         }
         let jacobian = scaled_position_jacobian(&pixels, self.focal_px, &record.ned_from_camera);
@@ -396,13 +459,16 @@ impl TargetTracker for KalmanTracker {
                 covariance = jacobian * bearing_only * jacobian.transpose();
             }
         }
-        self.fuse(
+        let fused = self.fuse(
             record.t_s,
             &r,
             &covariance,
             &record.follower_position_ned_ft,
             follower_velocity_ned_fps,
         );
+        if fused {
+            self.fuse_bank(record, &pixels);
+        }
     }
 
     /// Fuses a continuous sensor's measurement r* taken now, with its own per-axis variance

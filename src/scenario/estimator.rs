@@ -67,6 +67,20 @@ pub enum OwnMotion {
     Inertial,
 }
 
+/// Whether the filter reads the target's turn from its bank (docs/equations.md, The target's
+/// bank from its wing line).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TargetBank {
+    /// The seed's: the camera's frames give the target's position alone; its acceleration is
+    /// inferred from their sequence.
+    Inferred,
+    /// Each frame's maximal length, where it is the span, gives the target's bank and so its
+    /// acceleration across its velocity in feet (g cos γ tan φ, coordinated flight), fused
+    /// beside the frame's position (`estimation::bank`).
+    Measured,
+}
+
 /// `[estimator]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -169,6 +183,19 @@ pub struct EstimatorSection {
     /// χ² with 3 degrees of freedom when the filter's model holds: 16.3 keeps out one
     /// frame in 1,000 of the target's own.
     pub innovation_gate: f64,
+    /// `inferred` (default) or `measured`: whether each frame's wing line is fused as the
+    /// target's acceleration across its velocity (Kalman filter only; frames whose span the
+    /// filter's view puts below `span_aspect_min` are not).
+    pub target_bank: TargetBank,
+    /// With `target_bank = "measured"`, σ of each end of the maximal length across it, px:
+    /// the line's direction is uncertain by √2 σ / bI. Choice: 0.5 px, the sub-pixel edge's
+    /// scatter about the silhouette (docs/findings.md, The target's bank from its wing line).
+    pub bank_end_sigma_px: f64,
+    /// With `target_bank = "measured"`, σ of the acceleration across the target's velocity
+    /// beyond the line's noise, ft/s²: how far the target's turn departs from coordinated
+    /// flight (sideslip in gusts, the lift's lag while it rolls) and the span's ends from the
+    /// wing axis. Choice: 1 ft/s² (docs/findings.md, The target's bank from its wing line).
+    pub bank_accel_sigma_fps2: f64,
 }
 
 impl Default for EstimatorSection {
@@ -196,6 +223,9 @@ impl Default for EstimatorSection {
             airframe_angle_of_attack: AirframeAlpha::Zero,
             airframe_shape_sigma: 0.025,
             innovation_gate: 0.0,
+            target_bank: TargetBank::Inferred,
+            bank_end_sigma_px: 0.5,
+            bank_accel_sigma_fps2: 1.0,
         }
     }
 }
@@ -255,6 +285,13 @@ impl EstimatorSection {
             ),
             ("airframe_shape_sigma", self.airframe_shape_sigma, 0.0, 1.0),
             ("innovation_gate", self.innovation_gate, 0.0, 1e6),
+            ("bank_end_sigma_px", self.bank_end_sigma_px, 1e-3, 1e3),
+            (
+                "bank_accel_sigma_fps2",
+                self.bank_accel_sigma_fps2,
+                1e-3,
+                1e3,
+            ),
         ];
         for (key, value, min, max) in scalars {
             check::in_closed(&format!("estimator.{key}"), value, min, max)?;

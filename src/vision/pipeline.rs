@@ -104,6 +104,18 @@ impl BlobMeasurement {
         }
     }
 
+    /// The unit direction of the maximal length in the seed's image coordinates (yI right,
+    /// zI up), either sense; `None` without a maximal length of positive length.
+    pub fn length_direction(&self) -> Option<[f64; 2]> {
+        let feret = self.feret?;
+        let (dy, dz) = (
+            feret.end.u_px - feret.start.u_px,
+            feret.start.v_px - feret.end.v_px,
+        );
+        let length = dy.hypot(dz);
+        (length > 0.0).then(|| [dy / length, dz / length])
+    }
+
     /// Centroid and maximal length in the seed's image coordinates (3.1) (yI right, zI up, relative to
     /// the principal point), whatever the status except `NotFound` (then `None`): check
     /// `status` before trusting a `Truncated` or `TooSmall` measurement.

@@ -76,6 +76,9 @@ pub struct FrameRecord {
     pub ned_from_camera: Mat3,
     /// The true range ‖R‖ when the frame was taken, ft (for the apparent size).
     pub range_ft: f64,
+    /// The unit direction of the measured maximal length in (yI, zI) (either sense; None
+    /// when nothing was measured).
+    pub length_direction: Option<[f64; 2]>,
 }
 
 /// How far a measured point may lie from the target's true reference point beyond the
@@ -333,6 +336,7 @@ impl CameraSensor {
             follower_position_ned_ft: geometry.navigation.position_ned_ft,
             ned_from_camera: camera_from_ned.transpose(),
             range_ft: geometry.relative_ned_ft.norm(),
+            length_direction: blob.length_direction(),
         };
         self.last = Some((record, blob));
         self.schedule.queue(record);
