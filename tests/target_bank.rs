@@ -2,8 +2,8 @@
 //! docs/equations.md, The target's bank from its wing line). formation_realistic.toml's
 //! stream 5 (an aircraft target on seeded random manoeuvres, consumer navigation): with the
 //! filter inferring the target's acceleration from the frames alone (`inferred`, q_j = 1e-3,
-//! the scenario before the bank) b̂ read 9.02 ft for the 8 ft target, 7.8 σ_b off; with the
-//! bank fused (the scenario as shipped) 8.16 ft, the truth inside ±3σ_b (over run.seed 1-20:
+//! the scenario before the bank) b̂ read 9.02 ft for the 8 ft target, 6.3 σ_b off; with the
+//! bank fused (the scenario as shipped) 8.17 ft, the truth inside ±3σ_b (over run.seed 1-20:
 //! within 5% and inside ±3σ_b on 20 against 15; docs/findings.md).
 
 mod common;

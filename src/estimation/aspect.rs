@@ -11,7 +11,7 @@
 //!
 //! A segment of length b along ŵ, at the image position (yI, zI) and depth x_c, projects to
 //! the length f b s / x_c to first order in b / x_c, with the aspect factor
-//! s = ‖(w_y - w_x yI/f, w_z - w_x zI/f)‖ (ŵ in camera axes): s = 1 for a span across the
+//! s = ‖(w_y - w_x yI/f, w_z + w_x zI/f)‖ (ŵ in camera axes, z down; zI up, (3.1)): s = 1 for a span across the
 //! optical axis, as the sensing transform (3.3)-(3.12) assumes. So r* computed from the frame
 //! is R / (b s), and R / b = s r*. The span is the silhouette's maximal length only while it
 //! is the longest of its dimensions in view: seen near the wing axis the fuselage is, and
@@ -60,7 +60,7 @@ pub fn wing_axis_ned(velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<V
 /// position (`y_i_px`, `z_i_px`) of a camera of focal length `focal_px`.
 pub fn span_aspect(wing_camera: &Vec3, y_i_px: f64, z_i_px: f64, focal_px: f64) -> f64 {
     let (ty, tz) = (y_i_px / focal_px, z_i_px / focal_px);
-    (wing_camera.y - wing_camera.x * ty).hypot(wing_camera.z - wing_camera.x * tz)
+    (wing_camera.y - wing_camera.x * ty).hypot(wing_camera.z + wing_camera.x * tz)
 }
 
 /// The aspect factor of a target flying at `velocity_ned_fps` with `accel_ned_fps2`, seen at
@@ -132,14 +132,16 @@ mod tests {
         let psi = 14f64.to_radians();
         let off_tail = EulerAngles::new(0.0, 0.0, psi).body_from_ned().transpose();
         assert!((s(&off_tail, (0.0, 0.0)) - psi.cos()).abs() < 1e-12);
-        // Off the image centre: project the tips of an 8 ft span 300 ft ahead.
+        // Off the image centre: project the tips of an 8 ft span 300 ft ahead and 25 ft
+        // above the optical axis through the sensing transform's image axes (yI right, zI
+        // up), the wing with a component along the line of sight.
         let (f, depth, b) = (554.0, 300.0, 8.0);
         let centre = Vec3::new(depth, 40.0, -25.0);
         let wing = Vec3::new(0.3, 0.9, 0.1).normalize();
-        let project = |p: Vec3| Vec3::new(0.0, f * p.y / p.x, f * p.z / p.x);
+        let project = |p: Vec3| Vec3::new(0.0, f * p.y / p.x, -f * p.z / p.x);
         let exact = (project(centre + wing * b / 2.0) - project(centre - wing * b / 2.0)).norm();
         let model =
-            f * b * span_aspect(&wing, f * centre.y / depth, f * centre.z / depth, f) / depth;
+            f * b * span_aspect(&wing, f * centre.y / depth, -f * centre.z / depth, f) / depth;
         assert!((exact - model).abs() < 1e-3 * exact, "{exact} {model}");
     }
 }
