@@ -30,7 +30,14 @@ fn size(summary: &Summary) -> (f64, f64) {
 
 #[test]
 fn the_bank_brings_the_size_within_its_uncertainty() {
-    let (b_ft, sigma_ft) = size(&realistic(&[]));
+    let measured = realistic(&[]);
+    let fused = measured.track_check.bank_fused_frames;
+    assert!(
+        fused * 10 > measured.frames * 9,
+        "{fused} of {} frames' banks fused",
+        measured.frames
+    );
+    let (b_ft, sigma_ft) = size(&measured);
     let off_ft = (b_ft - TRUE_SIZE_FT).abs();
     assert!(
         off_ft < 0.05 * TRUE_SIZE_FT && off_ft < 3.0 * sigma_ft,
@@ -40,6 +47,7 @@ fn the_bank_brings_the_size_within_its_uncertainty() {
         "estimator.target_bank=\"inferred\"",
         "estimator.jerk_psd=0.001",
     ]);
+    assert_eq!(inferred.track_check.bank_fused_frames, 0);
     let (b_ft, sigma_ft) = size(&inferred);
     let off_ft = (b_ft - TRUE_SIZE_FT).abs();
     assert!(

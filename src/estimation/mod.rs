@@ -126,6 +126,10 @@ pub trait TargetTracker: std::fmt::Debug + Send {
     /// Measurements the innovation gate kept out so far (`estimator.innovation_gate`).
     fn gated_out(&self) -> u64;
 
+    /// Frames whose wing line was fused as the target's turn so far
+    /// (`estimator.target_bank = "measured"`).
+    fn bank_fused(&self) -> u64;
+
     /// The mean of the normalised innovations squared νᵀ S⁻¹ ν of the measurements fused at
     /// or after `t_s` (3 when the filter's model holds: χ² with 3 degrees of freedom); `None`
     /// when none was.

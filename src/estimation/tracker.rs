@@ -47,6 +47,8 @@ pub struct KalmanTracker {
     innovation_gate: f64,
     /// Measurements the gate kept out.
     gated_out: u64,
+    /// Frames whose wing line was fused as the target's turn (`target_bank = "measured"`).
+    bank_fused: u64,
     /// The airframe model's shape and its length model (`None` with the other models).
     airframe: Option<AirframeModel>,
     /// The airframe model's view of every frame it corrected.
@@ -189,6 +191,7 @@ impl KalmanTracker {
                 f64::INFINITY
             },
             gated_out: 0,
+            bank_fused: 0,
             airframe: None,
             views: Vec::new(),
             bank: (section.target_bank == TargetBank::Measured).then_some(BankReading {
@@ -381,8 +384,13 @@ impl KalmanTracker {
         };
         let variance = turn.sigma_fps2.powi(2) + reading.accel_sigma_fps2.powi(2);
         let gate = self.innovation_gate;
-        if let Some(filter) = self.filter.as_mut() {
+        let Some(filter) = self.filter.as_mut() else {
+            return;
+        };
+        let innovation =
             filter.update_lateral_acceleration(&turn.across_ned, turn.accel_fps2, variance, gate);
+        if innovation.fused {
+            self.bank_fused += 1;
         }
     }
 
@@ -528,6 +536,10 @@ impl TargetTracker for KalmanTracker {
 
     fn gated_out(&self) -> u64 {
         self.gated_out
+    }
+
+    fn bank_fused(&self) -> u64 {
+        self.bank_fused
     }
 
     /// The mean νᵀ S⁻¹ ν of the measurements fused since `t_s`.

@@ -201,7 +201,7 @@ pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("stage_wall_s", "wall time of guidance, estimator, control, plant and all steps (`integration`) over the run, s"),
     ("aircraft", "the largest |α| and |β| after the first 5 s, the airspeed and throttle ranges, the largest surface deflections beside their limits, and the ticks at which a command was clamped, per actuator (6-DOF runs)"),
     ("gimbal", "the pan and tilt ranges (°) and the logged rows at which an axis sat within 0.1° of its limit (gimballed cameras)"),
-    ("track_check", "whether the track was the target: off_target_frames (measured frames not of the target, by the truth), nis_mean_last20s (the filter's mean normalised innovation squared, 3 when its model holds), b_hat_at_bound_last20s_s, gated_out_frames (frames the filter's innovation gate kept out), and warnings"),
+    ("track_check", "whether the track was the target: off_target_frames (measured frames not of the target, by the truth), nis_mean_last20s (the filter's mean normalised innovation squared, 3 when its model holds), b_hat_at_bound_last20s_s, gated_out_frames (frames the filter's innovation gate kept out), bank_fused_frames (frames whose wing line the filter fused as the target's turn, estimator.target_bank), and warnings"),
 ];
 
 /// The gimbal's travel over the logged rows.

@@ -35,6 +35,9 @@ pub struct TrackCheck {
     /// Frames the filter's innovation gate kept out over the whole run
     /// (`estimator.innovation_gate`; 0 without a gate or a filter).
     pub gated_out_frames: u64,
+    /// Frames whose wing line the filter fused as the target's turn over the whole run
+    /// (`estimator.target_bank = "measured"`; 0 without it or a filter).
+    pub bank_fused_frames: u64,
     /// What the check found, in words (empty when nothing).
     pub warnings: Vec<String>,
 }
@@ -79,6 +82,7 @@ impl TrackCheck {
             nis_mean_last20s,
             b_hat_at_bound_last20s_s: at_bound_s,
             gated_out_frames: sim.estimator().filter().map_or(0, |f| f.gated_out()),
+            bank_fused_frames: sim.estimator().filter().map_or(0, |f| f.bank_fused()),
             warnings,
         }
     }
