@@ -56,11 +56,27 @@ pub fn wing_axis_ned(velocity_ned_fps: &Vec3, accel_ned_fps2: &Vec3) -> Option<V
     body_axes_ned(velocity_ned_fps, accel_ned_fps2).map(|axes| axes.column(1).into())
 }
 
-/// The aspect factor s of a span along `wing_camera` (unit, camera axes) seen at the image
-/// position (`y_i_px`, `z_i_px`) of a camera of focal length `focal_px`.
-pub fn span_aspect(wing_camera: &Vec3, y_i_px: f64, z_i_px: f64, focal_px: f64) -> f64 {
+/// The image of a small displacement along `direction_camera` (camera axes, z down) at the
+/// image position (`y_i_px`, `z_i_px`) of a camera of focal length `focal_px`, in (yI right,
+/// zI up), per unit of focal length over depth: (w_y - w_x yI/f, -(w_z + w_x zI/f)), the
+/// derivative of (3.3)-(3.9).
+pub fn image_direction(
+    direction_camera: &Vec3,
+    y_i_px: f64,
+    z_i_px: f64,
+    focal_px: f64,
+) -> [f64; 2] {
     let (ty, tz) = (y_i_px / focal_px, z_i_px / focal_px);
-    (wing_camera.y - wing_camera.x * ty).hypot(wing_camera.z + wing_camera.x * tz)
+    let w = direction_camera;
+    [w.y - w.x * ty, -(w.z + w.x * tz)]
+}
+
+/// The aspect factor s of a span along `wing_camera` (unit, camera axes) seen at the image
+/// position (`y_i_px`, `z_i_px`) of a camera of focal length `focal_px`: the length of its
+/// [`image_direction`].
+pub fn span_aspect(wing_camera: &Vec3, y_i_px: f64, z_i_px: f64, focal_px: f64) -> f64 {
+    let [dy, dz] = image_direction(wing_camera, y_i_px, z_i_px, focal_px);
+    dy.hypot(dz)
 }
 
 /// The aspect factor of a target flying at `velocity_ned_fps` with `accel_ned_fps2`, seen at

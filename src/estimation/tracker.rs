@@ -275,9 +275,15 @@ impl KalmanTracker {
     /// frame's capture (None before it runs or while β̂ ≤ 0), which the size models infer its
     /// attitude from.
     fn predicted_target_motion(&mut self, record: &FrameRecord) -> Option<(Vec3, Vec3)> {
-        let filter = self.filter.as_mut()?;
-        filter.predict_to(record.t_s, &record.follower_position_ned_ft);
-        let est = filter.posterior();
+        self.filter
+            .as_mut()?
+            .predict_to(record.t_s, &record.follower_position_ned_ft);
+        self.posterior_target_motion()
+    }
+
+    /// The target's velocity and acceleration, ft/s and ft/s², of the filter's posterior.
+    fn posterior_target_motion(&self) -> Option<(Vec3, Vec3)> {
+        let est = self.filter.as_ref()?.posterior();
         (est.beta_per_ft > 0.0).then(|| {
             (
                 est.d_per_s / est.beta_per_ft,
@@ -353,7 +359,8 @@ impl KalmanTracker {
         let (Some(reading), Some(direction)) = (self.bank, record.length_direction) else {
             return;
         };
-        let Some((velocity, acceleration)) = self.predicted_target_motion(record) else {
+        // The filter's posterior is at the frame's capture: the frame was just fused.
+        let Some((velocity, acceleration)) = self.posterior_target_motion() else {
             return;
         };
         let point_px = (pixels.y_i_px, pixels.z_i_px);
@@ -387,9 +394,7 @@ impl KalmanTracker {
         let Some(filter) = self.filter.as_mut() else {
             return;
         };
-        let innovation =
-            filter.update_lateral_acceleration(&turn.across_ned, turn.accel_fps2, variance, gate);
-        if innovation.fused {
+        if filter.update_lateral_acceleration(&turn.across_ned, turn.accel_fps2, variance, gate) {
             self.bank_fused += 1;
         }
     }
