@@ -30,7 +30,7 @@ mod render_support;
 use render_support::*;
 use wingman::frames::{EulerAngles, Mat3, Vec3};
 use wingman::render::camera::CameraIntrinsics;
-use wingman::render::{Background, CameraImage, PixelNoise, RenderSettings, Renderer, Sky};
+use wingman::render::{Background, PixelNoise, RenderSettings, Renderer, Sky};
 use wingman::sensing::camera::WindowCounts;
 use wingman::sensing::{CameraConfig, CameraSensor, CaptureGeometry, FollowerPose};
 use wingman::sim::{Simulation, StepOutcome};
@@ -77,23 +77,13 @@ fn window_against_whole(background: Background) -> (Differences, Differences) {
     let mut vision =
         VisionPipeline::new(scenario_vision_config()).unwrap_or_else(|e| panic!("{e}"));
     let mut tracker = TrackingWindow::new(cam, 1.0 / 30.0, vision.region_clearance_px());
-    let measure_whole = |vision: &mut VisionPipeline, frame: &CameraImage| {
-        vision
-            .measure(
-                &frame.rgba,
-                frame.width_px,
-                frame.height_px,
-                BlobSelection::Largest,
-            )
-            .unwrap_or_else(|e| panic!("{e}"))
-    };
     let (mut window, mut noise) = (Differences::default(), Differences::default());
     for (k, case) in sixty_poses().iter().enumerate() {
         let k = k as u64;
         let frame = renderer
             .render(&case.pose, k)
             .unwrap_or_else(|e| panic!("{e}"));
-        let whole = measure_whole(&mut vision, frame);
+        let whole = measure_largest(&mut vision, frame);
         assert_eq!(whole.status, BlobStatus::Ok, "{case:?}");
         // The tracker's window one frame later, the camera not turning.
         tracker.observe(k, &whole, &Mat3::identity());
@@ -113,7 +103,7 @@ fn window_against_whole(background: Background) -> (Differences, Differences) {
             let other_draw = renderer
                 .render(&case.pose, k + 1000)
                 .unwrap_or_else(|e| panic!("{e}"));
-            noise.push(&measure_whole(&mut vision, other_draw), &whole);
+            noise.push(&measure_largest(&mut vision, other_draw), &whole);
         }
     }
     eprintln!(

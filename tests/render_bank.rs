@@ -12,20 +12,13 @@ mod render_support;
 use render_support::*;
 use wingman::estimation::bank::{WingLine, lateral_acceleration};
 use wingman::frames::{GRAVITY_FPS2, Mat3, Vec3};
-use wingman::render::camera::CameraIntrinsics;
-use wingman::render::{RenderSettings, Renderer};
 use wingman::scenario::BearingPoint;
-use wingman::vision::{BlobSelection, BlobStatus, VisionPipeline};
+use wingman::vision::BlobStatus;
 
 #[test]
 fn the_wing_line_reads_the_bank_from_rendered_pixels() {
-    let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
-    let mut settings = RenderSettings::new(cam);
-    settings.msaa_samples = 4;
-    let mesh = aircraft();
-    let mut renderer = Renderer::new(gpu(), settings, &mesh).unwrap_or_else(|e| panic!("{e}"));
-    let mut vision =
-        VisionPipeline::new(scenario_vision_config()).unwrap_or_else(|e| panic!("{e}"));
+    let mut rig = MeasuringRig::new();
+    let cam = rig.cam;
     // The camera's axes are NED's (level, looking north): the target's attitude in camera
     // axes is its attitude.
     let ned_from_camera = Mat3::identity();
@@ -39,15 +32,7 @@ fn the_wing_line_reads_the_bank_from_rendered_pixels() {
                     [range_ft, 8.0, height_ft],
                     [bank_deg.to_radians(), 0.0, 0.0],
                 );
-                let frame = renderer.render(&p, 0).unwrap_or_else(|e| panic!("{e}"));
-                let m = vision
-                    .measure(
-                        &frame.rgba,
-                        frame.width_px,
-                        frame.height_px,
-                        BlobSelection::Largest,
-                    )
-                    .unwrap_or_else(|e| panic!("{e}"));
+                let m = rig.measure(&p);
                 let label = format!("{range_ft} ft, {height_ft} ft up, bank {bank_deg}°");
                 let (Some(direction), Some(point), BlobStatus::Ok) = (
                     m.length_direction(),

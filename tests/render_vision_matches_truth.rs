@@ -16,9 +16,9 @@
 mod render_support;
 
 use render_support::*;
+use wingman::render::TargetMesh;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use wingman::render::{RenderSettings, Renderer, TargetMesh};
-use wingman::vision::{BlobSelection, BlobStatus, VisionPipeline, image_truth};
+use wingman::vision::{BlobStatus, image_truth};
 
 /// Sub-samples per pixel side of the CPU reference silhouette.
 const SUPERSAMPLE: usize = 8;
@@ -76,13 +76,8 @@ fn silhouette_centroid(
 
 #[test]
 fn measured_centroid_and_length_match_geometry_over_60_poses() {
-    let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
-    let mut settings = RenderSettings::new(cam);
-    settings.msaa_samples = 4;
-    let mesh = aircraft();
-    let mut renderer = Renderer::new(gpu(), settings, &mesh).unwrap_or_else(|e| panic!("{e}"));
-    let mut vision =
-        VisionPipeline::new(scenario_vision_config()).unwrap_or_else(|e| panic!("{e}"));
+    let mut rig = MeasuringRig::new();
+    let cam = rig.cam;
     let mut checked = 0;
     let mut failures = Vec::new();
     let (mut worst_centroid, mut worst_length) = (0.0f64, 0.0f64);
@@ -95,15 +90,7 @@ fn measured_centroid_and_length_match_geometry_over_60_poses() {
             pose: p,
         } = case;
         let symmetric = attitude == POSE_ATTITUDES[0];
-        let frame = renderer.render(&p, 0).unwrap_or_else(|e| panic!("{e}"));
-        let m = vision
-            .measure(
-                &frame.rgba,
-                frame.width_px,
-                frame.height_px,
-                BlobSelection::Largest,
-            )
-            .unwrap_or_else(|e| panic!("{e}"));
+        let m = rig.measure(&p);
         let label = format!(
             "range {range_ft} bearing {bearing_deg} elevation {elevation_deg} attitude {attitude:?}"
         );
@@ -111,8 +98,8 @@ fn measured_centroid_and_length_match_geometry_over_60_poses() {
             failures.push(format!("{label}: status {:?}", m.status));
             continue;
         }
-        let truth = image_truth(&mesh.vertices_ft, &p, &cam).expect("target in front");
-        let (cu, cv) = silhouette_centroid(&cam, &mesh, &p);
+        let truth = image_truth(&rig.mesh.vertices_ft, &p, &cam).expect("target in front");
+        let (cu, cv) = silhouette_centroid(&cam, &rig.mesh, &p);
         let centroid_error = (m.centroid_u_px - cu).hypot(m.centroid_v_px - cv);
         if centroid_error >= 0.5 {
             failures.push(format!("{label}: centroid off by {centroid_error:.3} px"));

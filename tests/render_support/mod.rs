@@ -6,9 +6,9 @@ use std::sync::OnceLock;
 
 use wingman::frames::{EulerAngles, Vec3};
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
-use wingman::render::{CameraImage, GpuContext, TargetMesh};
+use wingman::render::{CameraImage, GpuContext, RenderSettings, Renderer, TargetMesh};
 use wingman::sensing::line_of_sight_body;
-use wingman::vision::VisionConfig;
+use wingman::vision::{BlobMeasurement, BlobSelection, VisionConfig, VisionPipeline};
 
 /// The shared GPU context. Panics (fails the test) with the install hint when there is no
 /// adapter: a skipped GPU test would hide a broken set-up (docs/design.md, Tests).
@@ -117,6 +117,58 @@ pub fn scenario_vision_config() -> VisionConfig {
     };
     config.segmentation.mask_coverage = 0.2;
     config
+}
+
+/// The seed aircraft drawn by a 640x480 camera of 60° field of view with 4 samples per pixel
+/// and measured by the scenarios' image pipeline: the rig of the tests that compare the
+/// measurement with the geometry.
+pub struct MeasuringRig {
+    /// The camera.
+    pub cam: CameraIntrinsics,
+    /// The aircraft it draws.
+    pub mesh: TargetMesh,
+    renderer: Renderer,
+    vision: VisionPipeline,
+}
+
+impl MeasuringRig {
+    /// The rig on the shared GPU context.
+    pub fn new() -> Self {
+        let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
+        let mut settings = RenderSettings::new(cam);
+        settings.msaa_samples = 4;
+        let mesh = aircraft();
+        let renderer = Renderer::new(gpu(), settings, &mesh).unwrap_or_else(|e| panic!("{e}"));
+        let vision =
+            VisionPipeline::new(scenario_vision_config()).unwrap_or_else(|e| panic!("{e}"));
+        Self {
+            cam,
+            mesh,
+            renderer,
+            vision,
+        }
+    }
+
+    /// The aircraft at `pose` drawn and its largest blob measured.
+    pub fn measure(&mut self, pose: &TargetPoseInCamera) -> BlobMeasurement {
+        let frame = self
+            .renderer
+            .render(pose, 0)
+            .unwrap_or_else(|e| panic!("{e}"));
+        measure_largest(&mut self.vision, frame)
+    }
+}
+
+/// The largest blob of the whole `frame`, measured by `vision`.
+pub fn measure_largest(vision: &mut VisionPipeline, frame: &CameraImage) -> BlobMeasurement {
+    vision
+        .measure(
+            &frame.rgba,
+            frame.width_px,
+            frame.height_px,
+            BlobSelection::Largest,
+        )
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Grey levels of `frame` below `threshold`: the target's silhouette.
