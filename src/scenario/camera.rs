@@ -118,6 +118,12 @@ pub struct CameraSection {
     /// `selection = "predicted"`: the gate's radius about the expected position, deg, beyond
     /// half the last maximal length.
     pub selection_gate_deg: f64,
+    /// `selection = "predicted"`: how much a blob's size counts beside its distance. A blob
+    /// whose box's longer side is this ratio off the last maximal length weighs as much as one
+    /// at the gate's edge; 0: sizes are not compared, the nearest inside the gate is taken.
+    /// 1.5: beside a teammate or a crosser of another size in the image, a wrong blob near the
+    /// prediction is not taken for the target (docs/findings.md, Group tracking).
+    pub selection_length_ratio: f64,
     /// Blobs with fewer mask pixels are too small to measure.
     pub min_pixel_count: u32,
     /// Mask pixels up to this far apart (px, in u and v) are one blob: 2 bridges the broken
@@ -180,6 +186,7 @@ impl Default for CameraSection {
             mesh: DEFAULT_MESH.to_string(),
             selection: BlobChoice::Nearest,
             selection_gate_deg: 3.0,
+            selection_length_ratio: 1.5,
             min_pixel_count: 4,
             mask_coverage: 0.5,
             compensate_delay: true,
@@ -239,6 +246,13 @@ impl CameraSection {
             0.0,
             90.0,
             "(0, 90)",
+        )?;
+        check::require(
+            self.selection_length_ratio == 0.0
+                || (1.01..=100.0).contains(&self.selection_length_ratio),
+            "camera.selection_length_ratio",
+            self.selection_length_ratio,
+            "0 (sizes not compared) or [1.01, 100]",
         )?;
         check::require(
             self.measure_max_length_px == 0.0 || (16.0..=1e5).contains(&self.measure_max_length_px),

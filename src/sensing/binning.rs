@@ -212,6 +212,7 @@ mod tests {
                     v_px: 60.0,
                     radius_px: 30.0,
                     length_px: 60.0,
+                    length_ratio: 1.5,
                 },
                 3,
             ),
@@ -220,6 +221,7 @@ mod tests {
                 v_px: 20.0,
                 radius_px: 10.0,
                 length_px: 20.0,
+                length_ratio: 1.5,
             }
         );
     }

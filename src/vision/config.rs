@@ -97,9 +97,10 @@ pub enum BlobSelection {
     },
     /// Among the blobs whose pixel-centre mean lies within `radius_px` of this point and
     /// whose box lies within the square of that half side (a gate about a prediction), the
-    /// one most like the prediction: least (d / radius)² + (ln(e / length) / ln 1.5)², d its
+    /// one most like the prediction: least (d / radius)² + (ln(e / length) / ln ρ)², d its
     /// distance from the point, e the longer side of its box, `length_px` the expected
-    /// maximal length (0: unknown, the nearest); none when no blob lies inside the gate.
+    /// maximal length and ρ `length_ratio` (either 0: sizes not compared, the nearest); none
+    /// when no blob lies inside the gate.
     NearestWithin {
         /// Column of the point, px.
         u_px: f64,
@@ -109,6 +110,9 @@ pub enum BlobSelection {
         radius_px: f64,
         /// The expected maximal length, px (0: unknown).
         length_px: f64,
+        /// The ratio of a blob's extent to `length_px` that weighs as much as the gate's
+        /// radius (0: sizes not compared).
+        length_ratio: f64,
     },
 }
 
@@ -128,6 +132,7 @@ impl BlobSelection {
                 v_px,
                 radius_px,
                 length_px,
+                length_ratio,
             } => {
                 let (u_px, v_px) = at(u_px, v_px);
                 Self::NearestWithin {
@@ -135,6 +140,7 @@ impl BlobSelection {
                     v_px,
                     radius_px: radius_px / scale,
                     length_px: length_px / scale,
+                    length_ratio,
                 }
             }
         }

@@ -231,16 +231,26 @@ fn gate_takes_the_blob_like_the_prediction() {
     let mut scene = SyntheticScene::new(160, 120, Background::Uniform(SKY));
     let target = scene.add_disc(60.0, 60.0, 10.0, DARK);
     scene.add_disc(75.0, 62.0, 2.5, DARK);
-    let gate = |u_px, radius_px, length_px| BlobSelection::NearestWithin {
+    let gate_with = |u_px, radius_px, length_px, length_ratio| BlobSelection::NearestWithin {
         u_px,
         v_px: 62.0,
         radius_px,
         length_px,
+        length_ratio,
     };
+    let gate = |u_px, radius_px, length_px| gate_with(u_px, radius_px, length_px, 1.5);
     let m = measure_scene(&scene, gate(74.0, 30.0, 20.0));
     check_shape(&m, &target, 0.05, 0.5);
     // Without an expected length, the nearest.
     let m = measure_scene(&scene, gate(74.0, 30.0, 0.0));
+    assert!((m.centroid_u_px - 75.0).abs() < 1.0, "{m:?}");
+    // Sizes not compared (`length_ratio` 0): the nearest too.
+    let m = measure_scene(&scene, gate_with(74.0, 30.0, 20.0, 0.0));
+    assert!((m.centroid_u_px - 75.0).abs() < 1.0, "{m:?}");
+    // A looser ratio weighs the size less: the 4-5 px fragment 1 px away beats the 20 px
+    // target 14 px away once ln ρ is large enough ((ln 0.2 / ln 100)² = 0.12 against
+    // (14 / 30)² = 0.22).
+    let m = measure_scene(&scene, gate_with(74.0, 30.0, 20.0, 100.0));
     assert!((m.centroid_u_px - 75.0).abs() < 1.0, "{m:?}");
     // Both centres outside the gate: nothing.
     let m = measure_scene(&scene, gate(130.0, 30.0, 20.0));

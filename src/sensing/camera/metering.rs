@@ -56,6 +56,8 @@ pub(super) struct Metering {
     expected_los_ned: Option<Vec3>,
     /// `predicted` selection's gate beyond half the last maximal length, rad.
     gate_rad: f64,
+    /// `camera.selection_length_ratio`.
+    length_ratio: f64,
 }
 
 /// Copies the pixels of `window` out of `rgba`, the pixels of `drawn` (which contains it),
@@ -97,6 +99,7 @@ impl Metering {
                 || camera.selection == BlobChoice::Predicted,
             expected_los_ned: None,
             gate_rad: camera.selection_gate_deg.to_radians(),
+            length_ratio: camera.selection_length_ratio,
         })
     }
 
@@ -155,6 +158,7 @@ impl Metering {
                     radius_px: intrinsics.focal_px * self.gate_rad.tan()
                         + 0.5 * self.previous_length_px.unwrap_or(0.0),
                     length_px: self.previous_length_px.unwrap_or(0.0),
+                    length_ratio: self.length_ratio,
                 },
                 None => BlobSelection::Largest,
             },
