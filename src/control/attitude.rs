@@ -21,8 +21,7 @@ use super::control_law::ControlLaw;
 use super::nominal_model::NominalModel;
 use super::prefilter::FilteredCommand;
 use super::reference::{
-    AlphaReferenceInput, alpha_reference_rad, coordinated_turn_bank_rad, lift_limited_bank_rad,
-    unwrap_near_rad,
+    AlphaReferenceInput, alpha_reference_rad, coordinated_turn_bank_rad, unwrap_near_rad,
 };
 use super::signals::AutopilotInput;
 use super::state::AutopilotState;
@@ -62,32 +61,29 @@ impl ControlLaw {
             heading_cmd,
             &mut rates.heading_filter,
         );
-        let dynamic_pressure_area_lbf = model.qbar_control * self.params.geometry.wing_area_ft2;
-        let lift_balance = self.lift_balance(
-            air,
-            velocity.flight_path_cmd_rad,
-            dynamic_pressure_area_lbf,
-            input.actuators.elevator_rad,
-        );
-        let max_bank_rad = self.bank_limit_rad(&lift_balance);
         // Bank for the heading rate (7.24) asks for, ψ̇_m - k_ψ e_ψ, limited to the turn rate
         // of the bank limit: with the seed's φ_c from ψ̇_m alone a heading error the reference
         // has run ahead of (a large turn) is flown on the rudder, skidding with it at its limit.
-        let max_turn_rate_rps = self.max_turn_rate_rps(air, max_bank_rad);
+        let max_turn_rate_rps = self.max_turn_rate_rps(air);
         let heading_rate_demand = (psi_ref.rate
             - g.yaw_gain_per_s * wrap_angle_rad(air.euler.psi_rad - psi_ref.value))
         .clamp(-max_turn_rate_rps, max_turn_rate_rps);
         let bank_cmd = coordinated_turn_bank_rad(
             heading_rate_demand,
             velocity.airspeed_ref.value,
-            max_bank_rad,
+            g.max_bank_deg.to_radians(),
         );
-        let phi_ref = self.bank_envelope(
-            self.roll_filter
-                .derivative(&state.roll_filter, bank_cmd, &mut rates.roll_filter),
-            max_bank_rad,
+        let phi_ref = self.bank_envelope(self.roll_filter.derivative(
+            &state.roll_filter,
+            bank_cmd,
+            &mut rates.roll_filter,
+        ));
+        let pitch_offset = self.pitch_offset_rad(
+            air,
+            velocity.flight_path_cmd_rad,
+            model.qbar_control * self.params.geometry.wing_area_ft2,
+            input.actuators.elevator_rad,
         );
-        let pitch_offset = self.pitch_offset_rad(&lift_balance);
         let pitch_cmd = velocity.flight_path_cmd_rad + pitch_offset;
         let theta_ref =
             self.pitch_filter
@@ -108,34 +104,13 @@ impl ControlLaw {
         }
     }
 
-    /// The turn rate of a coordinated turn at the bank limit, g tan φ_max / V, rad/s.
-    fn max_turn_rate_rps(&self, air: &AirData, max_bank_rad: f64) -> f64 {
-        GRAVITY_FPS2 * max_bank_rad.tan()
-            / air.airspeed_fps.max(self.gains.min_control_airspeed_fps)
-    }
-
-    /// The bank limit, rad: `max_bank_deg`, or with `bank_limit = "lift"` the bank the lift at
-    /// α_max carries on the commanded path ([`lift_limited_bank_rad`]) within
-    /// [`lift_bank_min_deg`, `max_bank_deg`].
-    fn bank_limit_rad(&self, lift_balance: &AlphaReferenceInput) -> f64 {
-        let g = &self.gains;
-        let max_bank_rad = g.max_bank_deg.to_radians();
-        if g.bank_limit == BankLimit::Fixed {
-            return max_bank_rad;
-        }
-        let lift_bank_rad = lift_limited_bank_rad(&AlphaReferenceInput {
-            bank_rad: 0.0,
-            alpha_rad: g.max_alpha_deg.to_radians(),
-            ..*lift_balance
-        });
-        lift_bank_rad.clamp(g.lift_bank_min_deg.to_radians(), max_bank_rad)
-    }
-
-    /// With `bank_limit = "lift"` the prefiltered bank reference held inside ±`max_bank_rad`
-    /// (its steps overshoot: a reversal from -30° to 30° reached 46°); the seed's fixed limit
-    /// leaves it as it is.
-    fn bank_envelope(&self, phi_ref: FilteredCommand, max_bank_rad: f64) -> FilteredCommand {
-        if self.gains.bank_limit == BankLimit::Fixed || phi_ref.value.abs() <= max_bank_rad {
+    /// With `bank_limit = "reference"` the prefiltered bank reference held inside
+    /// ±`max_bank_deg` (the prefilter's steps overshoot the limit the command was clamped
+    /// to: an S-turn reversal from -30° to 30° reached 46°), at rest while held there; with
+    /// `"command"`, the seed's, as it is.
+    fn bank_envelope(&self, phi_ref: FilteredCommand) -> FilteredCommand {
+        let max_bank_rad = self.gains.max_bank_deg.to_radians();
+        if self.gains.bank_limit == BankLimit::Command || phi_ref.value.abs() <= max_bank_rad {
             return phi_ref;
         }
         FilteredCommand {
@@ -144,29 +119,28 @@ impl ControlLaw {
         }
     }
 
-    /// The pitch offset α_ref cos φ added to γ_c in θ_c (0 with `alpha_feedforward` off).
-    fn pitch_offset_rad(&self, lift_balance: &AlphaReferenceInput) -> f64 {
-        if !self.gains.alpha_feedforward {
-            return 0.0;
-        }
-        let max_alpha = self.gains.max_alpha_ref_deg.to_radians();
-        alpha_reference_rad(lift_balance).map_or(0.0, |alpha| {
-            alpha.clamp(-max_alpha, max_alpha) * lift_balance.bank_rad.cos()
-        })
+    /// The turn rate of a coordinated turn at the bank limit, g tan φ_max / V, rad/s.
+    fn max_turn_rate_rps(&self, air: &AirData) -> f64 {
+        let g = &self.gains;
+        GRAVITY_FPS2 * g.max_bank_deg.to_radians().tan()
+            / air.airspeed_fps.max(g.min_control_airspeed_fps)
     }
 
-    /// The normal-force balance on the commanded path at the present bank, α, thrust and
-    /// elevator, with the nominal lift curve: what the α reference and the lift's bank limit
-    /// solve, each for its own unknown.
-    fn lift_balance(
+    /// The pitch offset α_ref cos φ added to γ_c in θ_c (0 with `alpha_feedforward` off).
+    fn pitch_offset_rad(
         &self,
         air: &AirData,
         flight_path_cmd_rad: f64,
         dynamic_pressure_area_lbf: f64,
         elevator_rad: f64,
-    ) -> AlphaReferenceInput {
+    ) -> f64 {
+        let g = &self.gains;
+        if !g.alpha_feedforward {
+            return 0.0;
+        }
         let a = &self.params.aero;
-        AlphaReferenceInput {
+        let max_alpha = g.max_alpha_ref_deg.to_radians();
+        alpha_reference_rad(&AlphaReferenceInput {
             mass_slug: self.params.mass.mass_slug,
             dynamic_pressure_area_lbf,
             flight_path_rad: flight_path_cmd_rad,
@@ -176,7 +150,10 @@ impl ControlLaw {
             c_lift_0: a.c_lift_0,
             c_lift_alpha_per_rad: a.c_lift_alpha_per_rad,
             c_lift_elevator: a.c_lift_de_per_rad * elevator_rad,
-        }
+        })
+        .map_or(0.0, |alpha| {
+            alpha.clamp(-max_alpha, max_alpha) * air.euler.phi_rad.cos()
+        })
     }
 
     /// α envelope: θ_c (and θ̇_c) kept within γ + [α_min, α_max] cos φ, so that tracking θ_c

@@ -106,25 +106,6 @@ pub fn alpha_reference_rad(input: &AlphaReferenceInput) -> Option<f64> {
     alpha.is_finite().then_some(alpha)
 }
 
-/// The steepest bank whose turn the lift at α_max still carries on the commanded path: the
-/// normal-force balance of [`alpha_reference_rad`] solved for φ at α = `input.alpha_rad`
-/// (here α_max), cos φ = m g cos γ_c / (q̄S (C_L0 + C_Lα α_max + C_Lδe δe) + T sin α_max), rad
-/// (docs/equations.md, The bank the lift allows); 0 where even wings level need more lift.
-/// `input.bank_rad` is not read.
-pub fn lift_limited_bank_rad(input: &AlphaReferenceInput) -> f64 {
-    let weight_lbf = input.mass_slug * GRAVITY_FPS2 * input.flight_path_rad.cos();
-    let c_lift =
-        input.c_lift_0 + input.c_lift_alpha_per_rad * input.alpha_rad + input.c_lift_elevator;
-    let normal_force_lbf =
-        input.dynamic_pressure_area_lbf * c_lift + input.thrust_lbf * input.alpha_rad.sin();
-    let cos_bank = weight_lbf / normal_force_lbf;
-    if cos_bank.is_finite() && cos_bank > 0.0 && cos_bank < 1.0 {
-        cos_bank.acos()
-    } else {
-        0.0
-    }
-}
-
 /// The flight path the airspeed law (7.20) can hold with thrust `thrust_lbf`:
 /// sin γ = (T cos α cos β - D_n - m Ŵ_DᵀΦ - m V̇_c) / (m g), as an angle (rad, in
 /// [-π/2, π/2]). With T near full thrust it is the steepest climb, with T near idle the steepest
@@ -232,55 +213,5 @@ mod tests {
         };
         // C_L = m g / (q̄ S) = 0.1, α = 0.05.
         assert!((alpha_reference_rad(&input).expect("defined") - 0.05).abs() < 1e-12);
-    }
-
-    /// A level turn of the shipped follower (0.6293 slug, 11.5 ft², C_L0 0.28, C_Lα 3.45/rad)
-    /// at α_max = 18°, air at 500 ft, thrust `thrust_lbf`, airspeed `airspeed_fps`.
-    fn shipped_follower_at(airspeed_fps: f64, thrust_lbf: f64) -> AlphaReferenceInput {
-        let density_slug_ft3 = 0.002_342;
-        AlphaReferenceInput {
-            mass_slug: 0.6293,
-            dynamic_pressure_area_lbf: 0.5 * density_slug_ft3 * airspeed_fps.powi(2) * 11.5,
-            flight_path_rad: 0.0,
-            bank_rad: 0.0,
-            thrust_lbf,
-            alpha_rad: 18f64.to_radians(),
-            c_lift_0: 0.28,
-            c_lift_alpha_per_rad: 3.45,
-            c_lift_elevator: 0.0,
-        }
-    }
-
-    #[test]
-    fn the_lift_limited_bank_is_where_the_alpha_reference_reaches_alpha_max() {
-        // Below 60° of bank, where the α reference's cos φ floor does not act.
-        for (airspeed_fps, thrust_lbf) in [(35.0, 0.0), (38.0, 2.0), (40.0, 1.0)] {
-            let input = shipped_follower_at(airspeed_fps, thrust_lbf);
-            let bank_rad = lift_limited_bank_rad(&input);
-            assert!(
-                bank_rad > 0.0 && bank_rad < 1.0,
-                "{airspeed_fps} ft/s: {bank_rad}"
-            );
-            let alpha_rad = alpha_reference_rad(&AlphaReferenceInput { bank_rad, ..input });
-            assert!((alpha_rad.expect("defined") - input.alpha_rad).abs() < 1e-12);
-        }
-    }
-
-    #[test]
-    fn the_lift_limited_bank_grows_with_speed_and_is_zero_below_the_one_g_speed() {
-        let bank_deg = |v| lift_limited_bank_rad(&shipped_follower_at(v, 0.0)).to_degrees();
-        let (at_34, at_35, at_40, at_50) = (
-            bank_deg(34.0),
-            bank_deg(35.0),
-            bank_deg(40.0),
-            bank_deg(50.0),
-        );
-        println!(
-            "lift-limited bank at 34, 35, 40, 50 ft/s: {at_34:.1}°, {at_35:.1}°, {at_40:.1}°, {at_50:.1}°"
-        );
-        assert!(at_34 < at_35 && at_35 < at_40 && at_40 < at_50);
-        // q̄S C_L(18°) = m g at 33.2 ft/s: below it no bank holds the height.
-        assert_eq!(bank_deg(32.5), 0.0);
-        assert!(bank_deg(33.5) > 0.0);
     }
 }

@@ -28,17 +28,17 @@ pub enum OuterLoop {
     Energy,
 }
 
-/// What limits the bank the coordinated turn (7.14) may command.
+/// Where the bank limit `max_bank_deg` acts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum BankLimit {
-    /// |φ_c| ≤ `max_bank_deg` at every speed, on the raw command (the seed's (7.14) clamp).
+    /// On the raw coordinated-turn command (the seed's (7.14) clamp); the roll prefilter's
+    /// reference may overshoot it.
     #[default]
-    Fixed,
-    /// |φ| ≤ the bank whose turn the lift at `max_alpha_deg` still carries at the present
-    /// speed, within [`lift_bank_min_deg`, `max_bank_deg`], on the command and on its
-    /// prefiltered reference (docs/equations.md, The bank the lift allows).
-    Lift,
+    Command,
+    /// On the command and on the prefiltered bank reference the attitude loop tracks
+    /// (docs/equations.md, The bank limit on the reference).
+    Reference,
 }
 
 /// `[autopilot]`: the follower's flight controller (seed Chapter 7).
@@ -129,17 +129,12 @@ pub struct AutopilotSection {
     pub min_alpha_deg: f64,
     /// Largest |φ_c| of the coordinated turn (7.14), deg.
     pub max_bank_deg: f64,
-    /// `"fixed"` (the seed's: `max_bank_deg` at every speed, on the raw command, which the
-    /// roll prefilter's steps overshoot) or `"lift"`: near its slowest speed the aircraft
-    /// cannot hold its height in a 30° turn (the shipped follower, level at α_max = 18°
-    /// without the thrust's or the elevator's share: 1.11 g, a 26° bank, at 35 ft/s; 1 g at
-    /// 33.2 ft/s), so the limit falls with the lift the speed gives, and holds the prefiltered
-    /// reference too.
+    /// `"command"` (the seed's: (7.14)'s φ_c clamped to `max_bank_deg`, which the roll
+    /// prefilter's integral form overshoots on a step: an S-turn reversal from -30° to 30°
+    /// reached a 46° reference) or `"reference"`: the prefiltered reference is held inside the
+    /// limit too. Near its slowest speed the aircraft cannot hold its height in a 46° turn
+    /// (at 34 ft/s the lift at α_max carries 1.05-1.2 g, a 17-33° bank).
     pub bank_limit: BankLimit,
-    /// With `bank_limit = "lift"`, the bank the limit never falls below, deg: 10° keeps a
-    /// turn of g tan 10° / V (9°/s at 35 ft/s) for the heading loop below the 1 g speed at
-    /// α_max, where no bank holds the height and the airspeed law must first add speed.
-    pub lift_bank_min_deg: f64,
     /// Keep γ_c between the steepest descent and the steepest climb that (7.20) can hold
     /// at steady speed with the throttle inside its range (beyond the seed, whose thrust
     /// T ∝ V² cannot hold every climb and descent of the target profile at every speed).
@@ -255,8 +250,7 @@ impl Default for AutopilotSection {
             max_alpha_deg: 18.0,
             min_alpha_deg: -8.0,
             max_bank_deg: 30.0,
-            bank_limit: BankLimit::Fixed,
-            lift_bank_min_deg: 10.0,
+            bank_limit: BankLimit::Command,
             flight_path_limits: true,
             thrust_margin_fraction: 0.05,
             climb_waits_for_speed: false,
@@ -441,13 +435,7 @@ impl AutopilotSection {
             self.max_alpha_ref_deg,
             format!("<= autopilot.max_alpha_deg = {}", self.max_alpha_deg),
         )?;
-        check::in_closed("autopilot.max_bank_deg", self.max_bank_deg, 1.0, 80.0)?;
-        check::in_closed(
-            "autopilot.lift_bank_min_deg",
-            self.lift_bank_min_deg,
-            0.0,
-            self.max_bank_deg,
-        )
+        check::in_closed("autopilot.max_bank_deg", self.max_bank_deg, 1.0, 80.0)
     }
 
     /// The flight-path limits' throttle margin and the airspeed command and control limits.
