@@ -64,20 +64,24 @@ impl ControlLaw {
         // Bank for the heading rate (7.24) asks for, ψ̇_m - k_ψ e_ψ, limited to the turn rate
         // of the bank limit: with the seed's φ_c from ψ̇_m alone a heading error the reference
         // has run ahead of (a large turn) is flown on the rudder, skidding with it at its limit.
-        let max_turn_rate_rps = self.max_turn_rate_rps(air);
+        let max_bank_rad = g.max_bank_deg.to_radians();
+        let max_turn_rate_rps = max_turn_rate_rps(
+            air.airspeed_fps.max(g.min_control_airspeed_fps),
+            max_bank_rad,
+        );
         let heading_rate_demand = (psi_ref.rate
             - g.yaw_gain_per_s * wrap_angle_rad(air.euler.psi_rad - psi_ref.value))
         .clamp(-max_turn_rate_rps, max_turn_rate_rps);
         let bank_cmd = coordinated_turn_bank_rad(
             heading_rate_demand,
             velocity.airspeed_ref.value,
-            g.max_bank_deg.to_radians(),
+            max_bank_rad,
         );
-        let phi_ref = self.bank_envelope(self.roll_filter.derivative(
-            &state.roll_filter,
-            bank_cmd,
-            &mut rates.roll_filter,
-        ));
+        let phi_ref = self.bank_envelope(
+            self.roll_filter
+                .derivative(&state.roll_filter, bank_cmd, &mut rates.roll_filter),
+            max_bank_rad,
+        );
         let pitch_offset = self.pitch_offset_rad(
             air,
             velocity.flight_path_cmd_rad,
@@ -105,11 +109,10 @@ impl ControlLaw {
     }
 
     /// With `bank_limit = "reference"` the prefiltered bank reference held inside
-    /// ±`max_bank_deg` (the prefilter's steps overshoot the limit the command was clamped
+    /// ±`max_bank_rad` (the prefilter's steps overshoot the limit the command was clamped
     /// to: an S-turn reversal from -30° to 30° reached 46°), at rest while held there; with
     /// `"command"`, the seed's, as it is.
-    fn bank_envelope(&self, phi_ref: FilteredCommand) -> FilteredCommand {
-        let max_bank_rad = self.gains.max_bank_deg.to_radians();
+    fn bank_envelope(&self, phi_ref: FilteredCommand, max_bank_rad: f64) -> FilteredCommand {
         if self.gains.bank_limit == BankLimit::Command || phi_ref.value.abs() <= max_bank_rad {
             return phi_ref;
         }
@@ -117,13 +120,6 @@ impl ControlLaw {
             value: phi_ref.value.clamp(-max_bank_rad, max_bank_rad),
             rate: 0.0,
         }
-    }
-
-    /// The turn rate of a coordinated turn at the bank limit, g tan φ_max / V, rad/s.
-    fn max_turn_rate_rps(&self, air: &AirData) -> f64 {
-        let g = &self.gains;
-        GRAVITY_FPS2 * g.max_bank_deg.to_radians().tan()
-            / air.airspeed_fps.max(g.min_control_airspeed_fps)
     }
 
     /// The pitch offset α_ref cos φ added to γ_c in θ_c (0 with `alpha_feedforward` off).
@@ -176,4 +172,9 @@ impl ControlLaw {
             (theta_ref.value, theta_ref.rate)
         }
     }
+}
+
+/// The turn rate of a coordinated turn at the bank limit, g tan φ_max / V, rad/s.
+fn max_turn_rate_rps(airspeed_fps: f64, max_bank_rad: f64) -> f64 {
+    GRAVITY_FPS2 * max_bank_rad.tan() / airspeed_fps
 }
