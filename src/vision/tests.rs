@@ -248,8 +248,8 @@ fn gate_takes_the_blob_like_the_prediction() {
     let m = measure_scene(&scene, gate_with(74.0, 30.0, 20.0, 0.0));
     assert!((m.centroid_u_px - 75.0).abs() < 1.0, "{m:?}");
     // A looser ratio weighs the size less: the 4-5 px fragment 1 px away beats the 20 px
-    // target 14 px away once ln ρ is large enough ((ln 0.2 / ln 100)² = 0.12 against
-    // (14 / 30)² = 0.22).
+    // target 14 px away once ln ρ is large enough ((ln(4/20) or ln(5/20) / ln 100)² =
+    // 0.12 or 0.09, against (14 / 30)² = 0.22).
     let m = measure_scene(&scene, gate_with(74.0, 30.0, 20.0, 100.0));
     assert!((m.centroid_u_px - 75.0).abs() < 1.0, "{m:?}");
     // Both centres outside the gate: nothing.
