@@ -5,9 +5,10 @@
 //! its clock's S-turns with the seed's 30° clamp on the raw command, which the roll
 //! prefilter's reversals overshot to 46°; at 34 ft/s that turn needs more lift than α_max
 //! gives, the follower sank 80-85 ft below its slot and was back on it only inside the last
-//! 20 s (RMS [5.6, 16.9, 24.6] ft). With the reference held inside 30° the run holds every
-//! axis under 3 ft (measured over run.seed 1-20: 19 of 20 against 17; over 1-40, 33 against
-//! 28; docs/findings.md).
+//! 20 s (RMS [5.6, 16.9, 24.6] ft with the 0.06 speed brake formation.toml had then, [2.7,
+//! 6.9, 9.8] ft with its 0.18 now).
+//! With the reference held inside 30° the run holds every axis under 3 ft (measured over
+//! run.seed 1-20: 19 of 20 against 17; over 1-40, 33 against 28; docs/findings.md).
 
 mod common;
 
@@ -63,5 +64,5 @@ fn the_limit_on_the_reference_keeps_the_follower_on_its_slot_through_the_slowest
     assert_eq!(held.summary.status, RunStatus::Completed);
     assert_eq!(held.summary.lost_frames, 0);
     assert!(worst_axis_ft(&held.summary) < 3.0);
-    assert!(worst_axis_ft(&unheld.summary) > 10.0);
+    assert!(worst_axis_ft(&unheld.summary) > 5.0);
 }
