@@ -11,6 +11,7 @@
 mod common;
 
 use common::worst_axis_ft;
+use std::ops::Range;
 use wingman::output::RunReport;
 use wingman::output::summary::RunStatus;
 
@@ -39,32 +40,28 @@ fn assert_kept(report: &RunReport) {
     assert!(worst_axis_ft(s) < 5.0, "{:?}", s.rms_error_last20s_ft);
 }
 
-#[test]
-fn the_brake_follows_the_target_down_through_a_sustained_updraft() {
-    let shipped = moderate(29, &[]);
-    let half_brake = moderate(29, &["follower.speed_brake_c_drag=0.06"]);
+/// On `seed`, the shipped scenario keeps the target and the slot, and with `without` (the
+/// key set back) the target is first lost within `lost_within_s`.
+fn assert_the_key_keeps_the_target(seed: u32, without: &str, lost_within_s: Range<f64>) {
+    let shipped = moderate(seed, &[]);
+    let reverted = moderate(seed, &[without]);
     println!(
-        "stream 29: lost {} with 0.18, {} with 0.06 (first at {:?} s)",
+        "stream {seed}: lost {} shipped, {} with {without} (first at {:?} s)",
         shipped.summary.lost_frames,
-        half_brake.summary.lost_frames,
-        first_loss_s(&half_brake)
+        reverted.summary.lost_frames,
+        first_loss_s(&reverted)
     );
     assert_kept(&shipped);
-    let lost_at_s = first_loss_s(&half_brake).expect("0.06 loses the target in the updraft");
-    assert!((40.0..70.0).contains(&lost_at_s), "lost at {lost_at_s} s");
+    let lost_at_s = first_loss_s(&reverted).expect("the target is lost without the key");
+    assert!(lost_within_s.contains(&lost_at_s), "lost at {lost_at_s} s");
+}
+
+#[test]
+fn the_brake_follows_the_target_down_through_a_sustained_updraft() {
+    assert_the_key_keeps_the_target(29, "follower.speed_brake_c_drag=0.06", 40.0..70.0);
 }
 
 #[test]
 fn the_bank_reference_held_keeps_the_height_in_the_slowest_turn() {
-    let shipped = moderate(21, &[]);
-    let command_clamp = moderate(21, &["autopilot.bank_limit=\"command\""]);
-    println!(
-        "stream 21: lost {} with the reference held, {} with the command clamp (first at {:?} s)",
-        shipped.summary.lost_frames,
-        command_clamp.summary.lost_frames,
-        first_loss_s(&command_clamp)
-    );
-    assert_kept(&shipped);
-    let lost_at_s = first_loss_s(&command_clamp).expect("the command clamp loses the target");
-    assert!((94.0..104.0).contains(&lost_at_s), "lost at {lost_at_s} s");
+    assert_the_key_keeps_the_target(21, "autopilot.bank_limit=\"command\"", 94.0..104.0);
 }
