@@ -2,7 +2,8 @@
 //! speed brake's size, and the bank reference, in moderate air):
 //! - stream 29: an updraft of 9-13 ft/s held over 40-57 s while the target descends and
 //!   slows. With the speed brake of ΔC_D 0.18 the follower sinks with the target; with 0.06
-//!   (twice the clean drag, a 12° glide at idle) it stays above it and loses it at 53-64 s.
+//!   (twice the clean drag, a glide of 10-12° at 45-50 ft/s) it stays above it and loses it
+//!   at 53-64 s.
 //! - stream 21: an S-turn's reversal in the target's slowest turn (35.4 ft/s at 96-100 s).
 //!   With the bank reference held inside the 30° limit the follower keeps its height; with
 //!   the seed's clamp on the raw command alone the reference overshoots to a bank the lift
