@@ -5,15 +5,17 @@
 //!   ±8 ft. With formation.toml's former speed brake (ΔC_D 0.06) that lost it at 45 s (streams
 //!   2 and 5 at 60 and 123 s); with its 0.18 the follower keeps it in view but flies the
 //!   swing, 4.9 ft RMS across the track over 40-60 s. Bounded at the estimated size
-//!   (`excitation.fov_fraction = 0.7`, the scenario's) every axis stays under 2.3 ft
-//!   (measured: docs/findings.md, The excitation and the field of view).
+//!   (`excitation.fov_fraction = 0.7`, the scenario's) every axis stays under 2.3 ft. Over
+//!   streams 1-10 (60 s) the worst axis reads a median 2.5 ft bounded (at most 4.1, stream 2)
+//!   against 5.7 unbounded (at least 4.5), no frame lost either way (docs/findings.md, The
+//!   excitation and the field of view).
 //! - The relative law formation.toml flies (a = k_σ σ_b / b̂ in feet; stream 5): the swing
 //!   follows the relative uncertainty alone: the largest |R*_c - R_c| after 30 s is 1.2 ft
 //!   for this target where the scaled law, bounded, reaches 2.8 ft, and the slot is held
-//!   under 3 ft on every axis. (With the
-//!   0.06 brake the scaled law's swing along the track, which the throttle could not fly,
-//!   left it 3.7 and 4.9 ft off the slot; with 0.18 it holds under 2.6 ft on streams 1, 2, 4
-//!   and 5, measured.)
+//!   under 3 ft on every axis. Over streams 1-5 the relative law's swing is 0.37-0.44 of the
+//!   scaled law's, every axis under 1.6 ft. (With the 0.06 brake the scaled law's swing
+//!   along the track, which the throttle could not fly, left it 3.7 and 4.9 ft off the slot;
+//!   with 0.18 it holds under 2.6 ft on streams 1-5, measured.)
 
 mod common;
 
@@ -63,7 +65,7 @@ fn a_large_target_is_kept_in_view_by_the_bound() {
     )
     .summary;
     assert!(
-        unbounded.lost_frames > 0 || common::worst_axis_ft(&unbounded) > 4.0,
+        common::worst_axis_ft(&unbounded) > 4.0,
         "without the bound the 20 ft target's swing is flown: {:?}",
         unbounded.rms_error_last20s_ft
     );
