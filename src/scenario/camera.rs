@@ -163,6 +163,14 @@ pub struct CameraSection {
     /// surface fitted to the border) or `motion` (against the rotation-compensated previous
     /// frame and the border's colours, for a textured world behind the target).
     pub segmentation: SegmentationKind,
+    /// `segmentation = "motion"`: a pixel the remembered background does not explain is
+    /// target only as a mixture of a background colour around it and a shade of the target's
+    /// colour (learned from the blobs measured on it), to within this angle in RGB, deg; 0
+    /// (default): colours are not tested. A field's edge the memory mislaid, or a road, is a
+    /// mixture of two ground colours, off the plane of the background and a target of another
+    /// colour (docs/equations.md, Scene; docs/findings.md, The target's colour as the
+    /// pixel's explanation).
+    pub target_colour_tolerance_deg: f64,
     /// An occlusion: frames taken in [start, end) s show no target (as if a cloud or the
     /// follower's own airframe hid it), to force a loss; [0, 0] for none.
     pub occlusion_s: [f64; 2],
@@ -198,6 +206,7 @@ impl Default for CameraSection {
             measure_max_length_px: 0.0,
             occlusion_s: [0.0, 0.0],
             segmentation: SegmentationKind::Threshold,
+            target_colour_tolerance_deg: 0.0,
         }
     }
 }
@@ -253,6 +262,14 @@ impl CameraSection {
             "camera.selection_length_ratio",
             self.selection_length_ratio,
             "0 (sizes not compared) or [1.01, 100]",
+        )?;
+        check::require(
+            self.target_colour_tolerance_deg == 0.0
+                || (self.segmentation == SegmentationKind::Motion
+                    && (1.0..=60.0).contains(&self.target_colour_tolerance_deg)),
+            "camera.target_colour_tolerance_deg",
+            self.target_colour_tolerance_deg,
+            "0 (no colour test) or [1, 60] deg with segmentation = \"motion\"",
         )?;
         check::require(
             self.measure_max_length_px == 0.0 || (16.0..=1e5).contains(&self.measure_max_length_px),

@@ -163,6 +163,11 @@ pub struct VisionConfig {
     /// turned by the camera's rotation and the border's colours (`super::reference`), instead
     /// of a colour surface fitted to the border.
     pub motion_reference: bool,
+    /// With `motion_reference`: a pixel the remembered background does not explain is
+    /// target only as a mixture of a background colour around it and a shade of the target's
+    /// colour, learned from the blobs measured on it, to within this angle in RGB, deg
+    /// (`super::target_colour`); 0: no colour test.
+    pub target_colour_tolerance_deg: f64,
 }
 
 impl Default for VisionConfig {
@@ -172,6 +177,7 @@ impl Default for VisionConfig {
             min_pixel_count: 4,
             link_radius_px: 1,
             motion_reference: false,
+            target_colour_tolerance_deg: 0.0,
         }
     }
 }
@@ -197,6 +203,9 @@ pub enum VisionConfigError {
     /// `min_pixel_count` is 0.
     #[error("vision min_pixel_count must be at least 1, got 0")]
     ZeroMinPixelCount,
+    /// `target_colour_tolerance_deg` outside [0, 90).
+    #[error("vision target_colour_tolerance_deg must be in [0, 90) deg, got {0}")]
+    TargetColourTolerance(f64),
 }
 
 impl VisionConfig {
@@ -230,6 +239,10 @@ impl VisionConfig {
         if self.min_pixel_count == 0 {
             return Err(VisionConfigError::ZeroMinPixelCount);
         }
+        let tolerance = self.target_colour_tolerance_deg;
+        if !(0.0..90.0).contains(&tolerance) {
+            return Err(VisionConfigError::TargetColourTolerance(tolerance));
+        }
         Ok(())
     }
 }
@@ -262,5 +275,13 @@ mod tests {
             ..VisionConfig::default()
         };
         assert_eq!(c.validate(), Err(VisionConfigError::ZeroMinPixelCount));
+        let c = VisionConfig {
+            target_colour_tolerance_deg: 90.0,
+            ..VisionConfig::default()
+        };
+        assert_eq!(
+            c.validate(),
+            Err(VisionConfigError::TargetColourTolerance(90.0))
+        );
     }
 }

@@ -39,6 +39,7 @@ pub mod silhouette;
 mod subpixel_edge;
 #[cfg(test)]
 mod synthetic;
+mod target_colour;
 #[cfg(test)]
 mod tests;
 pub mod tracking;

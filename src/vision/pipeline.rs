@@ -20,9 +20,10 @@ use super::components::{BlobSummary, ComponentLabeller, PixelBox};
 use super::config::{BlobSelection, VisionConfig, VisionConfigError};
 use super::feret::FeretDiameter;
 use super::image_view::{ImageSizeError, RgbaView};
-use super::measure::{BlobMeasurer, BlobToMeasure};
+use super::measure::{BlobGeometry, BlobMeasurer, BlobToMeasure};
 use super::reference::{DEFAULT_RING_RADIUS_PX, MotionReference, ViewGeometry};
 use super::segment::{CoverageModel, Segmenter};
+use super::target_colour::LearnedColour;
 
 /// The local colour model's ring radius per expected maximal length: beyond half the length,
 /// with room for the target to grow or turn between frames.
@@ -36,6 +37,11 @@ const EDGE_MIN_COVERAGE_SIGMAS: f64 = 4.0;
 /// Bounds of the edge-point coverage cut: at least 0.1 (a pixel can be 10% covered by noise-free
 /// rounding artefacts of the renderer), at most 0.5.
 const EDGE_MIN_COVERAGE_RANGE: (f64, f64) = (0.1, 0.5);
+
+/// A blob measured `Ok` teaches the target's colour when it has at least this many mask
+/// pixels: a smaller one (a distant target's fuselage alone, 4-8 px) is mostly its
+/// anti-aliased edge, a mixture with the background.
+const MIN_TEACHING_PIXELS: usize = 12;
 
 /// How trustworthy a frame's measurement is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -168,6 +174,8 @@ pub struct VisionPipeline {
     measurer: BlobMeasurer,
     /// Per-pixel backgrounds, with `config.motion_reference`.
     motion: Option<MotionReference>,
+    /// The target's colour, with `config.target_colour_tolerance_deg` > 0.
+    colour: Option<LearnedColour>,
 }
 
 impl VisionPipeline {
@@ -181,6 +189,8 @@ impl VisionPipeline {
             labeller: ComponentLabeller::default(),
             measurer: BlobMeasurer::default(),
             motion: config.motion_reference.then(MotionReference::default),
+            colour: (config.target_colour_tolerance_deg > 0.0)
+                .then(|| LearnedColour::new(config.target_colour_tolerance_deg)),
         })
     }
 
@@ -259,13 +269,18 @@ impl VisionPipeline {
             Some(motion) => {
                 // The reference replaces the border-fitted surface: only its noise σ is used.
                 let mut model = BackgroundModel::constant(frame.width, frame.height, [0.0; 3]);
+                motion.set_colour_gate(self.colour.and_then(|c| c.gate()));
                 model.noise_sigma = motion.build(&frame, QUANTISATION_SIGMA);
                 (model, Some(motion.reference.as_slice()))
             }
             None => (self.background.fit(&frame, seg.background), None),
         };
         let sigma = background.noise_sigma;
-        let Some(coverage) = self.segmenter.segment(&frame, background, reference, seg) else {
+        let target_rgb = self.colour.and_then(|c| c.gate()).map(|g| g.target_rgb);
+        let segmented = self
+            .segmenter
+            .segment(&frame, background, reference, seg, target_rgb);
+        let Some(coverage) = segmented else {
             self.labeller.label(&[], frame.width, frame.height);
             self.keep_frame(&frame, None, selection);
             return Ok(BlobMeasurement::not_found(0, sigma));
@@ -296,26 +311,47 @@ impl VisionPipeline {
                 corner_tolerance: noise.corner_tolerance(),
             },
         );
-        // A blob without a measurable length (no edge points) gives no range.
-        let status = match (too_small || geometry.feret.is_none(), geometry.truncated) {
-            (true, _) => BlobStatus::TooSmall,
-            (false, true) => BlobStatus::Truncated,
-            (false, false) => BlobStatus::Ok,
-        };
-        let target = (status == BlobStatus::Ok).then_some(index as u32 + 1);
+        let measurement = blob_measurement(&summary, &geometry, too_small, blob_count, sigma);
+        let target = (measurement.status == BlobStatus::Ok).then_some(index as u32 + 1);
+        let teaches = summary.pixel_count >= MIN_TEACHING_PIXELS;
+        if let (Some(colour), Some(label), true) = (&mut self.colour, target, teaches) {
+            let labels = &self.labeller.labels;
+            let pixels =
+                (self.segmenter.mask.iter().map(|&i| i as usize)).filter(|&i| labels[i] == label);
+            colour.learn(Segmenter::blob_colour(&frame, &coverage, pixels));
+        }
         self.keep_frame(&frame, target, selection);
-        Ok(BlobMeasurement {
-            status,
-            centroid_u_px: geometry.centroid_u_px,
-            centroid_v_px: geometry.centroid_v_px,
-            max_length_px: geometry.feret.map_or(0.0, |f| f.length_px),
-            area_px: geometry.area_px,
-            pixel_count: summary.pixel_count,
-            bbox: Some(summary.bbox),
-            feret: geometry.feret,
-            blob_count,
-            background_noise_sigma: sigma,
-        })
+        Ok(measurement)
+    }
+}
+
+/// The measurement of the blob `summary` whose moments and outline are `geometry`
+/// (`too_small`: below `min_pixel_count`), among `blob_count` blobs, the background's noise
+/// `sigma`.
+fn blob_measurement(
+    summary: &BlobSummary,
+    geometry: &BlobGeometry,
+    too_small: bool,
+    blob_count: usize,
+    sigma: f64,
+) -> BlobMeasurement {
+    // A blob without a measurable length (no edge points) gives no range.
+    let status = match (too_small || geometry.feret.is_none(), geometry.truncated) {
+        (true, _) => BlobStatus::TooSmall,
+        (false, true) => BlobStatus::Truncated,
+        (false, false) => BlobStatus::Ok,
+    };
+    BlobMeasurement {
+        status,
+        centroid_u_px: geometry.centroid_u_px,
+        centroid_v_px: geometry.centroid_v_px,
+        max_length_px: geometry.feret.map_or(0.0, |f| f.length_px),
+        area_px: geometry.area_px,
+        pixel_count: summary.pixel_count,
+        bbox: Some(summary.bbox),
+        feret: geometry.feret,
+        blob_count,
+        background_noise_sigma: sigma,
     }
 }
 

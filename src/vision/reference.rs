@@ -25,6 +25,12 @@
 //!    ring takes no colours where that target lay: the ring about a wing tip crosses the
 //!    fuselage and the other wing, whose colour would explain the tip. A strip at the
 //!    image's edge is taken for background.
+//! 3. With the target's colour learned (`camera.target_colour_tolerance_deg`,
+//!    `super::target_colour`), a pixel neither explains is offered the memory's colours and
+//!    the ring's together: it is target only as a mixture of one of them with a shade of the
+//!    target's colour, and otherwise its own reference (background). A memory mislaid about
+//!    the target (it carries old background there for many frames) then no longer makes
+//!    fields' edges into target.
 //!
 //! Assumptions, and where it breaks (docs/findings.md, The scene and the vision against it):
 //! the background is at infinity or on the flat ground; the target's colour differs from
@@ -34,6 +40,7 @@
 //! world since before the memory saw the background behind it are taken for target or lost.
 
 use super::image_view::RgbaView;
+use super::target_colour::ColourGate;
 use crate::frames::{Mat3, Vec3};
 use crate::render::camera::CameraIntrinsics;
 
@@ -184,6 +191,9 @@ pub(crate) struct MotionReference {
     on_previous_target: Vec<bool>,
     /// The geometry of the next frame to be measured.
     geometry: Option<ViewGeometry>,
+    /// The target's colour, when known: a pixel the background does not explain is
+    /// target only as a mixture of a shade of it and a background colour around it.
+    gate: Option<ColourGate>,
 }
 
 fn distance2(a: [f32; 3], b: [f32; 3]) -> f32 {
@@ -258,7 +268,12 @@ impl MotionReference {
                         if distance2(p, c) < explained2 {
                             c
                         } else {
-                            self.nearest_remembered(x, y, p)
+                            self.remembered_colours(x, y);
+                            if self.gate.is_some() {
+                                // A memory mislaid by a frame's errors leaves the ring.
+                                self.push_ring_colours(frame, u, v);
+                            }
+                            self.explain(p)
                         }
                     }
                     // A strip the camera's turn brought into view at the image's edge holds
@@ -269,7 +284,11 @@ impl MotionReference {
                     {
                         p
                     }
-                    _ => self.nearest_on_ring(frame, u, v, p).unwrap_or(p),
+                    _ => {
+                        self.ring_colours.clear();
+                        self.push_ring_colours(frame, u, v);
+                        self.explain(p)
+                    }
                 };
                 self.reference.push(reference);
             }
@@ -295,11 +314,11 @@ impl MotionReference {
         );
     }
 
-    /// The colour nearest `p` among the remembered background at position (x, y) of the
-    /// memory and at [`PARALLAX_POINTS`] points [`PARALLAX_PX`] around it, and their pairwise
-    /// mixtures: ground at a finite distance moves by parallax beyond the camera's rotation,
-    /// and a pixel an edge moved onto is a mixture of the colours on either side of it.
-    fn nearest_remembered(&mut self, x: f64, y: f64, p: [f32; 3]) -> [f32; 3] {
+    /// The remembered background at position (x, y) of the memory and at
+    /// [`PARALLAX_POINTS`] points [`PARALLAX_PX`] around it, into `ring_colours`: ground at a
+    /// finite distance moves by parallax beyond the camera's rotation, and a pixel an edge
+    /// moved onto is a mixture of the colours on either side of it.
+    fn remembered_colours(&mut self, x: f64, y: f64) {
         self.ring_colours.clear();
         for k in 0..=PARALLAX_POINTS {
             let (dx, dy) = if k == 0 {
@@ -312,7 +331,24 @@ impl MotionReference {
                 self.ring_colours.push(c);
             }
         }
-        nearest_mixture(&self.ring_colours, p).unwrap_or(p)
+    }
+
+    /// The reference of a pixel of colour `p` from the background colours around it
+    /// (`ring_colours`): the nearest of them and their pairwise mixtures. With the target's
+    /// colour known, where that does not explain `p` (within twice [`EXPLAINED_GREY`], the
+    /// detection floor): the background colour `p` is a mixture of with a shade of the
+    /// target, or else `p` itself (neither background nor target: a field's edge the memory
+    /// mislaid).
+    fn explain(&self, p: [f32; 3]) -> [f32; 3] {
+        let nearest = nearest_mixture(&self.ring_colours, p).unwrap_or(p);
+        let Some(gate) = self.gate else {
+            return nearest;
+        };
+        let floor = (2.0 * EXPLAINED_GREY) as f32;
+        if distance2(p, nearest) < floor * floor {
+            return nearest;
+        }
+        gate.best_background(p, &self.ring_colours).unwrap_or(p)
     }
 
     /// Whether pixel (u, v) of `frame` lies within the ring's radius of the whole image's
@@ -342,19 +378,12 @@ impl MotionReference {
         })
     }
 
-    /// The colour nearest `p` among the pixels on a ring of radius `ring_radius_px` around
-    /// (u, v) (those inside the frame and not on the target the memory measured) and their
-    /// pairwise mixtures: a pixel an edge between two fields cuts is a mixture of the two,
-    /// and the ring crosses both. The ring around a pixel near one end of the target crosses
-    /// the target's other parts, whose colour would explain it.
-    fn nearest_on_ring(
-        &mut self,
-        frame: &RgbaView<'_>,
-        u: usize,
-        v: usize,
-        p: [f32; 3],
-    ) -> Option<[f32; 3]> {
-        self.ring_colours.clear();
+    /// Adds to `ring_colours` the pixels on a ring of radius `ring_radius_px` around (u, v)
+    /// (those inside the frame and not on the target the memory measured): a pixel an edge
+    /// between two fields cuts is a mixture of the two, and the ring crosses both. The ring
+    /// around a pixel near one end of the target crosses the target's other parts, whose
+    /// colour would explain it.
+    fn push_ring_colours(&mut self, frame: &RgbaView<'_>, u: usize, v: usize) {
         let on_target = &self.on_previous_target;
         let from_target = on_target[v * frame.width + u];
         for &(du, dv) in &self.ring {
@@ -366,7 +395,11 @@ impl MotionReference {
                 }
             }
         }
-        nearest_mixture(&self.ring_colours, p)
+    }
+
+    /// Sets the target's colour test for the frames measured next (None: none).
+    pub fn set_colour_gate(&mut self, gate: Option<ColourGate>) {
+        self.gate = gate;
     }
 
     /// Sets the ring's radius, px of the frames measured next: beyond the target's half

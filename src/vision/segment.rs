@@ -150,13 +150,16 @@ fn median_colour(
 
 impl Segmenter {
     /// Fills `class`, `candidates` and `mask` for `frame`; returns the coverage model, or
-    /// `None` when no pixel is a candidate.
+    /// `None` when no pixel is a candidate. A `learned_target_rgb` (the target's colour as
+    /// learned from earlier frames) is the full target colour where the configuration
+    /// estimates it.
     pub fn segment<'a>(
         &mut self,
         frame: &RgbaView<'_>,
         background: BackgroundModel,
         reference: Option<&'a [[f32; 3]]>,
         config: &SegmentationConfig,
+        learned_target_rgb: Option<[f64; 3]>,
     ) -> Option<CoverageModel<'a>> {
         let threshold = detection_threshold(config.detection, background.noise_sigma);
         let mut model = CoverageModel {
@@ -175,9 +178,12 @@ impl Segmenter {
             return None;
         }
         let core_count = self.mark_core(frame.width, frame.height);
-        model.target_rgb = match config.target_colour {
-            TargetColour::Fixed { rgb } => rgb.map(f64::from),
-            TargetColour::Estimated => self.estimate_target_colour(frame, &model, core_count),
+        model.target_rgb = match (config.target_colour, learned_target_rgb) {
+            (TargetColour::Fixed { rgb }, _) => rgb.map(f64::from),
+            (TargetColour::Estimated, Some(rgb)) => rgb,
+            (TargetColour::Estimated, None) => {
+                self.estimate_target_colour(frame, &model, core_count)
+            }
         };
         self.mark_mask(frame, &model, config.mask_coverage);
         Some(model)
@@ -308,6 +314,26 @@ impl Segmenter {
         median_colour(frame, most_different, &mut self.histogram)
     }
 
+    /// The colour of the pixel of `pixels` (a measured blob's) farthest from its background:
+    /// the blob's most covered pixel, the least mixed with the background (a distant
+    /// target's blob is mostly its anti-aliased edge, and a median over it drifts towards the
+    /// ground's colours); black when `pixels` is empty.
+    pub fn blob_colour(
+        frame: &RgbaView<'_>,
+        model: &CoverageModel<'_>,
+        pixels: impl Iterator<Item = usize>,
+    ) -> [f64; 3] {
+        let w = frame.width;
+        let distance2 = |i: usize| {
+            let (p, b) = (frame.rgb(i), model.background_at(i, i % w, i / w));
+            (0..3).map(|c| (p[c] - b[c]).powi(2)).sum::<f64>()
+        };
+        pixels
+            .map(|i| (i, distance2(i)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map_or([0.0; 3], |(i, _)| frame.rgb(i))
+    }
+
     /// Flags and lists the mask pixels: core, or candidates covered at least `mask_coverage`.
     fn mark_mask(&mut self, frame: &RgbaView<'_>, model: &CoverageModel, mask_coverage: f64) {
         self.mask.clear();
@@ -345,7 +371,7 @@ mod tests {
             BackgroundFitter::default().fit(&frame, BackgroundSource::BorderFit { border_px: 2 });
         let mut seg = Segmenter::default();
         let model = seg
-            .segment(&frame, bg, None, &SegmentationConfig::default())
+            .segment(&frame, bg, None, &SegmentationConfig::default(), None)
             .unwrap();
         let cov = |u: usize, v: usize| model.coverage(&frame, v * 64 + u, u, v);
         assert!((cov(30, 24) - 0.25).abs() < 0.01, "{}", cov(30, 24));

@@ -361,6 +361,7 @@ fn explicit_threshold_configuration() {
         min_pixel_count: 4,
         link_radius_px: 1,
         motion_reference: false,
+        target_colour_tolerance_deg: 0.0,
     };
     let mut p = VisionPipeline::new(config).unwrap();
     let m = p

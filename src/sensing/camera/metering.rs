@@ -84,6 +84,7 @@ impl Metering {
         vision_config.segmentation.mask_coverage = camera.mask_coverage;
         vision_config.link_radius_px = camera.link_radius_px as usize;
         vision_config.motion_reference = camera.segmentation == SegmentationKind::Motion;
+        vision_config.target_colour_tolerance_deg = camera.target_colour_tolerance_deg;
         Ok(Self {
             vision: VisionPipeline::new(vision_config)?,
             selection: camera.selection,

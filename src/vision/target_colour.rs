@@ -1,0 +1,185 @@
+//! The target's colour, learned from the blobs measured on it, and the test that tells a
+//! pixel partly covered by the target from background the memory does not explain
+//! (`camera.target_colour_tolerance_deg`, with `camera.segmentation = "motion"`).
+//!
+//! A pixel a target face covers by α is p = α s T + (1 − α) B: a shade s of the target's
+//! colour T (the sun lights one face and not another) mixed with the background B behind it.
+//! So p lies in the plane of T and B through black, at b = 1 − α in [0, 1] and a = α s with
+//! s in [`SHADES`]. Ground the memory does not explain (a field's edge it mislaid, a road it
+//! has not seen) is a mixture of two ground colours, which lies off that plane for a target
+//! of another colour: brown on green 17-36° off it for the dark grey target, the road in it
+//! but 2.8 times the target's shade (docs/findings.md, The target's colour as the pixel's
+//! explanation).
+//!
+//! What it assumes, and where it breaks: the target is one colour under its shading, and
+//! the background around it has no colour in the plane of its own and the target's within
+//! the shades' range (a grey target over a darker grey road, or a dark green target over
+//! green fields, is not told from them). The first measured blob of at least a few pixels
+//! teaches the colour: an acquisition on something else learns that colour; a later sample
+//! farther than [`LEARNING_RADIUS_GREY`] from it is not taken in, so a false blob cannot
+//! re-teach it, nor can a target whose colour changes by more than that at once.
+
+/// Weight of a new sample in the learned colour (an exponential average over about five
+/// frames: the shading changes as the target turns, over seconds).
+const LEARNING_RATE: f64 = 0.2;
+/// A sample farther than this from the colour learned is not taken in, grey levels: the
+/// darkest pixel of formation_scene.toml's target reads 40-60 grey from frame to frame; a
+/// ground blob's differs by 50 or more.
+const LEARNING_RADIUS_GREY: f64 = 20.0;
+/// The shades of the learned colour a target pixel may have, as multiples of it: the sun
+/// lights one face and not another (2.4 keeps the lit faces of the dark grey target and
+/// leaves out the roads, which are 2.8 times it; 0.4 its faces in shadow).
+const SHADES: (f32, f32) = (0.4, 2.4);
+
+/// The target's colour as learned, and the tolerance of the test.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ColourGate {
+    /// The target's fully covered colour, RGB grey levels.
+    pub target_rgb: [f64; 3],
+    /// sin of the largest angle, in RGB, between a pixel's difference from a background
+    /// colour and the plane of that colour and the target's shades.
+    pub max_sin: f64,
+}
+
+impl ColourGate {
+    /// Of `backgrounds` (the colours around a pixel), the one `pixel` is most nearly a
+    /// mixture of with a shade of the target (the least angle off their plane), when one is
+    /// within the tolerance.
+    pub fn best_background(&self, pixel: [f32; 3], backgrounds: &[[f32; 3]]) -> Option<[f32; 3]> {
+        let max_sin2 = (self.max_sin * self.max_sin) as f32;
+        backgrounds
+            .iter()
+            .filter_map(|&b| self.off_plane_sin2(pixel, b).map(|sin2| (b, sin2)))
+            .filter(|&(_, sin2)| sin2 <= max_sin2)
+            .min_by(|x, y| x.1.total_cmp(&y.1))
+            .map(|(b, _)| b)
+    }
+
+    /// sin² of the angle between `pixel` − `background` and the plane of the target's
+    /// shades and `background`, when `pixel` = a T + b B + residual with b in [0, 1] and a
+    /// within [`SHADES`] times 1 − b (least squares); None otherwise.
+    fn off_plane_sin2(&self, pixel: [f32; 3], background: [f32; 3]) -> Option<f32> {
+        let t = self.target_rgb.map(|x| x as f32);
+        let dot = |x: [f32; 3], y: [f32; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+        let (tt, tb, bb) = (dot(t, t), dot(t, background), dot(background, background));
+        let (tp, bp) = (dot(t, pixel), dot(background, pixel));
+        let det = tt * bb - tb * tb;
+        let offset = [0, 1, 2].map(|c| pixel[c] - background[c]);
+        let offset2 = dot(offset, offset);
+        // A background of the target's own hue spans no plane with it: nothing to test.
+        if det <= 1e-6 * tt * bb || offset2 <= 0.0 {
+            return None;
+        }
+        let a = (tp * bb - bp * tb) / det;
+        let b = (bp * tt - tp * tb) / det;
+        let coverage = 1.0 - b;
+        let in_range =
+            (0.0..=1.0).contains(&b) && a >= SHADES.0 * coverage && a <= SHADES.1 * coverage;
+        let residual = [0, 1, 2].map(|c| pixel[c] - a * t[c] - b * background[c]);
+        in_range.then(|| dot(residual, residual) / offset2)
+    }
+}
+
+/// The colour learned so far (none before the first measured blob).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct LearnedColour {
+    rgb: Option<[f64; 3]>,
+    max_sin: f64,
+}
+
+impl LearnedColour {
+    /// Nothing learned yet, with the test's largest angle, deg.
+    pub fn new(tolerance_deg: f64) -> Self {
+        Self {
+            rgb: None,
+            max_sin: tolerance_deg.to_radians().sin(),
+        }
+    }
+
+    /// The test for the next frame, once a colour is learned.
+    pub fn gate(&self) -> Option<ColourGate> {
+        self.rgb.map(|target_rgb| ColourGate {
+            target_rgb,
+            max_sin: self.max_sin,
+        })
+    }
+
+    /// Takes in the colour of a blob measured on the target: the first sets the colour; a
+    /// later one within [`LEARNING_RADIUS_GREY`] of it moves it by [`LEARNING_RATE`].
+    pub fn learn(&mut self, sample_rgb: [f64; 3]) {
+        match &mut self.rgb {
+            None => self.rgb = Some(sample_rgb),
+            Some(rgb) => {
+                let distance2: f64 = (0..3).map(|c| (sample_rgb[c] - rgb[c]).powi(2)).sum();
+                if distance2 <= LEARNING_RADIUS_GREY * LEARNING_RADIUS_GREY {
+                    for c in 0..3 {
+                        rgb[c] += LEARNING_RATE * (sample_rgb[c] - rgb[c]);
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GREEN: [f32; 3] = [122.0, 154.0, 106.0];
+    const BROWN: [f32; 3] = [114.0, 102.0, 89.0];
+    const ROAD: [f32; 3] = [140.0, 140.0, 140.0];
+
+    fn mix(a: [f32; 3], b: [f32; 3], a_share: f32) -> [f32; 3] {
+        [0, 1, 2].map(|c| a_share * a[c] + (1.0 - a_share) * b[c])
+    }
+
+    fn gate() -> ColourGate {
+        ColourGate {
+            target_rgb: [52.0, 52.0, 52.0],
+            max_sin: 6f64.to_radians().sin(),
+        }
+    }
+
+    /// A thin, lit or shaded target face over a field is explained by that field: at any
+    /// coverage short of whole (a whole face is every background's mixture), and for shades
+    /// from 0.5 to 2 times the learned colour.
+    #[test]
+    fn a_shade_of_the_target_over_a_field_is_its_mixture() {
+        let around = [BROWN, GREEN];
+        for coverage in [0.15f32, 0.3, 0.6, 0.9] {
+            for shade in [0.5f32, 1.0, 2.0] {
+                let face = [52.0 * shade; 3];
+                let p = mix(face, GREEN, coverage);
+                assert_eq!(
+                    gate().best_background(p, &around),
+                    Some(GREEN),
+                    "coverage {coverage}, shade {shade}"
+                );
+            }
+        }
+    }
+
+    /// Ground the memory mislaid is not: a field's edge (brown on green, green on brown)
+    /// and a road over a field, whatever the field around it.
+    #[test]
+    fn ground_edges_and_roads_are_not_target_mixtures() {
+        let around = [BROWN, GREEN, ROAD];
+        for share in [0.2f32, 0.5, 0.8] {
+            for p in [mix(BROWN, GREEN, share), mix(ROAD, GREEN, share)] {
+                assert_eq!(gate().best_background(p, &around), None, "{p:?}");
+            }
+        }
+    }
+
+    /// The first sample sets the colour; a far sample is refused; a near one moves it.
+    #[test]
+    fn learning_refuses_a_far_colour() {
+        let mut learned = LearnedColour::new(6.0);
+        assert_eq!(learned.gate(), None);
+        learned.learn([50.0, 50.0, 50.0]);
+        learned.learn([150.0, 150.0, 150.0]);
+        assert_eq!(learned.gate().unwrap().target_rgb, [50.0; 3]);
+        learned.learn([60.0, 50.0, 50.0]);
+        assert!((learned.gate().unwrap().target_rgb[0] - 52.0).abs() < 1e-12);
+    }
+}
