@@ -38,11 +38,6 @@ const EDGE_MIN_COVERAGE_SIGMAS: f64 = 4.0;
 /// rounding artefacts of the renderer), at most 0.5.
 const EDGE_MIN_COVERAGE_RANGE: (f64, f64) = (0.1, 0.5);
 
-/// A blob measured `Ok` teaches the target's colour when it has at least this many mask
-/// pixels: a smaller one (a distant target's fuselage alone, 4-8 px) is mostly its
-/// anti-aliased edge, a mixture with the background.
-const MIN_TEACHING_PIXELS: usize = 12;
-
 /// How trustworthy a frame's measurement is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BlobStatus {
@@ -258,6 +253,7 @@ impl VisionPipeline {
             return Ok(BlobMeasurement::not_found(0, f64::NAN));
         }
         let seg = &self.config.segmentation;
+        let gate = self.colour.and_then(|c| c.gate());
         let (background, reference) = match &mut self.motion {
             Some(motion) if !motion.has_previous() => {
                 // A first frame only sets up the next frame's background: without one, the
@@ -269,14 +265,14 @@ impl VisionPipeline {
             Some(motion) => {
                 // The reference replaces the border-fitted surface: only its noise σ is used.
                 let mut model = BackgroundModel::constant(frame.width, frame.height, [0.0; 3]);
-                motion.set_colour_gate(self.colour.and_then(|c| c.gate()));
+                motion.set_colour_gate(gate);
                 model.noise_sigma = motion.build(&frame, QUANTISATION_SIGMA);
                 (model, Some(motion.reference.as_slice()))
             }
             None => (self.background.fit(&frame, seg.background), None),
         };
         let sigma = background.noise_sigma;
-        let target_rgb = self.colour.and_then(|c| c.gate()).map(|g| g.target_rgb);
+        let target_rgb = gate.map(|g| g.target_rgb);
         let segmented = self
             .segmenter
             .segment(&frame, background, reference, seg, target_rgb);
@@ -313,12 +309,11 @@ impl VisionPipeline {
         );
         let measurement = blob_measurement(&summary, &geometry, too_small, blob_count, sigma);
         let target = (measurement.status == BlobStatus::Ok).then_some(index as u32 + 1);
-        let teaches = summary.pixel_count >= MIN_TEACHING_PIXELS;
-        if let (Some(colour), Some(label), true) = (&mut self.colour, target, teaches) {
+        if let (Some(colour), Some(label)) = (&mut self.colour, target) {
             let labels = &self.labeller.labels;
             let pixels =
                 (self.segmenter.mask.iter().map(|&i| i as usize)).filter(|&i| labels[i] == label);
-            colour.learn(Segmenter::blob_colour(&frame, &coverage, pixels));
+            colour.learn_from_blob(&frame, &coverage, pixels);
         }
         self.keep_frame(&frame, target, selection);
         Ok(measurement)

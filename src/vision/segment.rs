@@ -314,26 +314,6 @@ impl Segmenter {
         median_colour(frame, most_different, &mut self.histogram)
     }
 
-    /// The colour of the pixel of `pixels` (a measured blob's) farthest from its background:
-    /// the blob's most covered pixel, the least mixed with the background (a distant
-    /// target's blob is mostly its anti-aliased edge, and a median over it drifts towards the
-    /// ground's colours); black when `pixels` is empty.
-    pub fn blob_colour(
-        frame: &RgbaView<'_>,
-        model: &CoverageModel<'_>,
-        pixels: impl Iterator<Item = usize>,
-    ) -> [f64; 3] {
-        let w = frame.width;
-        let distance2 = |i: usize| {
-            let (p, b) = (frame.rgb(i), model.background_at(i, i % w, i / w));
-            (0..3).map(|c| (p[c] - b[c]).powi(2)).sum::<f64>()
-        };
-        pixels
-            .map(|i| (i, distance2(i)))
-            .max_by(|a, b| a.1.total_cmp(&b.1))
-            .map_or([0.0; 3], |(i, _)| frame.rgb(i))
-    }
-
     /// Flags and lists the mask pixels: core, or candidates covered at least `mask_coverage`.
     fn mark_mask(&mut self, frame: &RgbaView<'_>, model: &CoverageModel, mask_coverage: f64) {
         self.mask.clear();

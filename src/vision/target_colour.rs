@@ -19,6 +19,13 @@
 //! farther than [`LEARNING_RADIUS_GREY`] from it is not taken in, so a false blob cannot
 //! re-teach it, nor can a target whose colour changes by more than that at once.
 
+use super::image_view::RgbaView;
+use super::segment::CoverageModel;
+
+/// A blob measured `Ok` teaches the target's colour when it has at least this many mask
+/// pixels: a smaller one (a distant target's fuselage alone, 4-8 px) is mostly its
+/// anti-aliased edge, a mixture with the background.
+const MIN_TEACHING_PIXELS: usize = 12;
 /// Weight of a new sample in the learned colour (an exponential average over about five
 /// frames: the shading changes as the target turns, over seconds).
 const LEARNING_RATE: f64 = 0.2;
@@ -104,9 +111,38 @@ impl LearnedColour {
         })
     }
 
+    /// Learns from a blob measured `Ok` on the target, its mask pixels `pixels` of `frame`
+    /// with their backgrounds in `model`, when it has at least [`MIN_TEACHING_PIXELS`]: its
+    /// sample is the colour of its pixel farthest from its background, the most covered and
+    /// least mixed with the background (a distant target's blob is mostly its anti-aliased
+    /// edge, and a median over it drifts towards the ground's colours).
+    pub fn learn_from_blob(
+        &mut self,
+        frame: &RgbaView<'_>,
+        model: &CoverageModel<'_>,
+        pixels: impl Iterator<Item = usize>,
+    ) {
+        let w = frame.width;
+        let distance2 = |i: usize| {
+            let (p, b) = (frame.rgb(i), model.background_at(i, i % w, i / w));
+            (0..3).map(|c| (p[c] - b[c]).powi(2)).sum::<f64>()
+        };
+        let (count, farthest) = pixels.fold((0, None), |(n, best), i| {
+            let d = distance2(i);
+            let best = match best {
+                Some((_, bd)) if bd > d => best,
+                _ => Some((i, d)),
+            };
+            (n + 1, best)
+        });
+        if let (true, Some((i, _))) = (count >= MIN_TEACHING_PIXELS, farthest) {
+            self.learn(frame.rgb(i));
+        }
+    }
+
     /// Takes in the colour of a blob measured on the target: the first sets the colour; a
     /// later one within [`LEARNING_RADIUS_GREY`] of it moves it by [`LEARNING_RATE`].
-    pub fn learn(&mut self, sample_rgb: [f64; 3]) {
+    fn learn(&mut self, sample_rgb: [f64; 3]) {
         match &mut self.rgb {
             None => self.rgb = Some(sample_rgb),
             Some(rgb) => {
