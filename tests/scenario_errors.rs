@@ -225,6 +225,16 @@ fn aircraft_follower_values_are_checked() {
         ],
     );
     assert_rejected(
+        "[autopilot]\nweave_deficit_fps = -1.0\n",
+        &[],
+        &["autopilot.weave_deficit_fps = -1", "[0, 20]"],
+    );
+    assert_rejected(
+        "[autopilot]\nweave_lead_ft = 0.0\n",
+        &[],
+        &["autopilot.weave_lead_ft = 0", "[0.1, 100]"],
+    );
+    assert_rejected(
         "[acceleration]\nshortfall_time_constant_s = 0.0\n",
         &[],
         &["acceleration.shortfall_time_constant_s = 0", "[0.01, 1000]"],

@@ -26,6 +26,9 @@ pub struct AutopilotInput {
     /// geometry (`weave_half_width_ft`): their legs are placed about it; `None`: about the
     /// command's course.
     pub slot_track_rad: Option<f64>,
+    /// How far the follower is ahead of its slot along the slot's line, ft (from the Kalman
+    /// estimate, with S-turns by geometry); `None`: not known.
+    pub ahead_of_slot_ft: Option<f64>,
 }
 
 /// Which actuator commands were clamped to their limits.

@@ -21,6 +21,9 @@
 //!   off the slot's line (both loops; the clock's S-turns are the Chapter 7 loop's only).
 //!   A side of 0 flies no S-turn: the follower sends it while its slot lies beside the target
 //!   ([`crate::follower::SlotLine::behind_the_target`]).
+//!   By geometry, `weave_deficit_fps` leaves a command up to that much slower than the
+//!   floor along the slot's line to the along-track error, in full at or behind the slot and
+//!   not at all from `weave_lead_ft` ahead of it ([`accepted_deficit_fps`]).
 
 use super::control_law::ControlLaw;
 use super::nominal_model::NominalModel;
@@ -78,6 +81,16 @@ pub fn slot_weave_side(side: f64, cross_track_ft: f64, half_width_ft: f64) -> f6
     } else {
         side
     }
+}
+
+/// The speed deficit along the slot's line a leg leaves to the slot's along-track error,
+/// ft/s (`weave_deficit_fps` with the lead budget `weave_lead_ft`): all of it while the
+/// follower is at or behind its slot (`ahead_ft` ≤ 0), none once it is the budget ahead,
+/// linearly between; none when where it is is unknown.
+pub fn accepted_deficit_fps(deficit_fps: f64, lead_budget_ft: f64, ahead_ft: Option<f64>) -> f64 {
+    ahead_ft.map_or(0.0, |ahead| {
+        deficit_fps * (1.0 - ahead / lead_budget_ft).clamp(0.0, 1.0)
+    })
 }
 
 impl ControlLaw {
@@ -200,9 +213,10 @@ impl ControlLaw {
 
     /// χ_c with the S-turn's offset: about the command's course `course_rad`, or, with S-turns
     /// by geometry and the slot's line known, about the line's course χ_s, at
-    /// acos(V_a·u_s / (V_min cos γ_c)) (at most [`MAX_WEAVE_OFFSET_RAD`]), which keeps the
-    /// command's speed along the line (u_s its horizontal direction). Unchanged without an
-    /// S-turn.
+    /// acos((V_a·u_s + ΔV) / (V_min cos γ_c)) (at most [`MAX_WEAVE_OFFSET_RAD`]), which keeps
+    /// the command's speed along the line (u_s its horizontal direction) but for the deficit
+    /// ΔV the slot's along-track error takes ([`accepted_deficit_fps`]; docs/equations.md,
+    /// Path stretching with a lead budget). Unchanged without an S-turn.
     pub(super) fn weave_course_rad(
         &self,
         input: &AutopilotInput,
@@ -220,7 +234,12 @@ impl ControlLaw {
                 let along_fps =
                     air_velocity_cmd.x * track_rad.cos() + air_velocity_cmd.y * track_rad.sin();
                 let slowest_fps = g.min_airspeed_cmd_fps * flight_path_cmd_rad.cos();
-                let offset_rad = (along_fps / slowest_fps)
+                let accepted_fps = accepted_deficit_fps(
+                    g.weave_deficit_fps,
+                    g.weave_lead_ft,
+                    input.ahead_of_slot_ft,
+                );
+                let offset_rad = ((along_fps + accepted_fps) / slowest_fps)
                     .clamp(-1.0, 1.0)
                     .acos()
                     .min(MAX_WEAVE_OFFSET_RAD);
@@ -251,7 +270,19 @@ impl ControlLaw {
 
 #[cfg(test)]
 mod tests {
-    use super::slot_weave_side;
+    use super::{accepted_deficit_fps, slot_weave_side};
+
+    /// The deficit left to the along-track error: all of it at or behind the slot, half of
+    /// it half the budget ahead, none from the budget on or where the slot is unknown.
+    #[test]
+    fn the_accepted_deficit_falls_with_the_lead() {
+        assert_eq!(accepted_deficit_fps(2.0, 5.0, Some(-3.0)), 2.0);
+        assert_eq!(accepted_deficit_fps(2.0, 5.0, Some(0.0)), 2.0);
+        assert!((accepted_deficit_fps(2.0, 5.0, Some(2.5)) - 1.0).abs() < 1e-12);
+        assert_eq!(accepted_deficit_fps(2.0, 5.0, Some(5.0)), 0.0);
+        assert_eq!(accepted_deficit_fps(2.0, 5.0, Some(9.0)), 0.0);
+        assert_eq!(accepted_deficit_fps(2.0, 5.0, None), 0.0);
+    }
 
     #[test]
     fn the_slot_weave_reverses_beyond_its_half_width() {

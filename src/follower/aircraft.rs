@@ -73,6 +73,8 @@ pub struct SlotLine {
     pub slot_lead_ft: f64,
     /// How far the target is to the right of the slot across its track, ft.
     pub slot_offset_ft: f64,
+    /// How far the follower is ahead of its slot along the track, (R_c - R̂)·u, ft.
+    pub ahead_of_slot_ft: f64,
 }
 
 impl SlotLine {
@@ -298,6 +300,7 @@ impl AircraftFollower {
                 weave_side(self.flown_s, self.weave_period_s)
             },
             slot_track_rad: self.slot_line.map(|l| l.track_rad),
+            ahead_of_slot_ft: self.slot_line.map(|l| l.ahead_of_slot_ft),
         };
         let autopilot = self.autopilot.derivative(
             &x[AUTOPILOT..VELOCITY_CMD],
@@ -350,6 +353,7 @@ mod tests {
             cross_track_ft: 0.0,
             slot_lead_ft: lead_ft,
             slot_offset_ft: offset_ft,
+            ahead_of_slot_ft: 0.0,
         }
     }
 

@@ -178,6 +178,20 @@ pub struct AutopilotSection {
     /// `weave_period_s` and applies to both outer loops, behind the target only as they do.
     /// 10 ft would keep a 32 ft slot's follower within about 17° of the target's track.
     pub weave_half_width_ft: f64,
+    /// S-turns by geometry: how much slower than the aircraft's slowest the command along
+    /// the slot's line may be, ft/s, before a leg is flown for it (0: none, every deficit is
+    /// stretched). While the follower is at or behind its slot it flies its floor straight
+    /// and takes the deficit as along-track error; the deficit accepted falls to 0 as it
+    /// comes `weave_lead_ft` ahead of its slot. A gust that lowers the air-relative command
+    /// for a few seconds then costs a few feet along the track, not a leg and a reversal at
+    /// full bank (docs/findings.md, Path stretching with a lead budget).
+    pub weave_deficit_fps: f64,
+    /// S-turns by geometry: how far ahead of its slot, ft, the follower may come before the
+    /// deficit `weave_deficit_fps` is stretched in full. Choice: 5 ft, a sixth of the seed's
+    /// 32 ft slot; with 2 ft/s accepted, 5 ft lost no frame over 100 light streams of
+    /// formation.toml's energy loop, where 7 ft lost 1-4 frames on two streams and no budget
+    /// 4-15 frames on two (docs/findings.md, Path stretching with a lead budget).
+    pub weave_lead_ft: f64,
     /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
     /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below
     /// the target profile's slowest 35.4 ft/s.
@@ -258,6 +272,8 @@ impl Default for AutopilotSection {
             descent_waits_for_speed: false,
             weave_period_s: 0.0,
             weave_half_width_ft: 0.0,
+            weave_deficit_fps: 0.0,
+            weave_lead_ft: 5.0,
             min_airspeed_cmd_fps: 35.0,
             max_airspeed_cmd_fps: 65.0,
             min_control_airspeed_fps: 15.0,
@@ -297,6 +313,13 @@ impl AutopilotSection {
             0.0,
             1e3,
         )?;
+        check::in_closed(
+            "autopilot.weave_deficit_fps",
+            self.weave_deficit_fps,
+            0.0,
+            20.0,
+        )?;
+        check::in_closed("autopilot.weave_lead_ft", self.weave_lead_ft, 0.1, 100.0)?;
         self.validate_energy()?;
         self.validate_rbf()
     }

@@ -84,7 +84,8 @@ impl Simulation {
     /// The slot's line at (t, x) for the S-turns (`autopilot.weave_period_s`,
     /// `weave_half_width_ft`): the course of the target's estimated velocity (unit u), the
     /// follower's offset to its right, (R_c - R̂)·n, n the line's horizontal right-hand
-    /// normal, R̂ = b̂ r̂ the Kalman estimate, and where the slot lies from the target
+    /// normal, R̂ = b̂ r̂ the Kalman estimate, how far it is ahead of its slot along the line,
+    /// (R_c - R̂)·u, and where the slot lies from the target
     /// ([`crate::guidance::command::FormationCommand::slot_lead_and_offset_ft`]); `None` without an
     /// estimate or with a target not moving horizontally.
     pub(super) fn slot_line(&self, t_s: f64, x: &[f64]) -> Option<SlotLine> {
@@ -107,6 +108,7 @@ impl Simulation {
             SlotLine {
                 track_rad: e.d_per_s.y.atan2(e.d_per_s.x),
                 cross_track_ft: (command_ned_ft - e.r * e.b_hat_ft).dot(&right),
+                ahead_of_slot_ft: (command_ned_ft - e.r * e.b_hat_ft).dot(&along),
                 slot_lead_ft,
                 slot_offset_ft,
             }

@@ -82,6 +82,7 @@ pub fn fly(
                 actuators: state.actuators,
                 weave_side: weave_side(t_s, section.weave_period_s),
                 slot_track_rad: None,
+                ahead_of_slot_ft: None,
             })
         };
         if tick % 10 == 0 {
