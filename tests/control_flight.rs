@@ -123,8 +123,7 @@ fn fly_in(
                 sensed_air_data: data,
                 actuators: state.actuators,
                 weave_side: weave_side(t_s, section.weave_period_s),
-                slot_track_rad: None,
-                ahead_of_slot_ft: None,
+                slot_line: None,
             };
             let out = autopilot.derivative(&x[STATE_LEN..], &input, &mut scratch);
             let weights = AutopilotState::unpack(&x[STATE_LEN..]);
@@ -164,8 +163,7 @@ fn fly_in(
                 sensed_air_data: data,
                 actuators: state.actuators,
                 weave_side: weave_side(t_s, section.weave_period_s),
-                slot_track_rad: None,
-                ahead_of_slot_ft: None,
+                slot_line: None,
             };
             let out = autopilot.derivative(ctrl, &input, dctrl);
             aircraft.derivative(plant, &out.controls, &air, dplant);

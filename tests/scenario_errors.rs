@@ -230,6 +230,14 @@ fn aircraft_follower_values_are_checked() {
         &["autopilot.weave_deficit_fps = -1", "[0, 20]"],
     );
     assert_rejected(
+        "[autopilot]\nweave_deficit_fps = 2.0\n",
+        &[],
+        &[
+            "autopilot.weave_deficit_fps = 2",
+            "autopilot.weave_half_width_ft = 0",
+        ],
+    );
+    assert_rejected(
         "[autopilot]\nweave_lead_ft = 0.0\n",
         &[],
         &["autopilot.weave_lead_ft = 0", "[0.1, 100]"],

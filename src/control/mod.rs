@@ -35,6 +35,6 @@ pub use prefilter::{
 };
 pub use rbf::{RBF_CENTRES, RBF_INPUTS, RbfBasis, RbfInput};
 pub use reference::VelocityReference;
-pub use signals::{AutopilotInput, AutopilotOutput, Saturation};
+pub use signals::{AutopilotInput, AutopilotOutput, Saturation, SlotAxis};
 pub use state::{AUTOPILOT_STATE_LEN, AutopilotState, autopilot_state_names};
 pub use velocity_command::{slot_weave_side, weave_side};

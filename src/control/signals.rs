@@ -22,13 +22,19 @@ pub struct AutopilotInput {
     /// The side of an S-turn leg, +1 right or -1 left of the commanded course (see
     /// `weave_period_s`; unused with it 0); 0: no S-turn (a slot beside the target).
     pub weave_side: f64,
-    /// The course of the slot's line (the target's estimated track), rad, with S-turns by
-    /// geometry (`weave_half_width_ft`): their legs are placed about it; `None`: about the
-    /// command's course.
-    pub slot_track_rad: Option<f64>,
-    /// How far the follower is ahead of its slot along the slot's line, ft (from the Kalman
-    /// estimate, with S-turns by geometry); `None`: not known.
-    pub ahead_of_slot_ft: Option<f64>,
+    /// The slot's line as the follower's estimate places it, with S-turns by geometry
+    /// (`weave_half_width_ft`): their legs are placed about it; `None`: about the command's
+    /// course.
+    pub slot_line: Option<SlotAxis>,
+}
+
+/// The slot's line as the S-turns by geometry fly about it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlotAxis {
+    /// Its course (the target's estimated track), rad.
+    pub track_rad: f64,
+    /// How far the follower is ahead of its slot along it, ft (from the Kalman estimate).
+    pub ahead_of_slot_ft: f64,
 }
 
 /// Which actuator commands were clamped to their limits.

@@ -86,11 +86,9 @@ pub fn slot_weave_side(side: f64, cross_track_ft: f64, half_width_ft: f64) -> f6
 /// The speed deficit along the slot's line a leg leaves to the slot's along-track error,
 /// ft/s (`weave_deficit_fps` with the lead budget `weave_lead_ft`): all of it while the
 /// follower is at or behind its slot (`ahead_ft` ≤ 0), none once it is the budget ahead,
-/// linearly between; none when where it is is unknown.
-pub fn accepted_deficit_fps(deficit_fps: f64, lead_budget_ft: f64, ahead_ft: Option<f64>) -> f64 {
-    ahead_ft.map_or(0.0, |ahead| {
-        deficit_fps * (1.0 - ahead / lead_budget_ft).clamp(0.0, 1.0)
-    })
+/// linearly between.
+fn accepted_deficit_fps(deficit_fps: f64, lead_budget_ft: f64, ahead_ft: f64) -> f64 {
+    deficit_fps * (1.0 - ahead_ft / lead_budget_ft).clamp(0.0, 1.0)
 }
 
 impl ControlLaw {
@@ -229,15 +227,16 @@ impl ControlLaw {
             return course_rad;
         }
         let offset_rad = self.weave_offset_rad(air_velocity_cmd, flight_path_cmd_rad);
-        match input.slot_track_rad {
-            Some(track_rad) if offset_rad > 0.0 && g.weave_half_width_ft > 0.0 => {
+        match input.slot_line {
+            Some(line) if offset_rad > 0.0 && g.weave_half_width_ft > 0.0 => {
+                let track_rad = line.track_rad;
                 let along_fps =
                     air_velocity_cmd.x * track_rad.cos() + air_velocity_cmd.y * track_rad.sin();
                 let slowest_fps = g.min_airspeed_cmd_fps * flight_path_cmd_rad.cos();
                 let accepted_fps = accepted_deficit_fps(
                     g.weave_deficit_fps,
                     g.weave_lead_ft,
-                    input.ahead_of_slot_ft,
+                    line.ahead_of_slot_ft,
                 );
                 let offset_rad = ((along_fps + accepted_fps) / slowest_fps)
                     .clamp(-1.0, 1.0)
@@ -273,15 +272,14 @@ mod tests {
     use super::{accepted_deficit_fps, slot_weave_side};
 
     /// The deficit left to the along-track error: all of it at or behind the slot, half of
-    /// it half the budget ahead, none from the budget on or where the slot is unknown.
+    /// it half the budget ahead, none from the budget on.
     #[test]
     fn the_accepted_deficit_falls_with_the_lead() {
-        assert_eq!(accepted_deficit_fps(2.0, 5.0, Some(-3.0)), 2.0);
-        assert_eq!(accepted_deficit_fps(2.0, 5.0, Some(0.0)), 2.0);
-        assert!((accepted_deficit_fps(2.0, 5.0, Some(2.5)) - 1.0).abs() < 1e-12);
-        assert_eq!(accepted_deficit_fps(2.0, 5.0, Some(5.0)), 0.0);
-        assert_eq!(accepted_deficit_fps(2.0, 5.0, Some(9.0)), 0.0);
-        assert_eq!(accepted_deficit_fps(2.0, 5.0, None), 0.0);
+        assert_eq!(accepted_deficit_fps(2.0, 5.0, -3.0), 2.0);
+        assert_eq!(accepted_deficit_fps(2.0, 5.0, 0.0), 2.0);
+        assert!((accepted_deficit_fps(2.0, 5.0, 2.5) - 1.0).abs() < 1e-12);
+        assert_eq!(accepted_deficit_fps(2.0, 5.0, 5.0), 0.0);
+        assert_eq!(accepted_deficit_fps(2.0, 5.0, 9.0), 0.0);
     }
 
     #[test]

@@ -15,7 +15,8 @@
 
 use super::FollowerConfig;
 use crate::control::{
-    AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, slot_weave_side, weave_side,
+    AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, SlotAxis, slot_weave_side,
+    weave_side,
 };
 use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::signals::{CommandKind, FollowerCommand, FollowerFeedback};
@@ -299,8 +300,10 @@ impl AircraftFollower {
             } else {
                 weave_side(self.flown_s, self.weave_period_s)
             },
-            slot_track_rad: self.slot_line.map(|l| l.track_rad),
-            ahead_of_slot_ft: self.slot_line.map(|l| l.ahead_of_slot_ft),
+            slot_line: self.slot_line.map(|l| SlotAxis {
+                track_rad: l.track_rad,
+                ahead_of_slot_ft: l.ahead_of_slot_ft,
+            }),
         };
         let autopilot = self.autopilot.derivative(
             &x[AUTOPILOT..VELOCITY_CMD],

@@ -320,6 +320,13 @@ impl AutopilotSection {
             20.0,
         )?;
         check::in_closed("autopilot.weave_lead_ft", self.weave_lead_ft, 0.1, 100.0)?;
+        // The deficit is left along the slot's line, which only S-turns by geometry fly by.
+        check::require(
+            self.weave_deficit_fps == 0.0 || self.weave_half_width_ft > 0.0,
+            "autopilot.weave_deficit_fps",
+            self.weave_deficit_fps,
+            "0 without S-turns by geometry (autopilot.weave_half_width_ft = 0)",
+        )?;
         self.validate_energy()?;
         self.validate_rbf()
     }

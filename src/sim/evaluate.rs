@@ -102,13 +102,14 @@ impl Simulation {
         (horizontal > 0.0).then(|| {
             let along = Vec3::new(e.d_per_s.x, e.d_per_s.y, 0.0) / horizontal;
             let right = Vec3::new(-along.y, along.x, 0.0);
+            let slot_error_ft = command_ned_ft - e.r * e.b_hat_ft;
             let (slot_lead_ft, slot_offset_ft) = self
                 .command
                 .slot_lead_and_offset_ft(&command_ned_ft, &along);
             SlotLine {
                 track_rad: e.d_per_s.y.atan2(e.d_per_s.x),
-                cross_track_ft: (command_ned_ft - e.r * e.b_hat_ft).dot(&right),
-                ahead_of_slot_ft: (command_ned_ft - e.r * e.b_hat_ft).dot(&along),
+                cross_track_ft: slot_error_ft.dot(&right),
+                ahead_of_slot_ft: slot_error_ft.dot(&along),
                 slot_lead_ft,
                 slot_offset_ft,
             }

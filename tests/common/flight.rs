@@ -81,8 +81,7 @@ pub fn fly(
                 sensed_air_data: data,
                 actuators: state.actuators,
                 weave_side: weave_side(t_s, section.weave_period_s),
-                slot_track_rad: None,
-                ahead_of_slot_ft: None,
+                slot_line: None,
             })
         };
         if tick % 10 == 0 {
