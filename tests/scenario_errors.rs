@@ -254,6 +254,16 @@ fn aircraft_follower_values_are_checked() {
     );
 }
 
+/// The image pipeline's expected length comes from one of two sources, named.
+#[test]
+fn an_expected_length_names_its_two_sources() {
+    assert_rejected(
+        "[camera]\nexpected_length = \"filtered\"\n",
+        &[],
+        &["expected_length", "last_measured", "estimated"],
+    );
+}
+
 /// Where a value came from: the file's line and column, or the `--set` argument alone.
 #[test]
 fn origin_is_line_and_column_or_the_set_argument() {

@@ -23,11 +23,29 @@ pub enum BlobChoice {
     /// a loss).
     Nearest,
     /// The one nearest where the target is expected, inside a gate of `selection_gate_deg`
-    /// plus half the last maximal length: the estimator's predicted line of sight (before
+    /// plus half the expected maximal length (`expected_length`): the estimator's predicted line of sight (before
     /// the target is first measured, the gimbal's cue; without either, the previous frame's
     /// centroid turned by the camera's rotation since); none when no blob lies inside the
     /// gate. The largest only with no expectation at all.
     Predicted,
+}
+
+/// Where the image pipeline's expectation of the target's maximal length in the next frame
+/// comes from: the `predicted` selection's gate and size term, and the `motion`
+/// segmentation's ring and the memory's exclusion about the target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LengthExpectation {
+    /// The last frame measured `Ok`: a fragment measured short shrinks what the next frame
+    /// looks for.
+    LastMeasured,
+    /// The larger of the estimator's span at its predicted range, 1/|r̂| rad (r̂ = R̂/b̂, so
+    /// the angle does not depend on b̂'s error), and the last `Ok` length (alone before the
+    /// first estimate): a fragment measured short, whose length the filter's innovation
+    /// gate keeps out, does not shrink what the next frame looks for, nor does a prediction
+    /// that lags a closing target (docs/findings.md, The estimator's word on the target's
+    /// length).
+    Estimated,
 }
 
 /// The point of the silhouette its bearing and elevation are measured to.
@@ -116,14 +134,17 @@ pub struct CameraSection {
     /// Blob selection.
     pub selection: BlobChoice,
     /// `selection = "predicted"`: the gate's radius about the expected position, deg, beyond
-    /// half the last maximal length.
+    /// half the expected maximal length.
     pub selection_gate_deg: f64,
     /// `selection = "predicted"`: how much a blob's size counts beside its distance. A blob
-    /// whose box's longer side is this ratio off the last maximal length weighs as much as one
+    /// whose box's longer side is this ratio off the expected maximal length weighs as much as one
     /// at the gate's edge; 0: sizes are not compared, the nearest inside the gate is taken.
     /// 1.5: beside a teammate or a crosser of another size in the image, a wrong blob near the
     /// prediction is not taken for the target (docs/findings.md, Group tracking).
     pub selection_length_ratio: f64,
+    /// Where the expected maximal length comes from: `last_measured` (default) or
+    /// `estimated` (see [`LengthExpectation`]).
+    pub expected_length: LengthExpectation,
     /// Blobs with fewer mask pixels are too small to measure.
     pub min_pixel_count: u32,
     /// Mask pixels up to this far apart (px, in u and v) are one blob: 2 bridges the broken
@@ -195,6 +216,7 @@ impl Default for CameraSection {
             selection: BlobChoice::Nearest,
             selection_gate_deg: 3.0,
             selection_length_ratio: 1.5,
+            expected_length: LengthExpectation::LastMeasured,
             min_pixel_count: 4,
             mask_coverage: 0.5,
             compensate_delay: true,

@@ -83,10 +83,20 @@ pub struct CaptureGeometry {
     pub follower: FollowerPose,
     /// The follower as its navigation knows itself: what sensing turns measurements with.
     pub navigation: FollowerPose,
-    /// Where the follower expects the target, a line of sight NED (any length): the
-    /// estimator's prediction, or before the target is first seen the gimbal's cue; `None`
-    /// without either. The image pipeline's `predicted` selection reads it.
-    pub expected_los_ned: Option<Vec3>,
+    /// Where the follower expects the target, and how large: the estimator's prediction, or
+    /// before the target is first seen the gimbal's cue; `None` without either. The image
+    /// pipeline's `predicted` selection reads it.
+    pub expected: Option<TargetExpectation>,
+}
+
+/// Where the follower expects the target in a frame, and how large it expects it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TargetExpectation {
+    /// The line of sight NED (any length).
+    pub los_ned: Vec3,
+    /// The target's span seen broadside at the predicted range, rad: 1/|r̂| (r̂ = R̂/b̂);
+    /// `None` for a cue, which says nothing of the range.
+    pub span_rad: Option<f64>,
 }
 
 impl CaptureGeometry {
@@ -101,7 +111,7 @@ impl CaptureGeometry {
             target_attitude,
             follower,
             navigation: follower,
-            expected_los_ned: None,
+            expected: None,
         }
     }
 

@@ -26,7 +26,7 @@ pub mod transform;
 
 pub use camera::{CameraSensor, FrameRecord, SensorError};
 pub use config::{CameraConfig, NoisyConfig, SensorConfig};
-pub use geometry::{CaptureGeometry, FollowerPose, OtherAircraft};
+pub use geometry::{CaptureGeometry, FollowerPose, OtherAircraft, TargetExpectation};
 pub use noisy::NoisySensor;
 pub use transform::{
     bearing_elevation_rad, image_from_relative_position, line_of_sight_body,

@@ -10,6 +10,7 @@ use crate::follower::{Actuation, SlotLine};
 use crate::frames::{Mat3, Vec3};
 use crate::guidance::command::CommandInput;
 use crate::guidance::signals::{FollowerCommand, GuidanceInput, GuidanceOutput};
+use crate::sensing::TargetExpectation;
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
 use std::time::Instant;
 
@@ -55,12 +56,23 @@ impl Simulation {
         self.estimator.predicted_r(t_s, &position, law)
     }
 
-    /// Where the follower expects the target at (t, x): the estimator's prediction, or before
-    /// the target is first measured the gimbal's cue (a line of sight NED; None without
-    /// either).
-    pub(super) fn expected_line_of_sight(&self, t_s: f64, x: &[f64]) -> Option<Vec3> {
-        self.predicted_line_of_sight(t_s, x)
-            .or_else(|| self.gimbal.as_ref().and_then(Gimbal::cue_ned))
+    /// Where the follower expects the target at (t, x), and how large: the estimator's
+    /// prediction (its span 1/|r̂| rad), or before the target is first measured the gimbal's
+    /// cue (None without either).
+    pub(super) fn expected_target(&self, t_s: f64, x: &[f64]) -> Option<TargetExpectation> {
+        let predicted = self
+            .predicted_line_of_sight(t_s, x)
+            .map(|r| TargetExpectation {
+                los_ned: r,
+                span_rad: Some(1.0 / r.norm()),
+            });
+        predicted.or_else(|| {
+            let cue = self.gimbal.as_ref().and_then(Gimbal::cue_ned)?;
+            Some(TargetExpectation {
+                los_ned: cue,
+                span_rad: None,
+            })
+        })
     }
 
     /// The measurement the estimator stage gives the guidance at (t, x).

@@ -15,7 +15,7 @@ impl Simulation {
         let t_s = self.time_s();
         let mut geometry = self.capture_geometry();
         if self.sensor.is_frame_tick(self.tick) {
-            geometry.expected_los_ned = self.expected_line_of_sight(t_s, &self.state);
+            geometry.expected = self.expected_target(t_s, &self.state);
         }
         let delivered =
             self.sensor

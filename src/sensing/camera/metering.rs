@@ -8,7 +8,10 @@ use super::setup::SensorError;
 use crate::frames::{Mat3, Vec3};
 use crate::render::camera::CameraIntrinsics;
 use crate::render::region::ImageRegion;
-use crate::scenario::{BearingPoint, BlobChoice, CameraSection, SegmentationKind};
+use crate::scenario::{
+    BearingPoint, BlobChoice, CameraSection, LengthExpectation, SegmentationKind,
+};
+use crate::sensing::TargetExpectation;
 use crate::sensing::binning::{binned_selection, unbinned_measurement};
 use crate::vision::{
     BlobMeasurement, BlobSelection, BlobStatus, ImageMeasurement, ViewGeometry, VisionConfig,
@@ -51,9 +54,11 @@ pub(super) struct Metering {
     /// Whether the last centroid is followed turned by the camera's rotation since
     /// (segmentation `motion`, or selection `predicted`).
     turns_centroid: bool,
-    /// Where the follower expects the target in the frame being measured, a line of sight NED
-    /// (the estimator's prediction, or the cue before the target is first seen).
-    expected_los_ned: Option<Vec3>,
+    /// Where the follower expects the target in the frame being measured, and how large (the
+    /// estimator's prediction, or the cue before the target is first seen).
+    expected: Option<TargetExpectation>,
+    /// `camera.expected_length`.
+    length_expectation: LengthExpectation,
     /// `predicted` selection's gate beyond half the last maximal length, rad.
     gate_rad: f64,
     /// `camera.selection_length_ratio`.
@@ -98,7 +103,8 @@ impl Metering {
             previous_camera_from_ned: None,
             turns_centroid: camera.segmentation == SegmentationKind::Motion
                 || camera.selection == BlobChoice::Predicted,
-            expected_los_ned: None,
+            expected: None,
+            length_expectation: camera.expected_length,
             gate_rad: camera.selection_gate_deg.to_radians(),
             length_ratio: camera.selection_length_ratio,
         })
@@ -110,17 +116,34 @@ impl Metering {
     }
 
     /// Sets the camera's orientation and position by navigation, L_CB L_BE and NED ft, and
-    /// where the follower expects the target (a line of sight NED, if it has an expectation),
-    /// for the frames measured next.
+    /// where the follower expects the target (if it has an expectation), for the frames
+    /// measured next.
     pub fn orient(
         &mut self,
         camera_from_ned: Mat3,
         camera_position_ned_ft: Vec3,
-        expected_los_ned: Option<Vec3>,
+        expected: Option<TargetExpectation>,
     ) {
         self.camera_from_ned = Some(camera_from_ned);
         self.camera_position_ned_ft = camera_position_ned_ft;
-        self.expected_los_ned = expected_los_ned;
+        self.expected = expected;
+    }
+
+    /// The target's expected maximal length in the image's pixels, its focal length
+    /// `focal_px` (`camera.expected_length`): the last `Ok` length, or the estimator's span at
+    /// its predicted range when it has one.
+    fn expected_length_px(&self, focal_px: f64) -> Option<f64> {
+        let estimated = match self.length_expectation {
+            LengthExpectation::LastMeasured => None,
+            LengthExpectation::Estimated => self
+                .expected
+                .and_then(|e| e.span_rad)
+                .map(|span_rad| 2.0 * focal_px * (0.5 * span_rad).tan()),
+        };
+        match (estimated, self.previous_length_px) {
+            (Some(e), Some(p)) => Some(e.max(p)),
+            (e, p) => e.or(p),
+        }
     }
 
     /// Tells the image pipeline how `frame`'s pixels look into the world.
@@ -133,8 +156,8 @@ impl Metering {
         });
         self.vision.set_view_geometry(geometry);
         let factor = f64::from(frame.factor);
-        self.vision
-            .expect_length_px(self.previous_length_px.map(|l| l / factor));
+        let length_px = self.expected_length_px(frame.intrinsics.focal_px * factor);
+        self.vision.expect_length_px(length_px.map(|l| l / factor));
     }
 
     /// The blob to measure in the next frame: the largest, the one nearest the last measured
@@ -153,14 +176,16 @@ impl Metering {
                 BlobSelection::NearestTo { u_px, v_px }
             }),
             BlobChoice::Predicted => match self.expected_pixel(intrinsics).or(last) {
-                Some((u_px, v_px)) => BlobSelection::NearestWithin {
-                    u_px,
-                    v_px,
-                    radius_px: intrinsics.focal_px * self.gate_rad.tan()
-                        + 0.5 * self.previous_length_px.unwrap_or(0.0),
-                    length_px: self.previous_length_px.unwrap_or(0.0),
-                    length_ratio: self.length_ratio,
-                },
+                Some((u_px, v_px)) => {
+                    let length_px = self.expected_length_px(intrinsics.focal_px).unwrap_or(0.0);
+                    BlobSelection::NearestWithin {
+                        u_px,
+                        v_px,
+                        radius_px: intrinsics.focal_px * self.gate_rad.tan() + 0.5 * length_px,
+                        length_px,
+                        length_ratio: self.length_ratio,
+                    }
+                }
                 None => BlobSelection::Largest,
             },
         }
@@ -168,8 +193,8 @@ impl Metering {
 
     /// Pixel of the expected line of sight in the frame being measured.
     fn expected_pixel(&self, intrinsics: &CameraIntrinsics) -> Option<(f64, f64)> {
-        let (camera_from_ned, los) = (self.camera_from_ned?, self.expected_los_ned?);
-        intrinsics.pixel_of_direction(&(camera_from_ned * los))
+        let (camera_from_ned, expected) = (self.camera_from_ned?, self.expected?);
+        intrinsics.pixel_of_direction(&(camera_from_ned * expected.los_ned))
     }
 
     /// Pixel (u, v) of the last frame turned into the frame being measured.
@@ -267,5 +292,83 @@ impl Metering {
         }
         self.previous_camera_from_ned = self.camera_from_ned;
         self.previous_centroid_px = ok.then_some((blob.centroid_u_px, blob.centroid_v_px));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::vision::PixelBox;
+
+    /// A blob measured `Ok`, `length_px` long, centred on the image.
+    fn measured(length_px: f64) -> BlobMeasurement {
+        BlobMeasurement {
+            status: BlobStatus::Ok,
+            centroid_u_px: 320.0,
+            centroid_v_px: 240.0,
+            max_length_px: length_px,
+            area_px: length_px,
+            pixel_count: length_px as usize,
+            bbox: Some(PixelBox {
+                min_u: 300,
+                min_v: 239,
+                max_u: 340,
+                max_v: 241,
+            }),
+            feret: None,
+            blob_count: 1,
+            background_noise_sigma: 0.3,
+        }
+    }
+
+    /// The gate's radius and expected length of a `predicted` selection after a fragment
+    /// `fragment_px` long was measured, the estimator predicting the span at `span_rad`.
+    fn gate_after_fragment(
+        expected_length: LengthExpectation,
+        fragment_px: f64,
+        span_rad: f64,
+    ) -> (f64, f64) {
+        let camera = CameraSection {
+            selection: BlobChoice::Predicted,
+            expected_length,
+            ..CameraSection::default()
+        };
+        let intrinsics = CameraIntrinsics::from_hfov(640, 480, 60.0);
+        let mut metering = Metering::new(&camera, None).expect("a pipeline");
+        metering.remember(&measured(fragment_px));
+        let expected = TargetExpectation {
+            los_ned: Vec3::new(1.0, 0.0, 0.0),
+            span_rad: Some(span_rad),
+        };
+        metering.orient(Mat3::identity(), Vec3::zeros(), Some(expected));
+        match metering.selection(&intrinsics) {
+            BlobSelection::NearestWithin {
+                radius_px,
+                length_px,
+                ..
+            } => (radius_px, length_px),
+            other => panic!("not a gate: {other:?}"),
+        }
+    }
+
+    /// With `estimated`, a fragment measured short does not shrink what the next frame looks
+    /// for: the gate and the size term take the estimator's span (0.2 rad, 111 px at a
+    /// 554 px focal length), where `last_measured` takes the fragment's 40 px; a fragment
+    /// longer than the prediction is still allowed for.
+    #[test]
+    fn the_estimators_span_keeps_a_fragment_from_shrinking_the_gate() {
+        let focal_px = CameraIntrinsics::from_hfov(640, 480, 60.0).focal_px;
+        let gate_px = focal_px * 3f64.to_radians().tan();
+        let span_px = 2.0 * focal_px * 0.1f64.tan();
+        let (radius, length) = gate_after_fragment(LengthExpectation::LastMeasured, 40.0, 0.2);
+        assert!((length - 40.0).abs() < 1e-9 && (radius - gate_px - 20.0).abs() < 1e-9);
+        let (radius, length) = gate_after_fragment(LengthExpectation::Estimated, 40.0, 0.2);
+        assert!(
+            (length - span_px).abs() < 1e-9,
+            "{length} against {span_px}"
+        );
+        assert!((radius - gate_px - 0.5 * span_px).abs() < 1e-9);
+        let (_, length) = gate_after_fragment(LengthExpectation::Estimated, 150.0, 0.2);
+        assert!((length - 150.0).abs() < 1e-9, "{length}");
     }
 }

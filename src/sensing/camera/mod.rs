@@ -264,7 +264,7 @@ impl CameraSensor {
         self.metering.orient(
             exposure.geometry.camera_from_ned(),
             exposure.geometry.navigation.position_ned_ft,
-            exposure.geometry.expected_los_ned,
+            exposure.geometry.expected,
         );
         let selection = self.metering.selection(self.drawing.intrinsics());
         let frame = self.drawing.frame(exposure.index)?;
