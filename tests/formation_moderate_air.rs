@@ -8,6 +8,11 @@
 //!   With the bank reference held inside the 30° limit the follower keeps its height; with
 //!   the seed's clamp on the raw command alone the reference overshoots to a bank the lift
 //!   does not carry at 33-35 ft/s, the follower sinks 70 ft below the target and loses it.
+//! - stream 28, with the energy loop: a tailwind gust of 15-22 ft/s in the slowest turn
+//!   carries the follower past a target fixed over the ground (hundreds of frames lost); a
+//!   target in the same air (`target.path = "in_air_mass"`, `target.gusts = "shared"`, the
+//!   filter's gust states set from the air's statistics) is carried too, and none is lost
+//!   (docs/findings.md, The target in the air mass).
 
 mod common;
 
@@ -65,4 +70,31 @@ fn the_brake_follows_the_target_down_through_a_sustained_updraft() {
 #[test]
 fn the_bank_reference_held_keeps_the_height_in_the_slowest_turn() {
     assert_the_key_keeps_the_target(21, "autopilot.bank_limit=\"command\"", 94.0..104.0);
+}
+
+#[test]
+fn a_target_in_the_same_air_is_not_overtaken_in_a_tailwind_gust() {
+    let energy = [
+        "autopilot.outer_loop=energy",
+        "autopilot.weave_half_width_ft=10",
+        "autopilot.weave_deficit_fps=2",
+    ];
+    let over_ground = moderate(28, &energy);
+    assert!(
+        over_ground.summary.lost_frames > 100,
+        "over the ground: {} lost",
+        over_ground.summary.lost_frames
+    );
+    let mut in_air = energy.to_vec();
+    in_air.extend([
+        "target.path=in_air_mass",
+        "target.gusts=shared",
+        "estimator.target_gust_sigma_fps=6",
+        "estimator.target_gust_time_s=19",
+    ]);
+    let in_air = moderate(28, &in_air);
+    let s = &in_air.summary;
+    assert_eq!(s.status, RunStatus::Completed, "{:?}", s.message);
+    assert_eq!(s.lost_frames, 0, "{:?}", s.loss_episodes);
+    assert!(worst_axis_ft(s) < 8.0, "{:?}", s.rms_error_last20s_ft);
 }

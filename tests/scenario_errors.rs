@@ -254,6 +254,20 @@ fn aircraft_follower_values_are_checked() {
     );
 }
 
+/// A kinematic target over the ground feels no gusts to share.
+#[test]
+fn a_kinematic_target_over_the_ground_has_no_gusts_to_share() {
+    assert_rejected(
+        "[target]\ngusts = \"shared\"\n",
+        &[],
+        &[
+            "target.gusts = \"shared\"",
+            "target.model = \"aircraft\"",
+            "target.path = \"in_air_mass\"",
+        ],
+    );
+}
+
 /// The image pipeline's expected length comes from one of two sources, named.
 #[test]
 fn an_expected_length_names_its_two_sources() {

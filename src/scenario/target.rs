@@ -109,6 +109,37 @@ pub enum TargetModelKind {
     Aircraft,
 }
 
+/// Which gusts the target flies through (`target.gusts`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TargetGusts {
+    /// A target aircraft's airframe feels a Dryden stream of its own, independent of the
+    /// follower's; a kinematic target, which has no airframe, none.
+    Independent,
+    /// The follower's stream: the same white noise, shaped by the Dryden filters at the
+    /// target's own airspeed and altitude. Two aircraft tens of feet apart fly through the
+    /// same air: the gusts' scale lengths are hundreds of feet. A target aircraft's airframe
+    /// feels it; a kinematic target in the air mass is carried by it (docs/equations.md, The
+    /// target in the air mass).
+    Shared,
+}
+
+/// What the target's motion is flown relative to (`target.path`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TargetPath {
+    /// The ground: the motion is a path over the ground, held against the wind (the seed's).
+    OverGround,
+    /// The air mass: the motion drifts with the steady wind's north and east components, so
+    /// its horizontal velocities are flown through the air, as by a pilot holding a schedule
+    /// of airspeed and heading (and of height over the ground). A kinematic target drifts
+    /// with the follower's gusts as well when it shares them (`target.gusts = "shared"`); a
+    /// target aircraft flies the drifting motion
+    /// as its reference, and gusts act on its airframe as on any aircraft (docs/equations.md,
+    /// The target in the air mass).
+    InAirMass,
+}
+
 /// `[target]`: the unknown aircraft being tracked.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -156,8 +187,8 @@ pub struct TargetSection {
     pub track: String,
     /// What moves the target: `"kinematic"` (default, the seed's) or `"aircraft"`. The
     /// aircraft starts trimmed in straight and level flight at the motion's horizontal speed
-    /// at t = 0 (35-100 ft/s) on its course; a motion that starts climbing is joined by the
-    /// track feedback.
+    /// through the air at t = 0 (35-100 ft/s) on its course; a motion that starts climbing is
+    /// joined by the track feedback.
     pub model: TargetModelKind,
     /// The target aircraft's data file (`model = "aircraft"`), in the schema of
     /// `follower.aircraft` and looked up like it; default the shipped
@@ -171,6 +202,13 @@ pub struct TargetSection {
     /// ft, 0.1 6.0 / 18.5, 0.3 4.8 / 18.5, 0.5 4.6 / 18.5, 0.8 6.6 / 18.2, 1.2 oscillates
     /// (48 / 238 ft); 0.3 keeps four times the margin to that.
     pub track_gain_per_s: f64,
+    /// The target's turbulence (a target aircraft's, or a kinematic target's in the air mass;
+    /// with `[atmosphere]` turbulence): `"independent"` (default) or `"shared"` with the
+    /// follower (see [`TargetGusts`]).
+    pub gusts: TargetGusts,
+    /// What the target flies its motion relative to: `"over_ground"` (default) or
+    /// `"in_air_mass"` (see [`TargetPath`]).
+    pub path: TargetPath,
     /// The target aircraft's flight controller (`model = "aircraft"`): the keys of
     /// `[autopilot]`, with their defaults (not the follower's choices in a scenario).
     pub autopilot: super::AutopilotSection,
@@ -195,6 +233,8 @@ impl Default for TargetSection {
             model: TargetModelKind::Kinematic,
             aircraft: super::DEFAULT_AIRCRAFT.to_string(),
             track_gain_per_s: 0.3,
+            gusts: TargetGusts::Independent,
+            path: TargetPath::OverGround,
             autopilot: super::AutopilotSection::default(),
         }
     }
@@ -265,6 +305,14 @@ impl TargetSection {
             "the path of an aircraft data file",
         )?;
         check::in_closed("target.track_gain_per_s", self.track_gain_per_s, 0.0, 2.0)?;
+        check::require(
+            self.gusts == TargetGusts::Independent
+                || self.model == TargetModelKind::Aircraft
+                || self.path == TargetPath::InAirMass,
+            "target.gusts",
+            "\"shared\"",
+            "\"independent\" unless target.model = \"aircraft\" or target.path = \"in_air_mass\"",
+        )?;
         self.autopilot.validate().map_err(|mut invalid| {
             invalid.key = format!("target.{}", invalid.key);
             invalid

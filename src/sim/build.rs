@@ -16,7 +16,7 @@ use crate::guidance::signals::CommandKind;
 use crate::scenario::check::InvalidValue;
 use crate::scenario::{
     AirframeAlpha, EstimatorKind, GimbalCue, GimbalKind, GuidanceLawKind, Scenario, SensorMode,
-    SizeModel, TargetModelKind, TargetMotion,
+    SizeModel, TargetGusts, TargetModelKind, TargetMotion, TargetPath,
 };
 use crate::sensing::camera::load_target_mesh;
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
@@ -24,8 +24,9 @@ use crate::sensing::{CameraConfig, SensorError};
 use crate::sensing::{CaptureGeometry, FollowerPose, Sensor};
 use crate::target_aircraft::{TARGET_DRYDEN_SEED_SALT, TargetAircraft};
 use crate::world::aircraft::{Aircraft, AircraftParams};
+use crate::world::atmosphere::DrydenTurbulence;
 use crate::world::atmosphere::{Atmosphere, AtmosphereSample};
-use crate::world::target::{TargetModel, TargetMotionModel};
+use crate::world::target::{CarriedByAir, TargetModel, TargetMotionModel};
 use crate::world::trajectory::{
     RANDOM_TRACK_SEED_SALT, TrackError, random_track, read_track, waypoint_track,
 };
@@ -217,16 +218,41 @@ fn target_alpha_schedule(scenario: &Scenario) -> Result<AlphaSchedule, SimError>
 /// closed-form one, or a trajectory source, the random one on its own stream of `run.seed`),
 /// or an aircraft flying that motion in `[atmosphere]` (its own turbulence stream).
 pub(super) fn target_of(scenario: &Scenario) -> Result<Box<dyn TargetModel>, SimError> {
-    let motion = motion_of(scenario)?;
+    let (target, air) = (&scenario.target, &scenario.atmosphere);
+    let motion = match target.path {
+        TargetPath::OverGround => motion_of(scenario)?,
+        // A target without an airframe is carried by the follower's gusts as well as the
+        // wind when it shares its air.
+        TargetPath::InAirMass => Box::new(CarriedByAir::new(
+            motion_of(scenario)?,
+            air.wind_ned_fps,
+            (target.model == TargetModelKind::Kinematic && target.gusts == TargetGusts::Shared)
+                .then(|| {
+                    let dryden =
+                        DrydenTurbulence::new(air.turbulence, target_turbulence_seed(scenario));
+                    (dryden, air.origin_altitude_ft)
+                }),
+        )),
+    };
     Ok(match scenario.target.model {
         TargetModelKind::Kinematic => motion,
         TargetModelKind::Aircraft => Box::new(TargetAircraft::new(
             &scenario.target,
             &scenario.atmosphere,
-            scenario.run.seed ^ TARGET_DRYDEN_SEED_SALT,
+            target_turbulence_seed(scenario),
             motion,
         )?),
     })
+}
+
+/// The seed of the target aircraft's Dryden stream: its own, or the follower's when the two
+/// share the air (`target.gusts`).
+fn target_turbulence_seed(scenario: &Scenario) -> u64 {
+    scenario.run.seed
+        ^ match scenario.target.gusts {
+            TargetGusts::Independent => TARGET_DRYDEN_SEED_SALT,
+            TargetGusts::Shared => DRYDEN_SEED_SALT,
+        }
 }
 
 /// The path `[target]` describes.

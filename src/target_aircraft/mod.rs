@@ -8,9 +8,10 @@
 //! - Command: V_c = V_ref(t) + k (R_ref(t) - R(t)), k = `target.track_gain_per_s`, flown
 //!   through (7.1)-(7.33) as the follower flies its V_F: the reference's velocity, and a pull
 //!   back onto its track so that the lag of the aircraft's velocity does not add up.
-//! - Start: at R_ref(0), trimmed in straight and level flight (the still air of
-//!   `[atmosphere]`, no Δ perturbations) at the reference's horizontal speed at t = 0 on its
-//!   course; its controller at rest there. A reference that starts climbing or descending is
+//! - Start: at R_ref(0), trimmed in straight and level flight (the steady air of
+//!   `[atmosphere]`, no Δ perturbations) at the reference's horizontal velocity at t = 0
+//!   through that air (less the steady wind), so that over the ground it flies the
+//!   reference's; its controller at rest there. A reference that starts climbing or descending is
 //!   joined by the command's feedback.
 //! - Air: the run's `[atmosphere]`, with a Dryden stream of its own (`run.seed` ^
 //!   [`TARGET_DRYDEN_SEED_SALT`]) advanced at the target's position and airspeed.
@@ -59,7 +60,7 @@ pub enum TargetAircraftError {
     /// The reference's horizontal speed at t = 0 is not one it can be trimmed at.
     #[error(
         "target.motion: the target aircraft starts trimmed in straight and level flight at \
-         its motion's horizontal speed at t = 0, {speed_fps:.2} ft/s: allowed \
+         its motion's horizontal speed through the air at t = 0, {speed_fps:.2} ft/s: allowed \
          [{AIRCRAFT_MIN_SPEED_FPS}, {AIRCRAFT_MAX_SPEED_FPS}] ft/s"
     )]
     InitialSpeed {
@@ -117,7 +118,10 @@ impl TargetAircraft {
         reference: Box<dyn TargetModel>,
     ) -> Result<Self, TargetAircraftError> {
         let at_start = reference.state(0.0);
+        // Its velocity through the air: the reference's less the steady wind.
         let [north, east, _] = at_start.velocity_ned_fps.into();
+        let [wind_north, wind_east, _] = atmosphere.wind_ned_fps;
+        let (north, east) = (north - wind_north, east - wind_east);
         let speed_fps = north.hypot(east);
         if !(AIRCRAFT_MIN_SPEED_FPS..=AIRCRAFT_MAX_SPEED_FPS).contains(&speed_fps) {
             return Err(TargetAircraftError::InitialSpeed { speed_fps });
@@ -339,6 +343,45 @@ mod tests {
             TargetAircraft::state_name(VELOCITY_BODY_FPS + 2),
             "target aircraft: body velocity, ft/s (w)"
         );
+    }
+
+    /// In a steady crosswind the target aircraft flies its reference over the ground from the
+    /// start (trimmed at its speed through the air), and the motion carried by the air mass
+    /// at its speed through the air, drifting with the wind.
+    #[test]
+    fn a_crosswind_is_flown_over_the_ground_or_drifted_with() {
+        use crate::world::target::CarriedByAir;
+        let wind_ned_fps = [0.0, 15.0, 0.0];
+        let air = AtmosphereConfig {
+            wind_ned_fps,
+            ..AtmosphereConfig::default()
+        };
+        let section = TargetSection {
+            motion: crate::scenario::TargetMotion::Straight,
+            straight_velocity_fps: [50.0, 0.0, 0.0],
+            ..TargetSection::default()
+        };
+        let motion = || Box::new(TargetMotionModel::from_section(&section).expect("closed form"));
+        let flown = |reference: Box<dyn TargetModel>| {
+            let mut target = TargetAircraft::new(&section, &air, 1, reference).expect("set-up");
+            let steps = 10_000;
+            for i in 0..steps {
+                target.advance(i as f64 * DT_S, DT_S).expect("finite");
+            }
+            let t_s = steps as f64 * DT_S;
+            (target.state(t_s), target.flight(t_s).expect("flies"), t_s)
+        };
+        let (state, flight, t_s) = flown(motion());
+        let over_ground = Vec3::new(200.0 + 50.0 * t_s, 50.0, 30.0);
+        assert!(
+            (state.position_ned_ft - over_ground).norm() < 1.0,
+            "{state:?}"
+        );
+        assert!((flight.airspeed_fps - 52.2).abs() < 0.5, "{flight:?}");
+        let (state, flight, t_s) = flown(Box::new(CarriedByAir::new(motion(), wind_ned_fps, None)));
+        let carried = over_ground + Vec3::from(wind_ned_fps) * t_s;
+        assert!((state.position_ned_ft - carried).norm() < 1.0, "{state:?}");
+        assert!((flight.airspeed_fps - 50.0).abs() < 0.5, "{flight:?}");
     }
 
     /// A reference too slow to trim at is refused, naming its speed.

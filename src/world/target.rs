@@ -4,6 +4,7 @@
 
 use crate::frames::{EulerAngles, Vec3, attitude_along_velocity, coordinated_turn_bank_rad};
 use crate::scenario::{TargetMotion, TargetSection};
+use crate::world::atmosphere::DrydenTurbulence;
 use std::f64::consts::PI;
 
 /// One piece of a velocity component, active from `start_s` until the next piece's start.
@@ -313,12 +314,121 @@ impl TargetModel for TargetMotionModel {
     }
 }
 
+/// A motion flown through an air mass (`target.path = "in_air_mass"`): its position and
+/// velocity over the ground are the motion's carried by the steady wind's north and east
+/// components and, for a target without an airframe of its own, by the gusts' (the target
+/// holds its height schedule, a pressure altitude); its acceleration and attitude are the
+/// motion's own, the nose along the velocity through the air, crabbed into the wind
+/// (docs/equations.md, The target in the air mass).
+#[derive(Debug)]
+pub struct CarriedByAir {
+    motion: Box<dyn TargetModel>,
+    wind_ned_fps: Vec3,
+    gusts: Option<GustDrift>,
+}
+
+/// How far the gusts have carried a target: a Dryden stream advanced at the target's airspeed
+/// and altitude, its horizontal gust held over each step and integrated.
+#[derive(Debug, Clone)]
+struct GustDrift {
+    dryden: DrydenTurbulence,
+    origin_altitude_ft: f64,
+    /// The drift at `since_s`, NED, ft.
+    offset_ned_ft: Vec3,
+    /// The horizontal gust held over the step from `since_s`, NED, ft/s.
+    gust_ned_fps: Vec3,
+    since_s: f64,
+}
+
+impl GustDrift {
+    /// The drift at `t_s` within the step, NED, ft.
+    fn at(&self, t_s: f64) -> Vec3 {
+        self.offset_ned_ft + self.gust_ned_fps * (t_s - self.since_s)
+    }
+}
+
+impl CarriedByAir {
+    /// `motion` flown in the air of the steady wind `wind_ned_fps` (NED, ft/s), and carried by
+    /// the gusts of `turbulence` (at `origin_altitude_ft`, the altitude of NED down 0) when
+    /// it is given.
+    pub fn new(
+        motion: Box<dyn TargetModel>,
+        wind_ned_fps: [f64; 3],
+        turbulence: Option<(DrydenTurbulence, f64)>,
+    ) -> Self {
+        let [north, east, _] = wind_ned_fps;
+        Self {
+            motion,
+            wind_ned_fps: Vec3::new(north, east, 0.0),
+            gusts: turbulence.map(|(dryden, origin_altitude_ft)| GustDrift {
+                dryden,
+                origin_altitude_ft,
+                offset_ned_ft: Vec3::zeros(),
+                gust_ned_fps: Vec3::zeros(),
+                since_s: 0.0,
+            }),
+        }
+    }
+
+    /// The drift at `t_s`, NED, ft.
+    fn drift_ned_ft(&self, t_s: f64) -> Vec3 {
+        self.wind_ned_fps * t_s + self.gusts.as_ref().map_or_else(Vec3::zeros, |g| g.at(t_s))
+    }
+}
+
+impl TargetModel for CarriedByAir {
+    fn advance(&mut self, t_s: f64, dt_s: f64) -> Result<(), TargetDiverged> {
+        self.motion.advance(t_s, dt_s)?;
+        let Some(gusts) = &mut self.gusts else {
+            return Ok(());
+        };
+        let through_air = self.motion.state(t_s);
+        let airspeed_fps = through_air.velocity_ned_fps.norm();
+        let altitude_ft = gusts.origin_altitude_ft - through_air.position_ned_ft.z;
+        let [u, v, _] = gusts.dryden.step(dt_s, airspeed_fps, altitude_ft).into();
+        // The gust's body components turned by the heading: u along the nose, v to the right.
+        let (sin_psi, cos_psi) = through_air.attitude.psi_rad.sin_cos();
+        gusts.offset_ned_ft = gusts.at(t_s);
+        gusts.gust_ned_fps = Vec3::new(u * cos_psi - v * sin_psi, u * sin_psi + v * cos_psi, 0.0);
+        gusts.since_s = t_s;
+        Ok(())
+    }
+
+    fn state(&self, t_s: f64) -> TargetState {
+        let through_air = self.motion.state(t_s);
+        let gust_ned_fps = self
+            .gusts
+            .as_ref()
+            .map_or_else(Vec3::zeros, |g| g.gust_ned_fps);
+        TargetState {
+            position_ned_ft: through_air.position_ned_ft + self.drift_ned_ft(t_s),
+            velocity_ned_fps: through_air.velocity_ned_fps + self.wind_ned_fps + gust_ned_fps,
+            ..through_air
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn seed() -> TargetMotionModel {
         TargetMotionModel::from_section(&TargetSection::default()).expect("closed form")
+    }
+
+    /// In the air mass the seed's target is carried by the wind's horizontal components, its
+    /// nose still along its velocity through the air.
+    #[test]
+    fn the_air_mass_carries_the_motion_not_its_attitude() {
+        let carried = CarriedByAir::new(Box::new(seed()), [3.0, -15.0, 2.0], None);
+        let wind = Vec3::new(3.0, -15.0, 0.0);
+        for t_s in [0.0, 20.0, 101.5] {
+            let (own, moved) = (seed().state(t_s), carried.state(t_s));
+            assert_eq!(moved.position_ned_ft, own.position_ned_ft + wind * t_s);
+            assert_eq!(moved.velocity_ned_fps, own.velocity_ned_fps + wind);
+            assert_eq!(moved.accel_ned_fps2, own.accel_ned_fps2);
+            assert_eq!(moved.attitude, own.attitude);
+        }
     }
 
     /// Each piece joins the next continuously.
