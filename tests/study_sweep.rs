@@ -258,6 +258,7 @@ fn shipped_studies_are_valid() {
         ("formation_streams", 10),
         ("vision_ch4_filter", 9),
         ("background", 6 * 3 * 3),
+        ("formation_moderate_air_mass", 30),
     ];
     for (name, cases) in expected {
         let path = common::repo_root().join(format!("studies/{name}.toml"));

@@ -24,8 +24,7 @@ use crate::sensing::{CameraConfig, SensorError};
 use crate::sensing::{CaptureGeometry, FollowerPose, Sensor};
 use crate::target_aircraft::{TARGET_DRYDEN_SEED_SALT, TargetAircraft};
 use crate::world::aircraft::{Aircraft, AircraftParams};
-use crate::world::atmosphere::DrydenTurbulence;
-use crate::world::atmosphere::{Atmosphere, AtmosphereSample};
+use crate::world::atmosphere::{Atmosphere, AtmosphereSample, DrydenTurbulence};
 use crate::world::target::{CarriedByAir, TargetModel, TargetMotionModel};
 use crate::world::trajectory::{
     RANDOM_TRACK_SEED_SALT, TrackError, random_track, read_track, waypoint_track,
@@ -216,23 +215,12 @@ fn target_alpha_schedule(scenario: &Scenario) -> Result<AlphaSchedule, SimError>
 
 /// The target `[target]` describes, flying at least the run's duration: its motion (a
 /// closed-form one, or a trajectory source, the random one on its own stream of `run.seed`),
-/// or an aircraft flying that motion in `[atmosphere]` (its own turbulence stream).
+/// over the ground or carried by the air mass (`target.path`), or an aircraft flying that
+/// motion in `[atmosphere]` (its own turbulence stream, or the follower's).
 pub(super) fn target_of(scenario: &Scenario) -> Result<Box<dyn TargetModel>, SimError> {
-    let (target, air) = (&scenario.target, &scenario.atmosphere);
-    let motion = match target.path {
+    let motion = match scenario.target.path {
         TargetPath::OverGround => motion_of(scenario)?,
-        // A target without an airframe is carried by the follower's gusts as well as the
-        // wind when it shares its air.
-        TargetPath::InAirMass => Box::new(CarriedByAir::new(
-            motion_of(scenario)?,
-            air.wind_ned_fps,
-            (target.model == TargetModelKind::Kinematic && target.gusts == TargetGusts::Shared)
-                .then(|| {
-                    let dryden =
-                        DrydenTurbulence::new(air.turbulence, target_turbulence_seed(scenario));
-                    (dryden, air.origin_altitude_ft)
-                }),
-        )),
+        TargetPath::InAirMass => Box::new(carried_by_air(scenario, motion_of(scenario)?)),
     };
     Ok(match scenario.target.model {
         TargetModelKind::Kinematic => motion,
@@ -245,7 +233,19 @@ pub(super) fn target_of(scenario: &Scenario) -> Result<Box<dyn TargetModel>, Sim
     })
 }
 
-/// The seed of the target aircraft's Dryden stream: its own, or the follower's when the two
+/// `motion` flown through the air mass: carried by the steady wind, and a target without an
+/// airframe by the follower's gusts as well when it shares its air (`target.gusts`).
+fn carried_by_air(scenario: &Scenario, motion: Box<dyn TargetModel>) -> CarriedByAir {
+    let (target, air) = (&scenario.target, &scenario.atmosphere);
+    let tracer = target.model == TargetModelKind::Kinematic && target.gusts == TargetGusts::Shared;
+    let gusts = tracer.then(|| {
+        let dryden = DrydenTurbulence::new(air.turbulence, target_turbulence_seed(scenario));
+        (dryden, air.origin_altitude_ft)
+    });
+    CarriedByAir::new(motion, air.wind_ned_fps, gusts)
+}
+
+/// The seed of the target's Dryden stream: its own, or the follower's when the two
 /// share the air (`target.gusts`).
 fn target_turbulence_seed(scenario: &Scenario) -> u64 {
     scenario.run.seed
