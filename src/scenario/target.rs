@@ -116,8 +116,8 @@ pub enum TargetGusts {
     /// A target aircraft's airframe feels a Dryden stream of its own, independent of the
     /// follower's; a kinematic target, which has no airframe, none.
     Independent,
-    /// The follower's stream: the same white noise, shaped by the Dryden filters at the
-    /// target's own airspeed and altitude. Two aircraft tens of feet apart fly through the
+    /// The follower's stream (in a group, the first follower's: `run.seed`'s): the same
+    /// white noise, shaped by the Dryden filters at the target's own airspeed and altitude. Two aircraft tens of feet apart fly through the
     /// same air: the gusts' scale lengths are hundreds of feet. A target aircraft's airframe
     /// feels it; a kinematic target in the air mass is carried by it (docs/equations.md, The
     /// target in the air mass).
