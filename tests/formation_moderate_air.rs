@@ -12,7 +12,9 @@
 //!   carries the follower past a target fixed over the ground (hundreds of frames lost); a
 //!   target in the same air (`target.path = "in_air_mass"`, `target.gusts = "shared"`, the
 //!   filter's gust states set from the air's statistics) is carried too, and none is lost
-//!   (docs/findings.md, The target in the air mass).
+//!   (docs/findings.md, The target in the air mass). Over streams 1-60 in that world no
+//!   frame is lost and the worst RMS axis has a median of 3.2 ft; stream 28's is 5.96 ft,
+//!   over the 5 (one of the four of 60 that miss it), so it is held under 6.5 ft.
 
 mod common;
 
@@ -96,5 +98,5 @@ fn a_target_in_the_same_air_is_not_overtaken_in_a_tailwind_gust() {
     let s = &in_air.summary;
     assert_eq!(s.status, RunStatus::Completed, "{:?}", s.message);
     assert_eq!(s.lost_frames, 0, "{:?}", s.loss_episodes);
-    assert!(worst_axis_ft(s) < 8.0, "{:?}", s.rms_error_last20s_ft);
+    assert!(worst_axis_ft(s) < 6.5, "{:?}", s.rms_error_last20s_ft);
 }

@@ -117,10 +117,10 @@ pub enum TargetGusts {
     /// follower's; a kinematic target, which has no airframe, none.
     Independent,
     /// The follower's stream (in a group, the first follower's: `run.seed`'s): the same
-    /// white noise, shaped by the Dryden filters at the target's own airspeed and altitude. Two aircraft tens of feet apart fly through the
-    /// same air: the gusts' scale lengths are hundreds of feet. A target aircraft's airframe
-    /// feels it; a kinematic target in the air mass is carried by it (docs/equations.md, The
-    /// target in the air mass).
+    /// white noise, shaped by the Dryden filters at the target's own airspeed and altitude.
+    /// Two aircraft tens of feet apart fly through the same air: the gusts' scale lengths are
+    /// hundreds of feet. A target aircraft's airframe feels it; a kinematic target in the air
+    /// mass is carried by it (docs/equations.md, The target in the air mass).
     Shared,
 }
 
@@ -134,9 +134,8 @@ pub enum TargetPath {
     /// its horizontal velocities are flown through the air, as by a pilot holding a schedule
     /// of airspeed and heading (and of height over the ground). A kinematic target drifts
     /// with the follower's gusts as well when it shares them (`target.gusts = "shared"`); a
-    /// target aircraft flies the drifting motion
-    /// as its reference, and gusts act on its airframe as on any aircraft (docs/equations.md,
-    /// The target in the air mass).
+    /// target aircraft flies the drifting motion as its reference, and gusts act on its
+    /// airframe as on any aircraft (docs/equations.md, The target in the air mass).
     InAirMass,
 }
 

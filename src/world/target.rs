@@ -386,10 +386,11 @@ impl TargetModel for CarriedByAir {
         let airspeed_fps = through_air.velocity_ned_fps.norm();
         let altitude_ft = gusts.origin_altitude_ft - through_air.position_ned_ft.z;
         let [u, v, _] = gusts.dryden.step(dt_s, airspeed_fps, altitude_ft).into();
-        // The gust's body components turned by the heading: u along the nose, v to the right.
-        let (sin_psi, cos_psi) = through_air.attitude.psi_rad.sin_cos();
+        // The gust's horizontal body components turned by the heading alone: u along the
+        // nose, v to the right.
+        let heading = EulerAngles::new(0.0, 0.0, through_air.attitude.psi_rad);
         gusts.offset_ned_ft = gusts.at(t_s);
-        gusts.gust_ned_fps = Vec3::new(u * cos_psi - v * sin_psi, u * sin_psi + v * cos_psi, 0.0);
+        gusts.gust_ned_fps = heading.body_from_ned().transpose() * Vec3::new(u, v, 0.0);
         gusts.since_s = t_s;
         Ok(())
     }
@@ -429,6 +430,37 @@ mod tests {
             assert_eq!(moved.accel_ned_fps2, own.accel_ned_fps2);
             assert_eq!(moved.attitude, own.attitude);
         }
+    }
+
+    /// A target carried by gusts moves over each step by the gust it holds over that step: its
+    /// drift is the integral of its velocity through the air's, horizontal only, and the
+    /// gusts of moderate air move it (by more than 10 ft over 20 s on this stream).
+    #[test]
+    fn the_gusts_carry_a_tracer_by_what_it_holds_over_each_step() {
+        use crate::world::atmosphere::TurbulenceLevel;
+        let dryden = DrydenTurbulence::new(TurbulenceLevel::Moderate, 7);
+        let mut carried = CarriedByAir::new(Box::new(seed()), [0.0; 3], Some((dryden, 500.0)));
+        let own = seed();
+        let drift = |c: &CarriedByAir, t_s: f64| {
+            c.state(t_s).position_ned_ft - own.state(t_s).position_ned_ft
+        };
+        let dt_s = 0.01;
+        for i in 0..2000 {
+            let t_s = i as f64 * dt_s;
+            carried.advance(t_s, dt_s).expect("a closed-form motion");
+            let gust = carried.state(t_s).velocity_ned_fps - own.state(t_s).velocity_ned_fps;
+            let moved = drift(&carried, t_s + dt_s) - drift(&carried, t_s);
+            assert!(
+                (moved - gust * dt_s).norm() < 1e-9,
+                "step {i}: {moved:?} {gust:?}"
+            );
+            assert_eq!(gust.z, 0.0);
+        }
+        assert!(
+            drift(&carried, 20.0).norm() > 10.0,
+            "{:?}",
+            drift(&carried, 20.0)
+        );
     }
 
     /// Each piece joins the next continuously.

@@ -130,8 +130,9 @@ impl Metering {
     }
 
     /// The target's expected maximal length in the image's pixels, its focal length
-    /// `focal_px` (`camera.expected_length`): the last `Ok` length, or the estimator's span at
-    /// its predicted range when it has one.
+    /// `focal_px` (`camera.expected_length`): the last `Ok` length, or with `estimated` the
+    /// larger of it and the estimator's span at its predicted range (either alone when the
+    /// other is unknown).
     fn expected_length_px(&self, focal_px: f64) -> Option<f64> {
         let estimated = match self.length_expectation {
             LengthExpectation::LastMeasured => None,
@@ -140,10 +141,10 @@ impl Metering {
                 .and_then(|e| e.span_rad)
                 .map(|span_rad| 2.0 * focal_px * (0.5 * span_rad).tan()),
         };
-        match (estimated, self.previous_length_px) {
-            (Some(e), Some(p)) => Some(e.max(p)),
-            (e, p) => e.or(p),
-        }
+        [estimated, self.previous_length_px]
+            .into_iter()
+            .flatten()
+            .reduce(f64::max)
     }
 
     /// Tells the image pipeline how `frame`'s pixels look into the world.
