@@ -352,9 +352,9 @@ fn blob_measurement(
 
 impl VisionPipeline {
     /// Keeps `frame` for the next frame's background (`motion_reference` only), the pixels
-    /// around the mask of blob `label` (the target measured `Ok`) kept out and that mask
-    /// marked for the next frame's ring; without one, the gate of a `NearestWithin`
-    /// selection (where the target was expected) kept out.
+    /// around the mask of blob `label` (the target measured `Ok`) and the gate of a
+    /// `NearestWithin` selection (where the target was expected) kept out and that mask
+    /// marked for the next frame's ring; without one, the gate alone kept out.
     fn keep_frame(&mut self, frame: &RgbaView<'_>, label: Option<u32>, selection: BlobSelection) {
         let Some(motion) = &mut self.motion else {
             return;
@@ -365,7 +365,10 @@ impl VisionPipeline {
         let labels = &self.labeller.labels;
         let target =
             || (self.segmenter.mask.iter().map(|&i| i as usize)).filter(|&i| labels[i] == label);
-        motion.keep(frame, motion.exclusion_about(target(), frame.width));
+        // A blob that was a part of the target (a wing tip, the fuselage) says less of where
+        // the rest of it lies than the prediction does: both are kept out.
+        let measured = motion.exclusion_about(target(), frame.width);
+        motion.keep(frame, covering(measured, expected_box(selection)));
         motion.mark_target(target());
     }
 
@@ -512,6 +515,20 @@ fn expected_box(selection: BlobSelection) -> Option<[usize; 4]> {
     let (v0, v1) = (v_px - radius_px, v_px + radius_px);
     (u1 >= 0.0 && v1 >= 0.0 && u0.is_finite() && v0.is_finite())
         .then(|| [u0, v0, u1, v1].map(|x| x.max(0.0) as usize))
+}
+
+/// The smallest box [u0, v0, u1, v1] covering both boxes (either alone when the other is
+/// None).
+fn covering(a: Option<[usize; 4]>, b: Option<[usize; 4]>) -> Option<[usize; 4]> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some([
+            a[0].min(b[0]),
+            a[1].min(b[1]),
+            a[2].max(b[2]),
+            a[3].max(b[3]),
+        ]),
+        (a, b) => a.or(b),
+    }
 }
 
 /// How noisy coverage is near a blob: σ of the background over the target's contrast there.
