@@ -273,6 +273,19 @@ impl TargetFilter {
         }
     }
 
+    /// Scales the covariance of the kinematic states (r, d, a and g, and their
+    /// cross-covariances with β by its square root) by `factor` ≥ 1, β's own kept: a
+    /// congruence, so P stays positive. The filter's belief about where the target is and how
+    /// it moves widens, its belief about the size (earned over tens of seconds of own motion)
+    /// does not (docs/equations.md, The gate re-opened).
+    pub fn widen_kinematics(&mut self, factor: f64) {
+        let root = factor.max(1.0).sqrt();
+        let mut scale = State::repeat(root);
+        scale[BETA] = 1.0;
+        let d = Covariance::from_diagonal(&scale);
+        self.p = d * self.p * d;
+    }
+
     /// Fuses a measured acceleration of the target across its velocity, `accel_fps2` ft/s²
     /// along the unit vector `across_ned` with variance `variance_fps4`, at the posterior's
     /// time (docs/equations.md, The target's bank from its wing line): h(x) = c · (a - g/τ_g) / β,
@@ -688,24 +701,27 @@ mod tests {
         assert!((filter.posterior().r - truth).norm() < 1e-12);
     }
 
+    /// A filter started at t = 0 on r* = (25, 6, 4) of covariance `covariance`, the follower
+    /// at the origin flying north at 50 ft/s.
+    fn started_at_25_ft(covariance: &Mat3) -> TargetFilter {
+        TargetFilter::new(
+            FilterNoise::without_gust(1e-4, 0.0),
+            &prior(),
+            &Vec3::new(25.0, 6.0, 4.0),
+            covariance,
+            0.0,
+            &Vec3::zeros(),
+            &Vec3::new(50.0, 0.0, 0.0),
+        )
+    }
+
     /// Invariant: the validation gate keeps out a measurement whose normalised innovation
     /// exceeds it, leaving the posterior as it was, and fuses one inside it as the ungated
     /// update does.
     #[test]
     fn gate_keeps_out_a_measurement_off_the_prediction() {
         let covariance = Mat3::identity() * 1e-4;
-        let start = || {
-            TargetFilter::new(
-                FilterNoise::without_gust(1e-4, 0.0),
-                &prior(),
-                &Vec3::new(25.0, 6.0, 4.0),
-                &covariance,
-                0.0,
-                &Vec3::zeros(),
-                &Vec3::new(50.0, 0.0, 0.0),
-            )
-        };
-        let mut gated = start();
+        let mut gated = started_at_25_ft(&covariance);
         gated.predict_to(0.1, &Vec3::new(5.0, 0.0, 0.0));
         let before = gated.posterior();
         let predicted = before.r;
@@ -722,5 +738,31 @@ mod tests {
         assert!(fused.fused && fused.normalised_sq < 16.3, "{fused:?}");
         ungated.update(&near, &covariance);
         assert_eq!(gated.posterior(), ungated.posterior());
+    }
+
+    /// Invariant: widening the kinematics scales the r, d, a and g blocks of P by the factor
+    /// and their covariances with β by its square root, leaves β's variance as it was, keeps
+    /// P symmetric and positive, and lets a frame the gate kept out be taken with a
+    /// normalised innovation of about its 3 degrees of freedom.
+    #[test]
+    fn widened_kinematics_keep_the_size_and_take_the_frame() {
+        let covariance = Mat3::identity() * 1e-4;
+        let mut filter = started_at_25_ft(&covariance);
+        filter.predict_to(0.1, &Vec3::new(5.0, 0.0, 0.0));
+        let far = filter.posterior().r + Vec3::new(0.0, 5.0, 0.0);
+        let kept_out = filter.clone().update_within(&far, &covariance, 16.3);
+        assert!(!kept_out.fused, "{kept_out:?}");
+        let before = filter.p;
+        let factor = kept_out.normalised_sq / 3.0;
+        filter.widen_kinematics(factor);
+        assert_eq!(filter.p[(BETA, BETA)], before[(BETA, BETA)]);
+        assert!((filter.p[(R, R)] / before[(R, R)] - factor).abs() < 1e-9 * factor);
+        assert!((filter.p[(D, BETA)] / before[(D, BETA)] - factor.sqrt()).abs() < 1e-9);
+        assert!((filter.p - filter.p.transpose()).abs().max() < 1e-12);
+        // Positive semi-definite (the gust block is zero without a gust model).
+        let eigen = filter.p.symmetric_eigen().eigenvalues;
+        assert!(eigen.min() >= -1e-12 * eigen.max(), "{eigen:?}");
+        let taken = filter.update_within(&far, &covariance, 16.3);
+        assert!(taken.fused && taken.normalised_sq < 3.5, "{taken:?}");
     }
 }

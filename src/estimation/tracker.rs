@@ -47,6 +47,14 @@ pub struct KalmanTracker {
     innovation_gate: f64,
     /// Measurements the gate kept out.
     gated_out: u64,
+    /// After this long without a fused measurement the gate takes the next one, s
+    /// (`estimator.gate_reopen_s`; ∞: never).
+    gate_reopen_s: f64,
+    /// The frames kept out since the last fused one that agree with each other: when the
+    /// first of them was taken, s, and the last one's r* and covariance.
+    streak: Option<(f64, Vec3, Mat3)>,
+    /// Measurements taken with the gate re-opened.
+    reopened: u64,
     /// Frames whose wing line was fused as the target's turn (`target_bank = "measured"`).
     bank_fused: u64,
     /// The airframe model's shape and its length model (`None` with the other models).
@@ -191,6 +199,13 @@ impl KalmanTracker {
                 f64::INFINITY
             },
             gated_out: 0,
+            gate_reopen_s: if section.gate_reopen_s > 0.0 {
+                section.gate_reopen_s
+            } else {
+                f64::INFINITY
+            },
+            streak: None,
+            reopened: 0,
             bank_fused: 0,
             airframe: None,
             views: Vec::new(),
@@ -335,7 +350,24 @@ impl KalmanTracker {
                 // this one out.
                 let mut predicted = filter.clone();
                 predicted.predict_to(t_s, follower_position_ned_ft);
-                let innovation = predicted.update_within(r_star, covariance, self.innovation_gate);
+                let mut innovation =
+                    predicted.update_within(r_star, covariance, self.innovation_gate);
+                if !innovation.fused {
+                    let since_s = extend_streak(
+                        &mut self.streak,
+                        self.innovation_gate,
+                        t_s,
+                        r_star,
+                        covariance,
+                    );
+                    if t_s - since_s >= self.gate_reopen_s {
+                        // The prediction, not the frames, is what is wrong: widened until this
+                        // frame's νᵀ S⁻¹ ν is about its 3 degrees of freedom, it takes it.
+                        predicted.widen_kinematics(innovation.normalised_sq / 3.0);
+                        innovation = predicted.update(r_star, covariance);
+                        self.reopened += 1;
+                    }
+                }
                 if !innovation.fused {
                     self.gated_out += 1;
                     return false;
@@ -345,6 +377,7 @@ impl KalmanTracker {
             }
         }
         self.fused += 1;
+        self.streak = None;
         if self.known_since_s.is_none() && self.size_is_known() {
             self.known_since_s = Some(t_s);
         }
@@ -566,4 +599,30 @@ impl TargetTracker for KalmanTracker {
             .copied()
             .collect()
     }
+}
+
+/// Adds a frame the gate kept out to the streak of such frames that agree with each
+/// other (each within the gate of the one before, (r*ₖ - r*ₖ₋₁)ᵀ (Rₖ + Rₖ₋₁)⁻¹ (·) ≤ γ),
+/// or starts a new streak with it; when the streak began, s (docs/equations.md, The gate
+/// re-opened). Fragments and blobs of the ground jump between frames; the whole target
+/// kept out by a lost prediction does not.
+fn extend_streak(
+    streak: &mut Option<(f64, Vec3, Mat3)>,
+    gate: f64,
+    t_s: f64,
+    r_star: &Vec3,
+    covariance: &Mat3,
+) -> f64 {
+    let agrees = streak.is_some_and(|(_, last_r, last_covariance)| {
+        let step = r_star - last_r;
+        (covariance + last_covariance)
+            .try_inverse()
+            .is_some_and(|s_inv| (step.transpose() * s_inv * step)[(0, 0)] <= gate)
+    });
+    let since_s = match *streak {
+        Some((since_s, ..)) if agrees => since_s,
+        _ => t_s,
+    };
+    *streak = Some((since_s, *r_star, *covariance));
+    since_s
 }

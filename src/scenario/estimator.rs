@@ -183,6 +183,13 @@ pub struct EstimatorSection {
     /// χ² with 3 degrees of freedom when the filter's model holds: 16.3 keeps out one
     /// frame in 1,000 of the target's own.
     pub innovation_gate: f64,
+    /// With the innovation gate, how long a streak of frames it kept out, each within the gate
+    /// of the one before, may last before the filter takes the next one, s (docs/equations.md,
+    /// The gate re-opened): its kinematic covariance widened until that frame's normalised
+    /// innovation is what the model expects, the size's kept. A target the filter's
+    /// prediction lost (a few fragments that passed the gate moved it) is otherwise kept out
+    /// until the prediction's covariance has grown enough to take it. 0 (the default): never.
+    pub gate_reopen_s: f64,
     /// `inferred` (default) or `measured`: whether each frame's wing line is fused as the
     /// target's acceleration across its velocity (Kalman filter only; frames whose span the
     /// filter's view puts below `span_aspect_min` are not).
@@ -223,6 +230,7 @@ impl Default for EstimatorSection {
             airframe_angle_of_attack: AirframeAlpha::Zero,
             airframe_shape_sigma: 0.025,
             innovation_gate: 0.0,
+            gate_reopen_s: 0.0,
             target_bank: TargetBank::Inferred,
             bank_end_sigma_px: 0.5,
             bank_accel_sigma_fps2: 1.0,
@@ -285,6 +293,7 @@ impl EstimatorSection {
             ),
             ("airframe_shape_sigma", self.airframe_shape_sigma, 0.0, 1.0),
             ("innovation_gate", self.innovation_gate, 0.0, 1e6),
+            ("gate_reopen_s", self.gate_reopen_s, 0.0, 1e6),
             ("bank_end_sigma_px", self.bank_end_sigma_px, 1e-3, 1e3),
             (
                 "bank_accel_sigma_fps2",
