@@ -47,14 +47,12 @@ pub struct KalmanTracker {
     innovation_gate: f64,
     /// Measurements the gate kept out.
     gated_out: u64,
-    /// After this long without a fused measurement the gate takes the next one, s
-    /// (`estimator.gate_reopen_s`; ∞: never).
+    /// A streak of frames kept out that agree with each other, lasting this long, re-opens
+    /// the gate, s (`estimator.gate_reopen_s`; ∞: never).
     gate_reopen_s: f64,
     /// The frames kept out since the last fused one that agree with each other: when the
     /// first of them was taken, s, and the last one's r* and covariance.
     streak: Option<(f64, Vec3, Mat3)>,
-    /// Measurements taken with the gate re-opened.
-    reopened: u64,
     /// Frames whose wing line was fused as the target's turn (`target_bank = "measured"`).
     bank_fused: u64,
     /// The airframe model's shape and its length model (`None` with the other models).
@@ -205,7 +203,6 @@ impl KalmanTracker {
                 f64::INFINITY
             },
             streak: None,
-            reopened: 0,
             bank_fused: 0,
             airframe: None,
             views: Vec::new(),
@@ -365,7 +362,6 @@ impl KalmanTracker {
                         // frame's νᵀ S⁻¹ ν is about its 3 degrees of freedom, it takes it.
                         predicted.widen_kinematics(innovation.normalised_sq / 3.0);
                         innovation = predicted.update(r_star, covariance);
-                        self.reopened += 1;
                     }
                 }
                 if !innovation.fused {

@@ -11,8 +11,8 @@
 //!    ground's elevation is known (from a map: flat ground), through the ground's
 //!    point, which takes in the ground's parallax. Its colours within [`PARALLAX_PX`] and
 //!    their mixtures explain what the mapping leaves (an edge moved by a little parallax).
-//!    Where the target was measured (its blob's box grown by the ring's radius), or expected
-//!    when it was not (a gated selection's gate), the frame does not replace the memory: the
+//!    Where the target was measured (its blob's box grown by the ring's radius) and where it
+//!    was expected (a gated selection's gate), the frame does not replace the memory: the
 //!    memory carries the background it had there, so the background under a target that
 //!    moves against the world is known from earlier frames, and a blob that was only a part
 //!    of the target cannot let the rest explain itself.
@@ -23,8 +23,9 @@
 //!    whose colours it does not match; a pixel of a field, a road or the sky has pixels of its
 //!    own kind on the ring. For a pixel where the previous frame measured the target, the
 //!    ring takes no colours where that target lay: the ring about a wing tip crosses the
-//!    fuselage and the other wing, whose colour would explain the tip. A strip at the
-//!    image's edge is taken for background.
+//!    fuselage and the other wing, whose colour would explain the tip. In a tracking window
+//!    smaller than the ring, a ring point beyond the window is taken on the window's border.
+//!    A strip at the image's edge is taken for background.
 //! 3. With the target's colour learned (`camera.target_colour_tolerance_deg`,
 //!    `super::target_colour`), a pixel neither explains is offered the memory's colours and
 //!    the ring's together: it is target only as a mixture of one of them with a shade of the
