@@ -50,9 +50,8 @@ pub struct KalmanTracker {
     /// A streak of frames kept out that agree with each other, lasting this long, re-opens
     /// the gate, s (`estimator.gate_reopen_s`; ∞: never).
     gate_reopen_s: f64,
-    /// The frames kept out since the last fused one that agree with each other: when the
-    /// first of them was taken, s, and the last one's r* and covariance.
-    streak: Option<(f64, Vec3, Mat3)>,
+    /// The frames kept out since the last fused one that agree with each other.
+    streak: Option<KeptOutStreak>,
     /// Frames whose wing line was fused as the target's turn (`target_bank = "measured"`).
     bank_fused: u64,
     /// The airframe model's shape and its length model (`None` with the other models).
@@ -350,14 +349,16 @@ impl KalmanTracker {
                 let mut innovation =
                     predicted.update_within(r_star, covariance, self.innovation_gate);
                 if !innovation.fused {
-                    let since_s = extend_streak(
-                        &mut self.streak,
-                        self.innovation_gate,
-                        t_s,
-                        r_star,
-                        covariance,
-                    );
-                    if t_s - since_s >= self.gate_reopen_s {
+                    // A frame without a finite innovation breaks the streak.
+                    let finite = innovation.normalised_sq.is_finite();
+                    self.streak = finite.then(|| {
+                        let gate = self.innovation_gate;
+                        KeptOutStreak::extended(self.streak, gate, t_s, r_star, covariance)
+                    });
+                    if self
+                        .streak
+                        .is_some_and(|streak| t_s - streak.since_s >= self.gate_reopen_s)
+                    {
                         // The prediction, not the frames, is what is wrong: widened until this
                         // frame's νᵀ S⁻¹ ν is about its 3 degrees of freedom, it takes it.
                         predicted.widen_kinematics(innovation.normalised_sq / 3.0);
@@ -597,28 +598,39 @@ impl TargetTracker for KalmanTracker {
     }
 }
 
-/// Adds a frame the gate kept out to the streak of such frames that agree with each
-/// other (each within the gate of the one before, (r*ₖ - r*ₖ₋₁)ᵀ (Rₖ + Rₖ₋₁)⁻¹ (·) ≤ γ),
-/// or starts a new streak with it; when the streak began, s (docs/equations.md, The gate
-/// re-opened). Fragments and blobs of the ground jump between frames; the whole target
-/// kept out by a lost prediction does not.
-fn extend_streak(
-    streak: &mut Option<(f64, Vec3, Mat3)>,
-    gate: f64,
-    t_s: f64,
-    r_star: &Vec3,
-    covariance: &Mat3,
-) -> f64 {
-    let agrees = streak.is_some_and(|(_, last_r, last_covariance)| {
-        let step = r_star - last_r;
-        (covariance + last_covariance)
-            .try_inverse()
-            .is_some_and(|s_inv| (step.transpose() * s_inv * step)[(0, 0)] <= gate)
-    });
-    let since_s = match *streak {
-        Some((since_s, ..)) if agrees => since_s,
-        _ => t_s,
-    };
-    *streak = Some((since_s, *r_star, *covariance));
-    since_s
+/// Frames kept out by the innovation gate since the last fused one, each within the gate of
+/// the one before (docs/equations.md, The gate re-opened). Fragments and blobs of the ground
+/// jump between frames; the whole target kept out by a lost prediction does not.
+#[derive(Debug, Clone, Copy)]
+struct KeptOutStreak {
+    /// Capture time of its first frame, s.
+    since_s: f64,
+    /// Its last frame's r*.
+    r_star: Vec3,
+    /// Its last frame's covariance.
+    covariance: Mat3,
+}
+
+impl KeptOutStreak {
+    /// `streak` with a frame the gate kept out added, when the frame agrees with its last one
+    /// ((r*ₖ - r*ₖ₋₁)ᵀ (Rₖ + Rₖ₋₁)⁻¹ (·) ≤ `gate`); else a streak the frame begins.
+    fn extended(
+        streak: Option<Self>,
+        gate: f64,
+        t_s: f64,
+        r_star: &Vec3,
+        covariance: &Mat3,
+    ) -> Self {
+        let agrees = |last: &Self| {
+            let step = r_star - last.r_star;
+            (covariance + last.covariance)
+                .try_inverse()
+                .is_some_and(|s_inv| (step.transpose() * s_inv * step)[(0, 0)] <= gate)
+        };
+        Self {
+            since_s: streak.filter(agrees).map_or(t_s, |last| last.since_s),
+            r_star: *r_star,
+            covariance: *covariance,
+        }
+    }
 }

@@ -247,6 +247,7 @@ impl MotionReference {
             self.set_ring_radius(DEFAULT_RING_RADIUS_PX);
         }
         let to_previous = self.views_to_previous();
+        let window = self.is_window(frame);
         let (w, h) = (frame.width, frame.height);
         self.locate_in_previous(frame, to_previous.as_ref());
         self.reference.clear();
@@ -272,7 +273,7 @@ impl MotionReference {
                             self.remembered_colours(x, y);
                             if self.gate.is_some() {
                                 // A memory mislaid by a frame's errors leaves the ring.
-                                self.push_ring_colours(frame, u, v);
+                                self.push_ring_colours(frame, u, v, window);
                             }
                             self.explain(p)
                         }
@@ -287,7 +288,7 @@ impl MotionReference {
                     }
                     _ => {
                         self.ring_colours.clear();
-                        self.push_ring_colours(frame, u, v);
+                        self.push_ring_colours(frame, u, v, window);
                         self.explain(p)
                     }
                 };
@@ -383,14 +384,14 @@ impl MotionReference {
     /// (those inside the frame and not on the target the memory measured): a pixel an edge
     /// between two fields cuts is a mixture of the two, and the ring crosses both. The ring
     /// around a pixel near one end of the target crosses the target's other parts, whose
-    /// colour would explain it. In a tracking window a ring point beyond the window is taken
-    /// where its ray leaves the window, on the border: the ring about a target 130 px long
+    /// colour would explain it. In a tracking window (`window`, [`Self::is_window`], decided
+    /// once per frame) a ring point beyond the window is taken where its ray leaves the
+    /// window, on the border: the ring about a target 130 px long
     /// has a radius of about 90 px, and a window 80 px tall about it would otherwise leave
     /// only the ring's points on the target itself, which explain its wings as background.
-    fn push_ring_colours(&mut self, frame: &RgbaView<'_>, u: usize, v: usize) {
+    fn push_ring_colours(&mut self, frame: &RgbaView<'_>, u: usize, v: usize, window: bool) {
         let on_target = &self.on_previous_target;
         let from_target = on_target[v * frame.width + u];
-        let window = self.is_window(frame);
         for &(du, dv) in &self.ring {
             let at = if window {
                 Some(onto_border(frame, u, v, du, dv))
