@@ -22,7 +22,9 @@
 //! longer than the limit is the measurement of the binned camera: at 1920x1080 a target
 //! 222 px long (limit 160) is measured as the 960x540 camera measures it, to the bit, in the
 //! image's coordinates (the binned window equals the binned whole image, as in (1), and the
-//! binning's scale by 2 is exact).
+//! binning's scale by 2 is exact). (5) Saving frames changes no measurement: a frame to be
+//! saved is measured in its window, binned when it would be, and only then drawn whole for
+//! the saved image.
 
 mod common;
 mod render_support;
@@ -186,8 +188,15 @@ fn camera(pipeline: &str, latency_frames: u32) -> CameraSensor {
 
 /// A camera on `formation.toml`'s settings with `overrides`, saving no frames.
 fn camera_with(overrides: &[&str]) -> CameraSensor {
+    camera_saving(overrides, 0)
+}
+
+/// A camera on `formation.toml`'s settings with `overrides`, saving every `every`th frame
+/// (0: none).
+fn camera_saving(overrides: &[&str], every: u32) -> CameraSensor {
+    let saving = format!("output.frames_every={every}");
     let mut keys = overrides.to_vec();
-    keys.push("output.frames_every=0");
+    keys.push(&saving);
     let scenario = common::load("formation", &keys);
     CameraSensor::new(&CameraConfig::of(&scenario)).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -292,4 +301,38 @@ fn binned_frames_are_measured_as_the_binned_camera_measures_them() {
     eprintln!("{counts:?}");
     assert_eq!(counts.binned, 10, "{counts:?}");
     assert_eq!(counts.redrawn_whole, 0, "{counts:?}");
+}
+
+#[test]
+fn saving_frames_changes_no_measurement() {
+    let binned = [
+        "camera.width_px=1920",
+        "camera.height_px=1080",
+        "camera.measure_max_length_px=160",
+    ];
+    let mut saving = camera_saving(&binned, 1);
+    let mut not_saving = camera_with(&binned);
+    for k in 0..12 {
+        let t_s = k as f64 / 30.0;
+        let a = saving
+            .capture(t_s, &geometry(k))
+            .unwrap_or_else(|e| panic!("{e}"));
+        let b = not_saving
+            .capture(t_s, &geometry(k))
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(a, b, "frame {k}");
+        assert_eq!(saving.last_record(), not_saving.last_record(), "frame {k}");
+        // The frame to save is the whole image, at the image's resolution.
+        if saving.last_record().is_some() {
+            let (image, _, _) = saving.last_frame().expect("a saved frame is whole");
+            assert_eq!((image.width_px, image.height_px), (1920, 1080));
+        }
+    }
+    let (counts, reference) = (saving.window_counts(), not_saving.window_counts());
+    eprintln!("saving: {counts:?}; not saving: {reference:?}");
+    assert_eq!(counts.binned, reference.binned, "{counts:?}");
+    assert_eq!(counts.binned, 10, "{counts:?}");
+    // Every windowed frame measured is drawn again whole to be saved: all but the last, one
+    // frame of latency.
+    assert_eq!(counts.whole_saved, counts.windowed - 1, "{counts:?}");
 }

@@ -137,7 +137,8 @@ pub struct Summary {
     pub per_frame_ms: Option<PerFrameCost>,
     /// How the camera's frames were drawn and measured (camera runs): in the tracking window
     /// (`windowed`, of which `redrawn_whole` were drawn again whole and `binned` binned),
-    /// whole without a track (`whole_untracked`) or to be saved (`whole_saved`).
+    /// whole without a track (`whole_untracked`), and of the windowed, drawn again whole once
+    /// measured, to be saved (`whole_saved`).
     pub frame_regions: Option<WindowCounts>,
     /// The frames by what lay behind the target, by the truth (`[scene] kind = "world"`;
     /// null otherwise): for reporting only.
@@ -196,7 +197,7 @@ pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("airframe_view_last20s", "the airframe size model's view of the target over the last 20 s: `predicted_yaw_deg` and `predicted_pitch_deg` (the target's yaw and pitch relative to the line of sight the filter's estimate implied; 0, 0: from behind, yaw 90: side-on, pitch 90: from above) beside `true_yaw_deg` and `true_pitch_deg`, and the normalised maximal length it predicted there beside the projected mesh's (`predicted_normalised_length`, `true_normalised_length`), and where it put the bearing point (`camera.bearing_point`) from the image of the target's reference point beside where the vision measured it (`predicted_bearing_offset_px`, `measured_bearing_offset_px`: (yI, zI), px, means) (null with the other size models)"),
     ("adapter", "the graphics adapter that rendered (camera runs)"),
     ("per_frame_ms", "mean wall time per frame of render submission, readback, vision, truth, estimator, guidance, flight control, plant and `integration` (the steps as a whole), ms (camera runs)"),
-    ("frame_regions", "how the frames were drawn and measured: `windowed` in the tracking window, of which `redrawn_whole` drawn again whole and `binned` binned by `camera.measure_max_length_px`; `whole_untracked` without a track, `whole_saved` to be saved (camera runs)"),
+    ("frame_regions", "how the frames were drawn and measured: `windowed` in the tracking window, of which `redrawn_whole` drawn again whole and `binned` binned by `camera.measure_max_length_px`; `whole_untracked` without a track; `whole_saved` of the windowed, drawn again whole once measured, to be saved (camera runs)"),
     ("background", "the frames by what lay behind the target, by the truth (`scene.kind = \"world\"`; null otherwise): `sky`, `ground`, `horizon` (ground on one side of the target, sky or cloud on another) and `cloud`, each with its `frames`, `lost` frames and `centroid_vs_silhouette_rms_px`"),
     ("stage_wall_s", "wall time of guidance, estimator, control, plant and all steps (`integration`) over the run, s"),
     ("aircraft", "the largest |α| and |β| after the first 5 s, the airspeed and throttle ranges, the largest surface deflections beside their limits, and the ticks at which a command was clamped, per actuator (6-DOF runs)"),

@@ -65,8 +65,9 @@ pub enum BearingPoint {
 pub enum CameraPipeline {
     /// Only a tracking window around where the target is predicted to be, from the last
     /// measurement and the follower's attitude (`vision::tracking`); the whole image at
-    /// acquisition, after a lost frame, for a frame to be saved (`output.frames_every`), and
-    /// again, in the same frame, when the target reaches the window's edge. The camera's cost
+    /// acquisition, after a lost frame, and again, in the same frame, when the target reaches
+    /// the window's edge (a frame to be saved, `output.frames_every`, is measured in its
+    /// window and only then drawn whole for the saved image). The camera's cost
     /// then follows the target, not the image size, and the measurements are the whole
     /// image's: to the bit on a noise-free uniform sky (formation.toml flies the same
     /// telemetry), within 0.004 px on a gradient sky, and with pixel noise by less than a new

@@ -609,7 +609,8 @@ impl ExcitationSection {
 pub struct OutputSection {
     /// Draw the seed's figure panels into `plots/`.
     pub plots: bool,
-    /// Save every N-th camera frame to `frames/NNNNNN.png` (0: none).
+    /// Save every N-th camera frame to `frames/NNNNNN.png` (0: none): the whole image, drawn
+    /// again after the frame was measured, so saving changes no measurement.
     pub frames_every: u32,
     /// Draw the measurement (centroid cross, maximal-length segment, status) on saved frames.
     pub overlay: bool,

@@ -20,19 +20,20 @@ use crate::sensing::geometry::OtherAircraft;
 use crate::vision::{BlobMeasurement, TrackingWindow};
 
 /// How the frames were drawn and measured (`camera.pipeline = "window"`), counted over the
-/// run; every frame is in exactly one of the first three. Frames are measured in their
-/// tracking window when there is one, those drawn whole to be saved included.
+/// run; every frame is in exactly one of the first two. A frame to be saved is measured as
+/// any other and then, when it was not drawn whole, drawn again whole for the saved image
+/// only, so saving frames never changes a measurement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 pub struct WindowCounts {
     /// Drawn in the tracking window (measured there, or redrawn whole).
     pub windowed: u64,
     /// Drawn whole: no track (acquisition, after a lost frame) or the `whole` pipeline.
     pub whole_untracked: u64,
-    /// Drawn whole to be saved.
-    pub whole_saved: u64,
     /// Of the `windowed`, drawn again whole: the window's measurement was not a clean `Ok`
     /// or reached its edge.
     pub redrawn_whole: u64,
+    /// Of the `windowed`, drawn again whole after they were measured, to be saved.
+    pub whole_saved: u64,
     /// Of the `windowed`, drawn and measured binned (`camera.measure_max_length_px`).
     pub binned: u64,
 }
@@ -58,16 +59,12 @@ pub(super) fn buffer_of(index: u64) -> usize {
 pub(super) struct DrawnFrame<'a> {
     /// Its pixels.
     pub pixels: &'a CameraImage,
-    /// The part of the image they hold.
-    pub drawn: ImageRegion,
     /// The tracking window to measure it in (None: the whole image).
     pub window: Option<ImageRegion>,
     /// The binning it was drawn at (1: none); `drawn` and `window` are in its pixels.
     pub factor: u32,
     /// The intrinsics of the camera binned by `factor`.
     pub intrinsics: CameraIntrinsics,
-    /// Whether it was drawn whole at the image's resolution.
-    pub whole: bool,
 }
 
 /// The renderers, the pixel buffers and the tracking window that decides what to draw.
@@ -84,7 +81,7 @@ pub(super) struct FrameDrawing {
     occlusion_s: [f64; 2],
     pipeline: CameraPipeline,
     tracker: TrackingWindow,
-    /// Frames whose index is a multiple of this are saved, so drawn whole.
+    /// Frames whose index is a multiple of this are saved, so drawn whole once measured.
     saved_every: Option<u64>,
     window_counts: WindowCounts,
     /// Pixels of the even and the odd frames: one is measured while the other is drawn.
@@ -172,8 +169,7 @@ impl FrameDrawing {
     /// The part of the image to draw for frame `index`, whose camera the follower believes
     /// turned by `camera_from_ned`, the tracking window to measure it in (see the
     /// `sensing::camera` documentation), both in the pixels of the binning factor returned
-    /// with them (1: the image's), counted in [`WindowCounts`]. A frame to be saved is drawn
-    /// whole and measured in its window all the same.
+    /// with them (1: the image's), counted in [`WindowCounts`].
     pub fn plan(
         &mut self,
         index: u64,
@@ -184,10 +180,6 @@ impl FrameDrawing {
             CameraPipeline::Window => self.tracker.predict(index, camera_from_ned),
             CameraPipeline::Whole => None,
         };
-        if self.saved_every.is_some_and(|n| index.is_multiple_of(n)) {
-            self.window_counts.whole_saved += 1;
-            return (whole, window, 1);
-        }
         let Some(region) = window else {
             self.window_counts.whole_untracked += 1;
             return (whole, None, 1);
@@ -238,8 +230,35 @@ impl FrameDrawing {
         in_flight: &mut InFlight,
         timings: &mut CameraTimings,
     ) -> Result<(), SensorError> {
-        self.finish(in_flight, timings)?;
         self.window_counts.redrawn_whole += 1;
+        self.draw_whole_again(exposure, in_flight, timings)
+    }
+
+    /// Draws a measured frame again, whole, when it is to be saved and was not drawn whole:
+    /// the saved image is the whole image, its measurement the one already made.
+    pub fn redraw_to_save(
+        &mut self,
+        exposure: &Exposure,
+        in_flight: &mut InFlight,
+        timings: &mut CameraTimings,
+    ) -> Result<(), SensorError> {
+        let saved = self
+            .saved_every
+            .is_some_and(|n| exposure.index.is_multiple_of(n));
+        if !saved || self.is_whole(exposure.index) {
+            return Ok(());
+        }
+        self.window_counts.whole_saved += 1;
+        self.draw_whole_again(exposure, in_flight, timings)
+    }
+
+    fn draw_whole_again(
+        &mut self,
+        exposure: &Exposure,
+        in_flight: &mut InFlight,
+        timings: &mut CameraTimings,
+    ) -> Result<(), SensorError> {
+        self.finish(in_flight, timings)?;
         let whole = ImageRegion::whole(&self.intrinsics);
         let pose = self.drawn_pose(exposure);
         let buffer = buffer_of(exposure.index);
@@ -280,11 +299,9 @@ impl FrameDrawing {
         let factor = self.factors[buffer];
         Ok(DrawnFrame {
             pixels: &self.pixels[buffer],
-            drawn: self.regions[buffer],
             window: self.windows[buffer],
             factor,
             intrinsics: self.intrinsics_of(factor)?,
-            whole: self.is_whole(index),
         })
     }
 

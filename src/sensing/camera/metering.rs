@@ -7,7 +7,6 @@ use super::drawing::DrawnFrame;
 use super::setup::SensorError;
 use crate::frames::{Mat3, Vec3};
 use crate::render::camera::CameraIntrinsics;
-use crate::render::region::ImageRegion;
 use crate::scenario::{
     BearingPoint, BlobChoice, CameraSection, LengthExpectation, SegmentationKind,
 };
@@ -36,8 +35,6 @@ pub(super) struct Metering {
     bearing_point: BearingPoint,
     /// The last `Ok` frame's centroid, px (the blob `nearest` follows).
     previous_centroid_px: Option<(f64, f64)>,
-    /// A window's pixels cut from a whole frame (a frame drawn whole to be saved).
-    window_pixels: Vec<u8>,
     /// The camera's orientation by navigation for the frame being measured (L_CB L_BE).
     camera_from_ned: Option<Mat3>,
     /// The camera's position by navigation for the frame being measured, NED, ft.
@@ -65,19 +62,6 @@ pub(super) struct Metering {
     length_ratio: f64,
 }
 
-/// Copies the pixels of `window` out of `rgba`, the pixels of `drawn` (which contains it),
-/// into `out`.
-fn cut_window(rgba: &[u8], drawn: &ImageRegion, window: &ImageRegion, out: &mut Vec<u8>) {
-    out.clear();
-    let stride = 4 * drawn.width_px as usize;
-    let first = 4 * (window.u0_px - drawn.u0_px) as usize;
-    let row_bytes = 4 * window.width_px as usize;
-    for v in window.v0_px..window.v_end_px() {
-        let start = (v - drawn.v0_px) as usize * stride + first;
-        out.extend_from_slice(&rgba[start..start + row_bytes]);
-    }
-}
-
 impl Metering {
     /// The image pipeline a `[camera]` section describes, over ground at NED down
     /// `ground_down_ft` when there is any.
@@ -95,7 +79,6 @@ impl Metering {
             selection: camera.selection,
             bearing_point: camera.bearing_point,
             previous_centroid_px: None,
-            window_pixels: Vec::new(),
             camera_from_ned: None,
             camera_position_ned_ft: Vec3::zeros(),
             ground_down_ft,
@@ -210,8 +193,7 @@ impl Metering {
 
     /// Measures a read-back frame: in its tracking window (binned or not), or the whole image;
     /// the measurement is in the image's pixels (`intrinsics`). A window's measurement that
-    /// cannot stand is replaced by the whole image's when the frame was drawn whole, and asks
-    /// for the frame to be drawn whole otherwise.
+    /// cannot stand asks for the frame to be drawn whole.
     pub fn measure(
         &mut self,
         frame: &DrawnFrame,
@@ -225,19 +207,8 @@ impl Metering {
         };
         let vision_started = Instant::now();
         self.set_view(frame);
-        let pixels = if frame.drawn == window {
-            &frame.pixels.rgba
-        } else {
-            cut_window(
-                &frame.pixels.rgba,
-                &frame.drawn,
-                &window,
-                &mut self.window_pixels,
-            );
-            &self.window_pixels
-        };
         let measured = self.vision.measure_region(
-            pixels,
+            &frame.pixels.rgba,
             &window,
             &frame.intrinsics,
             binned_selection(selection, frame.factor),
@@ -248,10 +219,6 @@ impl Metering {
                 &measured.blob,
                 frame.factor,
             )))
-        } else if frame.whole {
-            Ok(RegionOutcome::Measured(
-                self.measure_whole(frame, selection, timings)?,
-            ))
         } else {
             Ok(RegionOutcome::NeedsWholeImage)
         }

@@ -6,11 +6,12 @@
 //!
 //! With `camera.pipeline = "window"` a frame is drawn, read back and measured only in the
 //! tracking window `vision::tracking` predicts from the last measured frame and the follower's
-//! attitude. The whole image is drawn at acquisition and after a lost frame (no track), for a
-//! frame that will be saved (`output.frames_every`: saved frames are whole images), and when
-//! the window's measurement is not a clean `Ok` or its target pixels reach an edge of the
+//! attitude. The whole image is drawn at acquisition and after a lost frame (no track), and
+//! when the window's measurement is not a clean `Ok` or its target pixels reach an edge of the
 //! window inside the image: that frame is then drawn and measured again whole, before its
-//! record is made, so the record is the whole image's. A windowed frame whose target is
+//! record is made, so the record is the whole image's. A frame that will be saved
+//! (`output.frames_every`) is measured like any other, then drawn again whole for the saved
+//! image when it was not, so saving frames changes no measurement. A windowed frame whose target is
 //! predicted longer than `camera.measure_max_length_px` is drawn and measured binned
 //! (`super::binning`: the camera of 1/k the resolution, its renderer made when first needed),
 //! and its measurement carried back to the image's pixels; a binned frame that cannot stand is
@@ -284,6 +285,8 @@ impl CameraSensor {
         let camera_from_ned = exposure.geometry.camera_from_ned();
         self.drawing
             .observe(exposure.index, &blob, &camera_from_ned);
+        self.drawing
+            .redraw_to_save(exposure, in_flight, &mut self.timings)?;
         Ok(self.record(exposure, blob))
     }
 
@@ -344,8 +347,8 @@ impl CameraSensor {
     }
 
     /// The last frame measured, its record and its measurement, when it was drawn whole
-    /// (frames to be saved always are; a frame drawn in its tracking window only is `None`
-    /// here: see [`Self::last_record`]).
+    /// (frames to be saved always are, once measured; a frame drawn in its tracking window
+    /// only is `None` here: see [`Self::last_record`]).
     pub fn last_frame(&self) -> Option<(&CameraImage, &FrameRecord, &BlobMeasurement)> {
         let (record, blob) = self.last.as_ref()?;
         let image = self.drawing.whole_image(record.index)?;
