@@ -2,7 +2,7 @@
 //! re-opened): a filter whose prediction lost the target keeps every frame out for good
 //! unless a streak of frames that agree with each other, kept out for the stated time, is
 //! taken; a streak of frames that jump between two readings (fragments, blobs of the ground)
-//! is not.
+//! is not. A frame kept out still counts as measured (for the gimbal's search).
 //!
 //! A synthetic pass: the follower flies north at 50 ft/s weaving ±6 ft across its track
 //! (6 s period), the 8 ft target 32 ft ahead and 8 ft aside flying with it; exact pixels at
@@ -35,8 +35,8 @@ enum After {
 }
 
 /// Flies the pass for 31 s and returns |r̂ - r| / |r| at the end (r = R/b of the target as it
-/// really is) and the frames the gate kept out.
-fn fly(reopen_s: f64, after: After) -> (f64, u64) {
+/// really is), the frames the gate kept out, and when the tracker last had a measurement.
+fn fly(reopen_s: f64, after: After) -> (f64, u64, Option<f64>) {
     let section = EstimatorSection {
         size_model: SizeModel::Apparent,
         jerk_psd: 1e-4,
@@ -86,7 +86,7 @@ fn fly(reopen_s: f64, after: After) -> (f64, u64) {
         let estimate = tracker.estimate_at(t_s, &follower).expect("running");
         error = (estimate.r - truth).norm() / truth.norm();
     }
-    (error, tracker.gated_out())
+    (error, tracker.gated_out(), tracker.last_measured_s())
 }
 
 /// Invariant: after the displacement, the filter without re-opening keeps every frame of
@@ -95,8 +95,8 @@ fn fly(reopen_s: f64, after: After) -> (f64, u64) {
 /// r̂'s velocity).
 #[test]
 fn a_consistent_streak_reopens_the_gate() {
-    let (shut, shut_out) = fly(0.0, After::Displaced);
-    let (open, open_out) = fly(0.5, After::Displaced);
+    let (shut, shut_out, _) = fly(0.0, After::Displaced);
+    let (open, open_out, _) = fly(0.5, After::Displaced);
     println!("never re-opened: {shut:.4} off, {shut_out} kept out; 0.5 s: {open:.4}, {open_out}");
     assert!(shut > 0.1 && shut_out > 25, "{shut}, {shut_out}");
     assert!(open < 0.05 && open_out < 20, "{open}, {open_out}");
@@ -107,8 +107,20 @@ fn a_consistent_streak_reopens_the_gate() {
 /// out and stays on the target (within 2%).
 #[test]
 fn frames_that_disagree_do_not_reopen_it() {
-    let (error, kept_out) = fly(0.5, After::Alternating);
+    let (error, kept_out, _) = fly(0.5, After::Alternating);
     println!("alternating lengths: {error:.4} off, {kept_out} kept out");
     assert!(error < 0.02, "{error}");
     assert!(kept_out > 25, "{kept_out}");
+}
+
+/// Invariant: a frame the gate keeps out is still a measurement of something where the
+/// target was looked for, so the gimbal's search (which starts once no measurement has come
+/// for `camera.gimbal.search_after_s`) does not start while the gate keeps frames out.
+/// With the apparent size model nothing else moves the filter's own time, which stayed at
+/// the last fused frame (30 s) before `last_measured_s` was kept for itself.
+#[test]
+fn a_frame_kept_out_counts_as_measured() {
+    let (_, kept_out, last_measured_s) = fly(0.0, After::Displaced);
+    assert!(kept_out > 25, "{kept_out}");
+    assert_eq!(last_measured_s, Some(31.0));
 }

@@ -187,11 +187,6 @@ impl TargetFilter {
         }
     }
 
-    /// Time of the posterior, s.
-    pub fn time_s(&self) -> f64 {
-        self.t_s
-    }
-
     /// The posterior's estimate.
     pub fn posterior(&self) -> FilterEstimate {
         self.estimate_of(&self.x, &self.p)

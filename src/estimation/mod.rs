@@ -117,8 +117,10 @@ pub trait TargetTracker: std::fmt::Debug + Send {
     /// When σ_b / b̂ first fell below the scenario's threshold, s.
     fn known_since_s(&self) -> Option<f64>;
 
-    /// The capture time of the latest fused measurement, s.
-    fn last_fused_s(&self) -> Option<f64>;
+    /// The capture time of the latest measurement of the target, fused or kept out by the
+    /// innovation gate, s: the gimbal searches once none has come for a while, and a frame
+    /// the gate keeps out measured something where the target was looked for.
+    fn last_measured_s(&self) -> Option<f64>;
 
     /// Measurements fused so far.
     fn fused(&self) -> u64;
@@ -282,7 +284,7 @@ impl Estimator {
     pub fn last_measured_s(&self) -> Option<f64> {
         match self {
             Self::Adaptive { hold, .. } => hold.last_measured().map(|f| f.t_s),
-            Self::OnFilter(tracker) => tracker.last_fused_s(),
+            Self::OnFilter(tracker) => tracker.last_measured_s(),
         }
     }
 

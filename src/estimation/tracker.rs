@@ -40,6 +40,8 @@ pub struct KalmanTracker {
     span_aspect_min: f64,
     filter: Option<TargetFilter>,
     known_since_s: Option<f64>,
+    /// The capture time of the latest measurement offered, fused or kept out by the gate, s.
+    last_measured_s: Option<f64>,
     fused: u64,
     /// (capture time, s; νᵀ S⁻¹ ν) of every fused measurement after the first.
     innovations: Vec<(f64, f64)>,
@@ -188,6 +190,7 @@ impl KalmanTracker {
             span_aspect_min: section.span_aspect_min,
             filter: None,
             known_since_s: None,
+            last_measured_s: None,
             fused: 0,
             innovations: Vec::new(),
             innovation_gate: if section.innovation_gate > 0.0 {
@@ -329,6 +332,7 @@ impl KalmanTracker {
         follower_position_ned_ft: &Vec3,
         follower_velocity_ned_fps: &Vec3,
     ) -> bool {
+        self.last_measured_s = Some(t_s);
         match self.filter.as_mut() {
             None => {
                 self.filter = Some(TargetFilter::new(
@@ -559,9 +563,9 @@ impl TargetTracker for KalmanTracker {
         self.known_since_s
     }
 
-    /// The capture time of the latest fused measurement, s.
-    fn last_fused_s(&self) -> Option<f64> {
-        self.filter.as_ref().map(TargetFilter::time_s)
+    /// The capture time of the latest measurement, fused or kept out by the gate, s.
+    fn last_measured_s(&self) -> Option<f64> {
+        self.last_measured_s
     }
 
     /// Measurements fused so far.
