@@ -33,6 +33,9 @@ const LEARNING_RATE: f64 = 0.2;
 /// darkest pixel of formation_scene.toml's target reads 40-60 grey from frame to frame; a
 /// ground blob's differs by 50 or more.
 const LEARNING_RADIUS_GREY: f64 = 20.0;
+/// Half a grey level: a pixel's quantisation, within which a pixel the target covers whole
+/// may lie beyond the target's colour from the background.
+const QUANTISATION_GREY: f32 = 0.5;
 /// The shades of the learned colour a target pixel may have, as multiples of it: the sun
 /// lights one face and not another (2.4 keeps the lit faces of the dark grey target and
 /// leaves out the roads, which are 2.8 times it; 0.4 its faces in shadow).
@@ -64,10 +67,12 @@ impl ColourGate {
 
     /// sin² of the angle between `pixel` − `background` and the plane of the target's
     /// shades and `background`, when `pixel` = a T + b B + residual with b in [0, 1] and a
-    /// within [`SHADES`] times 1 − b (least squares with b held in [0, 1]); None otherwise.
-    /// A pixel the target covers whole has b = 0, the boundary, where rounding and noise put
-    /// the free least-squares b on either side: b is clamped, and a is then the best for it
-    /// (the first normal equation, t·t a + t·B b = t·p, which the free solution meets too).
+    /// within [`SHADES`] times 1 − b (least squares); None otherwise. A pixel the target
+    /// covers whole has b = 0, the boundary, where rounding puts the least-squares b on
+    /// either side: a b below 0 by less than [`QUANTISATION_GREY`] along B − T is taken as
+    /// 0, and a is then the best for it (the first normal equation, t·t a + t·B b = t·p,
+    /// which the free solution meets too). A b further below 0 is a colour beyond the
+    /// target's from the background (brown against green), and is no mixture.
     fn off_plane_sin2(&self, pixel: [f32; 3], background: [f32; 3]) -> Option<f32> {
         let t = self.target_rgb.map(|x| x as f32);
         let dot = |x: [f32; 3], y: [f32; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
@@ -80,7 +85,12 @@ impl ColourGate {
         if det <= 1e-6 * tt * bb || offset2 <= 0.0 {
             return None;
         }
-        let b = ((bp * tt - tp * tb) / det).clamp(0.0, 1.0);
+        let b = (bp * tt - tp * tb) / det;
+        let quantum = QUANTISATION_GREY / (tt - 2.0 * tb + bb).sqrt();
+        if !(-quantum..=1.0).contains(&b) {
+            return None;
+        }
+        let b = b.max(0.0);
         let a = (tp - b * tb) / tt;
         let coverage = 1.0 - b;
         let in_range = a >= SHADES.0 * coverage && a <= SHADES.1 * coverage;
