@@ -2,7 +2,8 @@
 //! re-opened): a filter whose prediction lost the target keeps every frame out for good
 //! unless a streak of frames that agree with each other, kept out for the stated time, is
 //! taken; a streak of frames that jump between two readings (fragments, blobs of the ground)
-//! is not. A frame kept out still counts as measured (for the gimbal's search).
+//! is not, nor one whose range is more than `estimator.gate_reopen_range_ratio` off the
+//! prediction's. A frame kept out still counts as measured (for the gimbal's search).
 //!
 //! A synthetic pass: the follower flies north at 50 ft/s weaving ±6 ft across its track
 //! (6 s period), the 8 ft target 32 ft ahead and 8 ft aside flying with it; exact pixels at
@@ -32,16 +33,29 @@ enum After {
     Displaced,
     /// A length 30% long and one 25% short in turn, the target where it was.
     Alternating,
+    /// Every length 2.5 times the target's, the target where it was: a blob merged with a
+    /// road, which agrees with itself from frame to frame.
+    Merged,
 }
 
 /// Flies the pass for 31 s and returns |r̂ - r| / |r| at the end (r = R/b of the target as it
 /// really is), the frames the gate kept out, and when the tracker last had a measurement.
 fn fly(reopen_s: f64, after: After) -> (f64, u64, Option<f64>) {
+    fly_bounded(
+        reopen_s,
+        EstimatorSection::default().gate_reopen_range_ratio,
+        after,
+    )
+}
+
+/// [`fly`] with the re-opening frame's range bounded by `range_ratio` about the prediction's.
+fn fly_bounded(reopen_s: f64, range_ratio: f64, after: After) -> (f64, u64, Option<f64>) {
     let section = EstimatorSection {
         size_model: SizeModel::Apparent,
         jerk_psd: 1e-4,
         innovation_gate: 16.3,
         gate_reopen_s: reopen_s,
+        gate_reopen_range_ratio: range_ratio,
         ..EstimatorSection::default()
     };
     let focal = CameraIntrinsics::from_hfov(640, 480, 60.0).focal_px;
@@ -63,6 +77,7 @@ fn fly(reopen_s: f64, after: After) -> (f64, u64, Option<f64>) {
             .expect("ahead");
         let length_factor = match after {
             After::Alternating if t_s >= 30.0 => [1.3, 0.75][(index % 2) as usize],
+            After::Merged if t_s >= 30.0 => 2.5,
             _ => 1.0,
         };
         let measured = ImageMeasurement {
@@ -123,4 +138,23 @@ fn a_frame_kept_out_counts_as_measured() {
     let (_, kept_out, last_measured_s) = fly(0.0, After::Displaced);
     assert!(kept_out > 25, "{kept_out}");
     assert_eq!(last_measured_s, Some(31.0));
+}
+
+/// Invariant: a streak whose length is 2.5 times the prediction's (a blob merged with a
+/// road: formation_scene.toml's streams 20, 23 and 24 in the approach) agrees with itself, but
+/// it does not re-open the gate with the default bound (a range within a factor of 2 of the
+/// prediction's): r̂ stays within 5% of the target. Without the bound it re-opens, and r̂
+/// reads the target at 40% of its range.
+#[test]
+fn a_streak_far_off_the_predicted_range_does_not_reopen_it() {
+    let (bounded, bounded_out, _) = fly(0.5, After::Merged);
+    let (unbounded, unbounded_out, _) = fly_bounded(0.5, 1e6, After::Merged);
+    println!(
+        "merged: bounded {bounded:.4} off, {bounded_out} kept out; unbounded {unbounded:.4}, {unbounded_out}"
+    );
+    assert!(
+        bounded < 0.05 && bounded_out > 25,
+        "{bounded}, {bounded_out}"
+    );
+    assert!(unbounded > 0.3, "{unbounded}");
 }

@@ -54,6 +54,9 @@ pub struct KalmanTracker {
     gate_reopen_s: f64,
     /// The frames kept out since the last fused one that agree with each other.
     streak: Option<KeptOutStreak>,
+    /// A streak re-opens the gate only on a frame whose |r*| is within this factor of the
+    /// prediction's |r̂| (`estimator.gate_reopen_range_ratio`).
+    reopen_range_ratio: f64,
     /// Frames whose wing line was fused as the target's turn (`target_bank = "measured"`).
     bank_fused: u64,
     /// The airframe model's shape and its length model (`None` with the other models).
@@ -205,6 +208,7 @@ impl KalmanTracker {
                 f64::INFINITY
             },
             streak: None,
+            reopen_range_ratio: section.gate_reopen_range_ratio,
             bank_fused: 0,
             airframe: None,
             views: Vec::new(),
@@ -359,12 +363,16 @@ impl KalmanTracker {
                         let gate = self.innovation_gate;
                         KeptOutStreak::extended(self.streak, gate, t_s, r_star, covariance)
                     });
-                    if self
-                        .streak
-                        .is_some_and(|streak| t_s - streak.since_s >= self.gate_reopen_s)
+                    let range_ratio = r_star.norm() / predicted.posterior().r.norm();
+                    let plausible = range_ratio.ln().abs() <= self.reopen_range_ratio.ln();
+                    if plausible
+                        && self
+                            .streak
+                            .is_some_and(|streak| t_s - streak.since_s >= self.gate_reopen_s)
                     {
-                        // The prediction, not the frames, is what is wrong: widened until this
-                        // frame's νᵀ S⁻¹ ν is about its 3 degrees of freedom, it takes it.
+                        // The prediction, not the frames, is what is wrong (unless the frame's
+                        // range is beyond the ratio: a blob merged with a road): widened until
+                        // this frame's νᵀ S⁻¹ ν is about its 3 degrees of freedom, it takes it.
                         predicted.widen_kinematics(innovation.normalised_sq / 3.0);
                         innovation = predicted.update(r_star, covariance);
                     }

@@ -190,6 +190,12 @@ pub struct EstimatorSection {
     /// prediction lost (a few fragments that passed the gate moved it) is otherwise kept out
     /// until the prediction's covariance has grown enough to take it. 0 (the default): never.
     pub gate_reopen_s: f64,
+    /// The gate re-opens only on a frame whose |r*| is within this factor of the
+    /// prediction's |r̂| (its range, or its length, within the factor): a prediction that
+    /// fragments moved is off by 1.1-1.3, a blob merged with a road reads 2.3-3 times the
+    /// target's length (docs/findings.md, A whole-covered pixel's rounding). Choice: 2, between
+    /// the two. Only with `gate_reopen_s`.
+    pub gate_reopen_range_ratio: f64,
     /// `inferred` (default) or `measured`: whether each frame's wing line is fused as the
     /// target's acceleration across its velocity (Kalman filter only; frames whose span the
     /// filter's view puts below `span_aspect_min` are not).
@@ -231,6 +237,7 @@ impl Default for EstimatorSection {
             airframe_shape_sigma: 0.025,
             innovation_gate: 0.0,
             gate_reopen_s: 0.0,
+            gate_reopen_range_ratio: 2.0,
             target_bank: TargetBank::Inferred,
             bank_end_sigma_px: 0.5,
             bank_accel_sigma_fps2: 1.0,
@@ -294,6 +301,12 @@ impl EstimatorSection {
             ("airframe_shape_sigma", self.airframe_shape_sigma, 0.0, 1.0),
             ("innovation_gate", self.innovation_gate, 0.0, 1e6),
             ("gate_reopen_s", self.gate_reopen_s, 0.0, 1e6),
+            (
+                "gate_reopen_range_ratio",
+                self.gate_reopen_range_ratio,
+                1.0,
+                1e6,
+            ),
             ("bank_end_sigma_px", self.bank_end_sigma_px, 1e-3, 1e3),
             (
                 "bank_accel_sigma_fps2",
