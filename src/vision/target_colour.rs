@@ -14,7 +14,8 @@
 //! What it assumes, and where it breaks: the target is one colour under its shading, and
 //! the background around it has no colour in the plane of its own and the target's within
 //! the shades' range (a grey target over a darker grey road, or a dark green target over
-//! green fields, is not told from them). The first measured blob of at least a few pixels
+//! green fields, is not told from them; nor a grey road under [`SHADES`]' 2.4 times the grey
+//! learned, which a distant target, mostly mixed pixels, teaches at 75-81 grey). The first measured blob of at least a few pixels
 //! teaches the colour: an acquisition on something else learns that colour; a later sample
 //! farther than [`LEARNING_RADIUS_GREY`] from it is not taken in, so a false blob cannot
 //! re-teach it, nor can a target whose colour changes by more than that at once.
