@@ -218,6 +218,19 @@ fn geometry(k: u64) -> CaptureGeometry {
     )
 }
 
+/// Takes frame `k` of [`geometry`] with both cameras and asserts that they deliver the same
+/// record and measured the same last frame.
+fn capture_alike(a: &mut CameraSensor, b: &mut CameraSensor, k: u64) {
+    let t_s = k as f64 / 30.0;
+    let [delivered_a, delivered_b] = [&mut *a, &mut *b].map(|camera| {
+        camera
+            .capture(t_s, &geometry(k))
+            .unwrap_or_else(|e| panic!("{e}"))
+    });
+    assert_eq!(delivered_a, delivered_b, "frame {k}");
+    assert_eq!(a.last_record(), b.last_record(), "frame {k}");
+}
+
 #[test]
 fn target_jumping_out_of_its_window_is_recovered_in_the_same_frame() {
     for latency_frames in [0, 1] {
@@ -225,15 +238,7 @@ fn target_jumping_out_of_its_window_is_recovered_in_the_same_frame() {
         let mut whole = camera("whole", latency_frames);
         let mut before_jump = WindowCounts::default();
         for k in 0..18 {
-            let t_s = k as f64 / 30.0;
-            let a = windowed
-                .capture(t_s, &geometry(k))
-                .unwrap_or_else(|e| panic!("{e}"));
-            let b = whole
-                .capture(t_s, &geometry(k))
-                .unwrap_or_else(|e| panic!("{e}"));
-            assert_eq!(a, b, "latency {latency_frames}, frame {k}");
-            assert_eq!(windowed.last_record(), whole.last_record());
+            capture_alike(&mut windowed, &mut whole, k);
             if let Some(record) = windowed.last_record() {
                 assert_eq!(record.status, BlobStatus::Ok, "frame {}", record.index);
             }
@@ -313,15 +318,7 @@ fn saving_frames_changes_no_measurement() {
     let mut saving = camera_saving(&binned, 1);
     let mut not_saving = camera_with(&binned);
     for k in 0..12 {
-        let t_s = k as f64 / 30.0;
-        let a = saving
-            .capture(t_s, &geometry(k))
-            .unwrap_or_else(|e| panic!("{e}"));
-        let b = not_saving
-            .capture(t_s, &geometry(k))
-            .unwrap_or_else(|e| panic!("{e}"));
-        assert_eq!(a, b, "frame {k}");
-        assert_eq!(saving.last_record(), not_saving.last_record(), "frame {k}");
+        capture_alike(&mut saving, &mut not_saving, k);
         // The frame to save is the whole image, at the image's resolution.
         if saving.last_record().is_some() {
             let (image, _, _) = saving.last_frame().expect("a saved frame is whole");
