@@ -61,7 +61,7 @@ pub(super) struct DrawnFrame<'a> {
     pub pixels: &'a CameraImage,
     /// The tracking window to measure it in (None: the whole image).
     pub window: Option<ImageRegion>,
-    /// The binning it was drawn at (1: none); `drawn` and `window` are in its pixels.
+    /// The binning it was drawn at (1: none); `window` is in its pixels.
     pub factor: u32,
     /// The intrinsics of the camera binned by `factor`.
     pub intrinsics: CameraIntrinsics,
@@ -252,6 +252,8 @@ impl FrameDrawing {
         self.draw_whole_again(exposure, in_flight, timings)
     }
 
+    /// Draws frame `exposure` whole at the image's resolution into its buffer, the frame in
+    /// flight read back first.
     fn draw_whole_again(
         &mut self,
         exposure: &Exposure,
