@@ -8,7 +8,7 @@
 use super::airframe::{AirframeShape, AirframeTable, ViewAngles};
 use super::aspect::{body_axes_ned, pitched_by_alpha, target_span_aspect};
 use super::bank::{WingLine, lateral_acceleration};
-use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, TargetFilter};
+use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, Innovation, TargetFilter};
 use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
@@ -49,14 +49,8 @@ pub struct KalmanTracker {
     innovation_gate: f64,
     /// Measurements the gate kept out.
     gated_out: u64,
-    /// A streak of frames kept out that agree with each other, lasting this long, re-opens
-    /// the gate, s (`estimator.gate_reopen_s`; ∞: never).
-    gate_reopen_s: f64,
-    /// The frames kept out since the last fused one that agree with each other.
-    streak: Option<KeptOutStreak>,
-    /// A streak re-opens the gate only on a frame whose |r*| is within this factor of the
-    /// prediction's |r̂| (`estimator.gate_reopen_range_ratio`).
-    reopen_range_ratio: f64,
+    /// When a streak of frames the gate kept out re-opens it.
+    reopening: GateReopening,
     /// Frames whose wing line was fused as the target's turn (`target_bank = "measured"`).
     bank_fused: u64,
     /// The airframe model's shape and its length model (`None` with the other models).
@@ -202,13 +196,15 @@ impl KalmanTracker {
                 f64::INFINITY
             },
             gated_out: 0,
-            gate_reopen_s: if section.gate_reopen_s > 0.0 {
-                section.gate_reopen_s
-            } else {
-                f64::INFINITY
+            reopening: GateReopening {
+                after_s: if section.gate_reopen_s > 0.0 {
+                    section.gate_reopen_s
+                } else {
+                    f64::INFINITY
+                },
+                range_ratio: section.gate_reopen_range_ratio,
+                streak: None,
             },
-            streak: None,
-            reopen_range_ratio: section.gate_reopen_range_ratio,
             bank_fused: 0,
             airframe: None,
             views: Vec::new(),
@@ -354,27 +350,17 @@ impl KalmanTracker {
                 // this one out.
                 let mut predicted = filter.clone();
                 predicted.predict_to(t_s, follower_position_ned_ft);
-                let mut innovation =
-                    predicted.update_within(r_star, covariance, self.innovation_gate);
+                let gate = self.innovation_gate;
+                let mut innovation = predicted.update_within(r_star, covariance, gate);
                 if !innovation.fused {
-                    // A frame without a finite innovation breaks the streak.
-                    let finite = innovation.normalised_sq.is_finite();
-                    self.streak = finite.then(|| {
-                        let gate = self.innovation_gate;
-                        KeptOutStreak::extended(self.streak, gate, t_s, r_star, covariance)
-                    });
-                    let range_ratio = r_star.norm() / predicted.posterior().r.norm();
-                    let plausible = range_ratio.ln().abs() <= self.reopen_range_ratio.ln();
-                    if plausible
-                        && self
-                            .streak
-                            .is_some_and(|streak| t_s - streak.since_s >= self.gate_reopen_s)
-                    {
-                        // The prediction, not the frames, is what is wrong (unless the frame's
-                        // range is beyond the ratio: a blob merged with a road): widened until
-                        // this frame's νᵀ S⁻¹ ν is about its 3 degrees of freedom, it takes it.
-                        predicted.widen_kinematics(innovation.normalised_sq / 3.0);
-                        innovation = predicted.update(r_star, covariance);
+                    let kept_out = KeptOutFrame {
+                        t_s,
+                        r_star,
+                        covariance,
+                        normalised_sq: innovation.normalised_sq,
+                    };
+                    if let Some(taken) = self.reopening.take(&mut predicted, &kept_out, gate) {
+                        innovation = taken;
                     }
                 }
                 if !innovation.fused {
@@ -386,7 +372,7 @@ impl KalmanTracker {
             }
         }
         self.fused += 1;
-        self.streak = None;
+        self.reopening.streak = None;
         if self.known_since_s.is_none() && self.size_is_known() {
             self.known_since_s = Some(t_s);
         }
@@ -607,6 +593,59 @@ impl TargetTracker for KalmanTracker {
             .filter(|v| v.t_s >= t_s)
             .copied()
             .collect()
+    }
+}
+
+/// When frames the innovation gate keeps out re-open it (docs/equations.md, The gate
+/// re-opened): a streak of them that agree with each other, lasting `after_s`
+/// (`estimator.gate_reopen_s`; ∞: never), on a frame whose |r*| is within `range_ratio` of
+/// the prediction's |r̂| (`estimator.gate_reopen_range_ratio`).
+#[derive(Debug, Clone, Copy)]
+struct GateReopening {
+    after_s: f64,
+    range_ratio: f64,
+    /// The frames kept out since the last fused one that agree with each other.
+    streak: Option<KeptOutStreak>,
+}
+
+/// A frame the gate kept out: its capture time, s, r*, covariance and νᵀ S⁻¹ ν.
+struct KeptOutFrame<'a> {
+    t_s: f64,
+    r_star: &'a Vec3,
+    covariance: &'a Mat3,
+    normalised_sq: f64,
+}
+
+impl GateReopening {
+    /// Adds `frame` to the streak (a frame without a finite innovation breaks it) and, when
+    /// the streak has lasted `after_s` and the frame's range is within `range_ratio` of
+    /// `predicted`'s, updates `predicted` on it with its kinematics widened: the innovation
+    /// of that update (None: the gate stays shut).
+    fn take(
+        &mut self,
+        predicted: &mut TargetFilter,
+        frame: &KeptOutFrame,
+        gate: f64,
+    ) -> Option<Innovation> {
+        self.streak = frame.normalised_sq.is_finite().then(|| {
+            KeptOutStreak::extended(self.streak, gate, frame.t_s, frame.r_star, frame.covariance)
+        });
+        let due = self
+            .streak
+            .is_some_and(|streak| frame.t_s - streak.since_s >= self.after_s);
+        if !due {
+            return None;
+        }
+        // A range far off the prediction's is not a drifted prediction but something else
+        // measured steadily (the target's blob merged with a road).
+        let range_ratio = frame.r_star.norm() / predicted.posterior().r.norm();
+        if range_ratio.ln().abs() > self.range_ratio.ln() || range_ratio.is_nan() {
+            return None;
+        }
+        // The prediction, not the frames, is what is wrong: widened until this frame's
+        // νᵀ S⁻¹ ν is about its 3 degrees of freedom, it takes it.
+        predicted.widen_kinematics(frame.normalised_sq / 3.0);
+        Some(predicted.update(frame.r_star, frame.covariance))
     }
 }
 
