@@ -15,8 +15,9 @@
 //! the background around it has no colour in the plane of its own and the target's within
 //! the shades' range (a grey target over a darker grey road, or a dark green target over
 //! green fields, is not told from them; nor a grey road under [`SHADES`]' 2.4 times the grey
-//! learned, which a distant target, mostly mixed pixels, teaches at 75-81 grey). The first measured blob of at least a few pixels
-//! teaches the colour: an acquisition on something else learns that colour; a later sample
+//! learned, which a distant target, mostly mixed pixels, teaches at 75-81 grey). The first
+//! measured blob of at least a few pixels teaches the colour: an acquisition on something
+//! else learns that colour; a later sample
 //! farther than [`LEARNING_RADIUS_GREY`] from it is not taken in, so a false blob cannot
 //! re-teach it, nor can a target whose colour changes by more than that at once.
 
@@ -236,6 +237,21 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A colour beyond the target's from the background (b = -0.1: a grey darker and less
+    /// green than any mixture of the grey with the green field) is no mixture, though once b
+    /// is taken as 0 its residual lies within the tolerance (about 2.3° off the plane):
+    /// only a b within half a grey level below 0 is rounding. Taking every b below 0 as 0
+    /// locked stream 2 onto a field's edge.
+    #[test]
+    fn a_colour_beyond_the_target_from_the_background_is_no_mixture() {
+        let gate = ColourGate {
+            target_rgb: [60.0; 3],
+            max_sin: 4f64.to_radians().sin(),
+        };
+        let beyond = [0, 1, 2].map(|c| 1.6 * 60.0 - 0.1 * GREEN[c]);
+        assert_eq!(gate.best_background(beyond, &[GREEN]), None, "{beyond:?}");
     }
 
     /// Ground the memory mislaid is not: a field's edge (brown on green, green on brown)
