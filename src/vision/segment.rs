@@ -11,10 +11,17 @@
 use super::background::BackgroundModel;
 use super::config::{DetectionThreshold, SegmentationConfig, TargetColour};
 use super::image_view::RgbaView;
+use super::target_colour::mixture_coverage;
 
 /// Without core pixels, the target colour is the median of this fraction of the candidates,
 /// those farthest from the background.
 const FULL_CONTRAST_FRACTION: f64 = 0.1;
+/// The least coverage of a core pixel by the learned target colour, as a mixture with its
+/// own background, that keeps it in the mask: above the 0.1-0.22 that a background whose
+/// brightness changed by 7-12 grey levels since the memory saw it reads (formation_scene.toml,
+/// a field beside the target at the slot; docs/findings.md, A changed background inside the
+/// blob).
+const MIN_CORE_COVERAGE: f64 = 0.3;
 
 /// Flag: colour distance to the background is at least the detection threshold.
 pub(crate) const CANDIDATE: u8 = 1;
@@ -37,6 +44,10 @@ pub(crate) struct CoverageModel<'a> {
     pub target_rgb: [f64; 3],
     /// Candidate threshold (Euclidean RGB distance), grey levels.
     pub threshold: f64,
+    /// Whether `target_rgb` was learned from earlier frames and each pixel has its own
+    /// background (`reference`): a core pixel's coverage is then its mixture of the two
+    /// ([`CoverageModel::core_is_target`]).
+    pub learned_over_reference: bool,
 }
 
 impl CoverageModel<'_> {
@@ -77,6 +88,22 @@ impl CoverageModel<'_> {
         let sigma = self.background.noise_sigma;
         let excess = (d2 - 3.0 * sigma * sigma).max(0.0);
         (excess / contrast2).sqrt().min(1.0)
+    }
+
+    /// Whether a core pixel (a candidate among candidates) at index `idx` belongs in the
+    /// mask: always, but where the target's colour was learned over a per-pixel background,
+    /// only when it is a mixture covered at least [`MIN_CORE_COVERAGE`]
+    /// (`super::target_colour::mixture_coverage`), whatever its distance coverage. A
+    /// background that changed since the memory saw it (a field 7-12 grey levels darker) is
+    /// a mixture of 0.1-0.22, and a region of it beside the target made a blob's interior,
+    /// each pixel weighing 1 in the centroid.
+    pub fn core_is_target(&self, frame: &RgbaView<'_>, idx: usize, u: usize, v: usize) -> bool {
+        if !self.learned_over_reference {
+            return true;
+        }
+        let background = self.background_at(idx, u, v);
+        mixture_coverage(self.target_rgb, background, frame.rgb(idx))
+            .is_none_or(|coverage| coverage >= MIN_CORE_COVERAGE)
     }
 }
 
@@ -168,6 +195,7 @@ impl Segmenter {
             width: frame.width,
             target_rgb: [0.0; 3],
             threshold,
+            learned_over_reference: reference.is_some() && learned_target_rgb.is_some(),
         };
         match reference {
             Some(reference) => self.find_candidates_in(frame, reference, threshold),
@@ -314,14 +342,19 @@ impl Segmenter {
         median_colour(frame, most_different, &mut self.histogram)
     }
 
-    /// Flags and lists the mask pixels: core, or candidates covered at least `mask_coverage`.
+    /// Flags and lists the mask pixels: core ([`CoverageModel::core_is_target`]), or other
+    /// candidates covered at least `mask_coverage`.
     fn mark_mask(&mut self, frame: &RgbaView<'_>, model: &CoverageModel, mask_coverage: f64) {
         self.mask.clear();
         let w = frame.width;
         for &i in &self.candidates {
             let idx = i as usize;
-            let in_mask = self.class[idx] & CORE != 0
-                || model.coverage(frame, idx, idx % w, idx / w) >= mask_coverage;
+            let (u, v) = (idx % w, idx / w);
+            let in_mask = if self.class[idx] & CORE != 0 {
+                model.core_is_target(frame, idx, u, v)
+            } else {
+                model.coverage(frame, idx, u, v) >= mask_coverage
+            };
             if in_mask {
                 self.class[idx] |= MASK;
                 self.mask.push(i);
@@ -363,5 +396,50 @@ mod tests {
         for c in 0..3 {
             assert!((model.target_rgb[c] - [50.0, 60.0, 80.0][c]).abs() < 0.6);
         }
+    }
+
+    /// A block of field 11 grey levels darker than the memory's (its brightness changed since
+    /// the memory saw it) beside a dark grey target with a lit face: with the target's grey
+    /// learned, the block's core pixels (a mixture of 0.22 with the grey) leave the mask and
+    /// the target's, lit face included, stay; without it, the block is in the mask whole.
+    #[test]
+    fn a_background_that_changed_brightness_is_not_the_targets_core() {
+        let (w, h) = (40, 30);
+        let remembered = [134.0f32, 111.0, 89.0];
+        let colour_at = |u: usize, v: usize| match (u, v) {
+            (5..=34, 4..=12) => [123u8, 105, 88],
+            (5..=19, 16..=24) => [53, 53, 53],
+            (20..=34, 16..=24) => [106, 106, 106],
+            _ => remembered.map(|c| c as u8),
+        };
+        let rgba: Vec<u8> = (0..w * h)
+            .flat_map(|i| {
+                let [r, g, b] = colour_at(i % w, i / w);
+                [r, g, b, 255]
+            })
+            .collect();
+        let frame = RgbaView::new(&rgba, w as u32, h as u32).unwrap();
+        let reference = vec![remembered; w * h];
+        let in_mask = |learned: Option<[f64; 3]>| {
+            let mut seg = Segmenter::default();
+            let mut background = BackgroundModel::constant(w, h, [0.0; 3]);
+            background.noise_sigma = 1.0;
+            // formation_scene.toml's: thin wing pixels down to a tenth covered.
+            let config = SegmentationConfig {
+                mask_coverage: 0.1,
+                ..SegmentationConfig::default()
+            };
+            seg.segment(&frame, background, Some(&reference), &config, learned)
+                .unwrap();
+            move |u: usize, v: usize| seg.class[v * w + u] & MASK != 0
+        };
+        let learned = in_mask(Some([53.0; 3]));
+        assert!(!learned(20, 8), "the changed field is not target");
+        assert!(
+            learned(12, 20) && learned(27, 20),
+            "the target's dark and lit faces are"
+        );
+        let unlearned = in_mask(None);
+        assert!(unlearned(20, 8) && unlearned(12, 20));
     }
 }

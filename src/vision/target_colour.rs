@@ -77,28 +77,51 @@ impl ColourGate {
     /// target's from the background (brown against green), and is no mixture.
     fn off_plane_sin2(&self, pixel: [f32; 3], background: [f32; 3]) -> Option<f32> {
         let t = self.target_rgb.map(|x| x as f32);
-        let dot = |x: [f32; 3], y: [f32; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
-        let (tt, tb, bb) = (dot(t, t), dot(t, background), dot(background, background));
-        let (tp, bp) = (dot(t, pixel), dot(background, pixel));
-        let det = tt * bb - tb * tb;
         let offset = [0, 1, 2].map(|c| pixel[c] - background[c]);
         let offset2 = dot(offset, offset);
         // A background of the target's own hue spans no plane with it: nothing to test.
-        if det <= 1e-6 * tt * bb || offset2 <= 0.0 {
-            return None;
-        }
-        let b = (bp * tt - tp * tb) / det;
-        let quantum = QUANTISATION_GREY / (tt - 2.0 * tb + bb).sqrt();
+        let b = background_share(t, background, pixel).filter(|_| offset2 > 0.0)?;
+        let (tt, tb) = (dot(t, t), dot(t, background));
+        let quantum = QUANTISATION_GREY / (tt - 2.0 * tb + dot(background, background)).sqrt();
         if !(-quantum..=1.0).contains(&b) {
             return None;
         }
         let b = b.max(0.0);
-        let a = (tp - b * tb) / tt;
+        let a = (dot(t, pixel) - b * tb) / tt;
         let coverage = 1.0 - b;
         let in_range = a >= SHADES.0 * coverage && a <= SHADES.1 * coverage;
         let residual = [0, 1, 2].map(|c| pixel[c] - a * t[c] - b * background[c]);
         in_range.then(|| dot(residual, residual) / offset2)
     }
+}
+
+fn dot(x: [f32; 3], y: [f32; 3]) -> f32 {
+    x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+}
+
+/// The background's share b of `pixel` = a T + b B + residual, the least-squares mixture of
+/// the target's colour T (`target_rgb`, any shade a) and `background` B; None where T and B
+/// span no plane (a background of the target's own hue).
+fn background_share(target_rgb: [f32; 3], background: [f32; 3], pixel: [f32; 3]) -> Option<f32> {
+    let t = target_rgb;
+    let (tt, tb, bb) = (dot(t, t), dot(t, background), dot(background, background));
+    let det = tt * bb - tb * tb;
+    (det > 1e-6 * tt * bb).then(|| (dot(background, pixel) * tt - dot(t, pixel) * tb) / det)
+}
+
+/// The coverage 1 − b of `pixel` by a shade of the target's colour `target_rgb` over
+/// `background` (the least-squares mixture, [`background_share`]), within [0, 1]; None where
+/// the two colours span no plane. Unlike the distance from the background against the
+/// target's contrast, it reads a lit or shaded face whole and a background that changed
+/// brightness (a field's haze since the memory saw it) as barely covered.
+pub(crate) fn mixture_coverage(
+    target_rgb: [f64; 3],
+    background: [f64; 3],
+    pixel: [f64; 3],
+) -> Option<f64> {
+    let f = |x: [f64; 3]| x.map(|c| c as f32);
+    background_share(f(target_rgb), f(background), f(pixel))
+        .map(|b| f64::from(1.0 - b).clamp(0.0, 1.0))
 }
 
 /// The colour learned so far (none before the first measured blob).
