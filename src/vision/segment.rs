@@ -11,7 +11,6 @@
 use super::background::BackgroundModel;
 use super::config::{DetectionThreshold, SegmentationConfig, TargetColour};
 use super::image_view::RgbaView;
-use super::target_colour::mixture_coverage;
 
 /// Without core pixels, the target colour is the median of this fraction of the candidates,
 /// those farthest from the background.
@@ -93,7 +92,7 @@ impl CoverageModel<'_> {
     /// Whether a core pixel (a candidate among candidates) at index `idx` belongs in the
     /// mask: always, but where the target's colour was learned over a per-pixel background,
     /// only when it is a mixture covered at least [`MIN_CORE_COVERAGE`]
-    /// (`super::target_colour::mixture_coverage`), whatever its distance coverage. A
+    /// ([`mixture_coverage`]), whatever its distance coverage. A
     /// background that changed since the memory saw it (a field 7-12 grey levels darker) is
     /// a mixture of 0.1-0.22, and a region of it beside the target made a blob's interior,
     /// each pixel weighing 1 in the centroid.
@@ -105,6 +104,36 @@ impl CoverageModel<'_> {
         mixture_coverage(self.target_rgb, background, frame.rgb(idx))
             .is_none_or(|coverage| coverage >= MIN_CORE_COVERAGE)
     }
+}
+
+/// x · y of two RGB colours.
+pub(crate) fn dot(x: [f32; 3], y: [f32; 3]) -> f32 {
+    x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+}
+
+/// The background's share b of `pixel` = a T + b B + residual, the least-squares mixture of
+/// the target's colour T (`target_rgb`, any shade a) and `background` B; None where T and B
+/// span no plane (a background of the target's own hue).
+pub(crate) fn background_share(
+    target_rgb: [f32; 3],
+    background: [f32; 3],
+    pixel: [f32; 3],
+) -> Option<f32> {
+    let t = target_rgb;
+    let (tt, tb, bb) = (dot(t, t), dot(t, background), dot(background, background));
+    let det = tt * bb - tb * tb;
+    (det > 1e-6 * tt * bb).then(|| (dot(background, pixel) * tt - dot(t, pixel) * tb) / det)
+}
+
+/// The coverage 1 − b of `pixel` by a shade of the target's colour `target_rgb` over
+/// `background` (the least-squares mixture, [`background_share`]), within [0, 1]; None where
+/// the two colours span no plane. Unlike the distance from the background against the
+/// target's contrast, it reads a lit or shaded face whole and a background that changed
+/// brightness (a field's haze since the memory saw it) as barely covered.
+fn mixture_coverage(target_rgb: [f64; 3], background: [f64; 3], pixel: [f64; 3]) -> Option<f64> {
+    let f = |x: [f64; 3]| x.map(|c| c as f32);
+    background_share(f(target_rgb), f(background), f(pixel))
+        .map(|b| f64::from(1.0 - b).clamp(0.0, 1.0))
 }
 
 /// Classifies the pixels of a frame; owns the per-pixel flags and pixel lists between frames.

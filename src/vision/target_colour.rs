@@ -22,7 +22,7 @@
 //! re-teach it, nor can a target whose colour changes by more than that at once.
 
 use super::image_view::RgbaView;
-use super::segment::CoverageModel;
+use super::segment::{CoverageModel, background_share, dot};
 
 /// A blob measured `Ok` teaches the target's colour when it has at least this many mask
 /// pixels: a smaller one (a distant target's fuselage alone, 4-8 px) is mostly its
@@ -93,35 +93,6 @@ impl ColourGate {
         let residual = [0, 1, 2].map(|c| pixel[c] - a * t[c] - b * background[c]);
         in_range.then(|| dot(residual, residual) / offset2)
     }
-}
-
-fn dot(x: [f32; 3], y: [f32; 3]) -> f32 {
-    x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
-}
-
-/// The background's share b of `pixel` = a T + b B + residual, the least-squares mixture of
-/// the target's colour T (`target_rgb`, any shade a) and `background` B; None where T and B
-/// span no plane (a background of the target's own hue).
-fn background_share(target_rgb: [f32; 3], background: [f32; 3], pixel: [f32; 3]) -> Option<f32> {
-    let t = target_rgb;
-    let (tt, tb, bb) = (dot(t, t), dot(t, background), dot(background, background));
-    let det = tt * bb - tb * tb;
-    (det > 1e-6 * tt * bb).then(|| (dot(background, pixel) * tt - dot(t, pixel) * tb) / det)
-}
-
-/// The coverage 1 − b of `pixel` by a shade of the target's colour `target_rgb` over
-/// `background` (the least-squares mixture, [`background_share`]), within [0, 1]; None where
-/// the two colours span no plane. Unlike the distance from the background against the
-/// target's contrast, it reads a lit or shaded face whole and a background that changed
-/// brightness (a field's haze since the memory saw it) as barely covered.
-pub(crate) fn mixture_coverage(
-    target_rgb: [f64; 3],
-    background: [f64; 3],
-    pixel: [f64; 3],
-) -> Option<f64> {
-    let f = |x: [f64; 3]| x.map(|c| c as f32);
-    background_share(f(target_rgb), f(background), f(pixel))
-        .map(|b| f64::from(1.0 - b).clamp(0.0, 1.0))
 }
 
 /// The colour learned so far (none before the first measured blob).
