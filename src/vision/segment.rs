@@ -91,11 +91,10 @@ impl CoverageModel<'_> {
 
     /// Whether a core pixel (a candidate among candidates) at index `idx` belongs in the
     /// mask: always, but where the target's colour was learned over a per-pixel background,
-    /// only when it is a mixture covered at least [`MIN_CORE_COVERAGE`]
-    /// ([`mixture_coverage`]), whatever its distance coverage. A
-    /// background that changed since the memory saw it (a field 7-12 grey levels darker) is
-    /// a mixture of 0.1-0.22, and a region of it beside the target made a blob's interior,
-    /// each pixel weighing 1 in the centroid.
+    /// only when it is a mixture covered at least [`MIN_CORE_COVERAGE`] ([`mixture_coverage`]),
+    /// whatever its distance coverage. A background that changed since the memory saw it (a
+    /// field 7-12 grey levels darker) is a mixture of 0.1-0.22, and a region of it beside the
+    /// target made a blob's interior, each pixel weighing 1 in the centroid.
     pub fn core_is_target(&self, frame: &RgbaView<'_>, idx: usize, u: usize, v: usize) -> bool {
         if !self.learned_over_reference {
             return true;
