@@ -372,7 +372,7 @@ impl KalmanTracker {
             }
         }
         self.fused += 1;
-        self.reopening.streak = None;
+        self.reopening.end_streak();
         if self.known_since_s.is_none() && self.size_is_known() {
             self.known_since_s = Some(t_s);
         }
@@ -617,6 +617,11 @@ struct KeptOutFrame<'a> {
 }
 
 impl GateReopening {
+    /// Ends the streak: a frame was fused.
+    fn end_streak(&mut self) {
+        self.streak = None;
+    }
+
     /// Adds `frame` to the streak (a frame without a finite innovation breaks it) and, when
     /// the streak has lasted `after_s` and the frame's range is within `range_ratio` of
     /// `predicted`'s, updates `predicted` on it with its kinematics widened: the innovation
