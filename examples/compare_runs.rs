@@ -7,7 +7,8 @@
 //! ```
 //!
 //! A value matches when |a - b| ≤ tol · max(|a|, |b|, the column's largest |value| over the
-//! run), both empty counting as equal. Summary keys the new build adds are not compared. Excepted: wall times (`wall_s`, `realtime_factor`,
+//! run), both empty counting as equal. Summary keys and telemetry columns the new build adds
+//! are not compared (the added columns are named); a column it no longer writes fails. Excepted: wall times (`wall_s`, `realtime_factor`,
 //! `per_frame_ms`, `stage_wall_s` in the summary) and the columns and rows a known fix of
 //! the telemetry changes: `r_meas_*` (now the brought-forward r the guidance was given, no
 //! longer the held frame's), and the rows at which the sensor acted (now logged after it
@@ -98,14 +99,42 @@ struct ColumnReport {
     first_failure_row: Option<usize>,
 }
 
-fn compare_telemetry(base: &Table, new: &Table, tol: f64) -> Result<Vec<String>, String> {
-    if base.header != new.header {
-        return Err(format!(
-            "headers differ:\n  base {}\n  new  {}",
-            base.header.join(","),
-            new.header.join(",")
-        ));
+/// The new table's columns in the base's order, and the names of the columns only the new
+/// build writes (a column added to the outputs, not compared); an error naming a base column
+/// the new build no longer writes.
+fn columns_of_base(base: &Table, new: &Table) -> Result<(Table, Vec<String>), String> {
+    let position = |name: &String| new.header.iter().position(|h| h == name);
+    let missing: Vec<&str> = base
+        .header
+        .iter()
+        .filter(|h| position(h).is_none())
+        .map(String::as_str)
+        .collect();
+    if !missing.is_empty() {
+        return Err(format!("columns gone: {}", missing.join(",")));
     }
+    let columns: Vec<usize> = base.header.iter().filter_map(position).collect();
+    let rows = new
+        .rows
+        .iter()
+        .map(|row| columns.iter().map(|c| row[*c]).collect())
+        .collect();
+    let added = new
+        .header
+        .iter()
+        .filter(|h| !base.header.contains(h))
+        .cloned()
+        .collect();
+    let projected = Table {
+        header: base.header.clone(),
+        rows,
+    };
+    Ok((projected, added))
+}
+
+fn compare_telemetry(base: &Table, new: &Table, tol: f64) -> Result<Vec<String>, String> {
+    let (new, added) = columns_of_base(base, new)?;
+    let new = &new;
     if base.rows.len() != new.rows.len() {
         return Err(format!(
             "row counts differ: base {} new {}",
@@ -151,6 +180,12 @@ fn compare_telemetry(base: &Table, new: &Table, tol: f64) -> Result<Vec<String>,
         reports.len(),
         delivery_rows
     )];
+    if !added.is_empty() {
+        lines.push(format!(
+            "columns the new build adds (not compared): {}",
+            added.join(",")
+        ));
+    }
     let worst = reports
         .iter()
         .filter(|(_, r)| r.worst > 0.0)

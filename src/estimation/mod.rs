@@ -168,6 +168,17 @@ impl FilterReading {
     }
 }
 
+/// What became of a camera frame delivered to the estimator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Delivery {
+    /// It is the guidance's first measurement.
+    pub first: bool,
+    /// The estimator the guidance flies on took it as a measurement of the target: one
+    /// (`Ok`) that the adaptive law holds, or that the Kalman filter fused (its innovation
+    /// gate did not keep it out). Such a frame is trusted.
+    pub trusted: bool,
+}
+
 /// The estimator of a run.
 #[derive(Debug)]
 pub enum Estimator {
@@ -184,17 +195,23 @@ pub enum Estimator {
 }
 
 impl Estimator {
-    /// A camera frame reached the guidance, the follower flying at `follower_velocity_ned_fps`.
-    /// Returns true when it is the guidance's first measurement, for the law's filters to
-    /// start on.
-    pub fn deliver(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) -> bool {
-        let started = self.filter().is_some_and(|t| t.fused() > 0);
+    /// A camera frame reached the guidance, the follower flying at `follower_velocity_ned_fps`:
+    /// whether it is the guidance's first measurement (for the law's filters to start on) and
+    /// whether the estimator the guidance flies on took it.
+    pub fn deliver(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) -> Delivery {
+        let fused_before = self.filter().map_or(0, |t| t.fused());
         if let Some(tracker) = self.filter_mut() {
             tracker.fuse_frame(record, follower_velocity_ned_fps);
         }
         match self {
-            Self::Adaptive { hold, .. } => hold.deliver(record).is_some(),
-            Self::OnFilter(tracker) => !started && tracker.fused() > 0,
+            Self::Adaptive { hold, .. } => Delivery {
+                first: hold.deliver(record).is_some(),
+                trusted: record.r_measured.is_some(),
+            },
+            Self::OnFilter(tracker) => Delivery {
+                first: fused_before == 0 && tracker.fused() > 0,
+                trusted: tracker.fused() > fused_before,
+            },
         }
     }
 

@@ -452,6 +452,7 @@ impl Simulation {
             navigation: self.navigation_reading(),
             guidance: out,
             frame: self.camera().and_then(CameraSensor::held_record),
+            frame_trusted: self.camera().and_then(CameraSensor::held_trusted),
             gimbal: self.gimbal_reading(),
             aircraft: actuation.aircraft().copied(),
         }

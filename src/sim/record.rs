@@ -46,6 +46,8 @@ pub struct Snapshot {
     pub guidance: GuidanceOutput,
     /// The measurement and truth of the frame the guidance holds (camera runs).
     pub frame: Option<FrameRecord>,
+    /// Whether the estimator took the held frame (camera runs, once one is held).
+    pub frame_trusted: Option<bool>,
     /// The gimbal's angles and command now (gimballed cameras).
     pub gimbal: Option<GimbalReading>,
     /// The 6-DOF follower's air data, actuators and flight controller (aircraft runs).

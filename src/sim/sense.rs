@@ -33,7 +33,11 @@ impl Simulation {
                     self.false_locks.record(record.t_s, on_target);
                 }
                 let stamped = self.stamped(&record, &velocity);
-                self.estimator.deliver(&stamped, &velocity)
+                let delivery = self.estimator.deliver(&stamped, &velocity);
+                if let Some(camera) = self.sensor.camera_mut() {
+                    camera.settle(record.index, delivery.trusted);
+                }
+                delivery.first
             }
             None => {
                 self.sample_continuous(&geometry, &velocity);

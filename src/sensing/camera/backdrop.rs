@@ -2,6 +2,8 @@
 //! ground, the horizon across the target, or cloud; and how the frames of each fared. The
 //! counts only report (the summary's `background`); nothing in the loop reads them.
 
+use std::collections::VecDeque;
+
 use crate::render::camera::CameraIntrinsics;
 use crate::render::scene::{Backdrop, WorldScene, cloud_threshold};
 use crate::sensing::geometry::FollowerPose;
@@ -23,6 +25,11 @@ pub struct BackdropFrames {
     /// RMS distance of the measured centroid from the silhouette's true centroid over those
     /// frames' `Ok` measurements, px (null without any).
     pub centroid_vs_silhouette_rms_px: Option<f64>,
+    /// Of those frames, the ones the estimator took (trusted: `Ok`, and fused by a Kalman
+    /// filter whose innovation gate did not keep them out).
+    pub trusted: u64,
+    /// The RMS distance over the trusted frames alone, px (null without any).
+    pub trusted_centroid_vs_silhouette_rms_px: Option<f64>,
 }
 
 /// The frames of a world scene by what lay behind the target.
@@ -38,13 +45,34 @@ pub struct BackgroundCounts {
     pub cloud: BackdropFrames,
 }
 
+/// A sum of squared centroid errors.
+#[derive(Debug, Clone, Copy, Default)]
+struct SquaredErrors {
+    frames: u64,
+    sum_px2: f64,
+}
+
+impl SquaredErrors {
+    fn add(&mut self, sq_px2: Option<f64>) {
+        if let Some(sq) = sq_px2 {
+            self.frames += 1;
+            self.sum_px2 += sq;
+        }
+    }
+
+    fn rms_px(&self) -> Option<f64> {
+        (self.frames > 0).then(|| (self.sum_px2 / self.frames as f64).sqrt())
+    }
+}
+
 /// Sums of one kind's frames.
 #[derive(Debug, Clone, Copy, Default)]
 struct Tally {
     frames: u64,
     lost: u64,
-    silhouette_frames: u64,
-    silhouette_sq_px2: f64,
+    silhouette: SquaredErrors,
+    trusted: u64,
+    trusted_silhouette: SquaredErrors,
 }
 
 impl Tally {
@@ -52,10 +80,19 @@ impl Tally {
         BackdropFrames {
             frames: self.frames,
             lost: self.lost,
-            centroid_vs_silhouette_rms_px: (self.silhouette_frames > 0)
-                .then(|| (self.silhouette_sq_px2 / self.silhouette_frames as f64).sqrt()),
+            centroid_vs_silhouette_rms_px: self.silhouette.rms_px(),
+            trusted: self.trusted,
+            trusted_centroid_vs_silhouette_rms_px: self.trusted_silhouette.rms_px(),
         }
     }
+}
+
+/// A frame counted but not yet delivered to the estimator (the camera's latency).
+#[derive(Debug, Clone, Copy)]
+struct Unsettled {
+    index: u64,
+    kind: FrameBackground,
+    silhouette_sq_px2: Option<f64>,
 }
 
 /// What a frame showed behind its target.
@@ -73,6 +110,8 @@ pub(super) enum FrameBackground {
 
 /// One measured frame, as the backdrop audit is given it.
 pub(super) struct BackdropFrame<'a> {
+    /// Its frame number.
+    pub index: u64,
     /// The target's true (yI, zI, bI), px.
     pub truth: &'a ImageMeasurement,
     /// The follower as it truly was (its camera's pose).
@@ -90,6 +129,8 @@ pub(super) struct BackdropAudit {
     scene: WorldScene,
     threshold: f32,
     tallies: [Tally; 4],
+    /// Frames counted and not yet delivered, oldest first.
+    unsettled: VecDeque<Unsettled>,
 }
 
 impl BackdropAudit {
@@ -102,6 +143,7 @@ impl BackdropAudit {
             scene,
             threshold,
             tallies: [Tally::default(); 4],
+            unsettled: VecDeque::new(),
         }
     }
 
@@ -148,9 +190,27 @@ impl BackdropAudit {
         let tally = &mut self.tallies[kind as usize];
         tally.frames += 1;
         tally.lost += u64::from(!frame.ok);
-        if let Some(sq) = frame.silhouette_sq_px2 {
-            tally.silhouette_frames += 1;
-            tally.silhouette_sq_px2 += sq;
+        tally.silhouette.add(frame.silhouette_sq_px2);
+        self.unsettled.push_back(Unsettled {
+            index: frame.index,
+            kind,
+            silhouette_sq_px2: frame.silhouette_sq_px2,
+        });
+    }
+
+    /// The frame `index` reached the estimator, which took it (`trusted`) or not; frames
+    /// counted before it that never reached it are dropped.
+    pub fn settle(&mut self, index: u64, trusted: bool) {
+        while let Some(frame) = self.unsettled.front().copied() {
+            if frame.index > index {
+                return;
+            }
+            self.unsettled.pop_front();
+            if frame.index == index && trusted {
+                let tally = &mut self.tallies[frame.kind as usize];
+                tally.trusted += 1;
+                tally.trusted_silhouette.add(frame.silhouette_sq_px2);
+            }
         }
     }
 
@@ -194,5 +254,40 @@ mod tests {
         assert_eq!(at(0.0), FrameBackground::Horizon);
         assert_eq!(at(40.0), FrameBackground::Sky);
         assert_eq!(at(-40.0), FrameBackground::Ground);
+    }
+
+    /// Frames 0-3 against ground, 1 px, 2 px, 3 px and 4 px off: frame 0 never reaches the
+    /// estimator (a later frame settles first), frame 1 is taken, frame 2 kept out, frame 3
+    /// not settled yet. Every counted frame is in the RMS over all; only frame 1 is trusted.
+    #[test]
+    fn only_frames_the_estimator_took_are_trusted() {
+        let cam = CameraIntrinsics::from_hfov(640, 480, 60.0);
+        let follower = FollowerPose::at_origin(EulerAngles::new(0.0, 0.0, 0.0));
+        let truth = ImageMeasurement {
+            y_i_px: 0.0,
+            z_i_px: -40.0,
+            b_i_px: 20.0,
+        };
+        let mut a = audit();
+        for index in 0..4 {
+            let off_px = (index + 1) as f64;
+            let frame = BackdropFrame {
+                index,
+                truth: &truth,
+                follower: &follower,
+                ok: true,
+                silhouette_sq_px2: Some(off_px * off_px),
+            };
+            a.count(&frame, &cam);
+        }
+        a.settle(1, true);
+        a.settle(2, false);
+        let ground = a.counts().ground;
+        assert_eq!((ground.frames, ground.trusted), (4, 1));
+        let all = ground.centroid_vs_silhouette_rms_px.expect("counted");
+        assert!((all - 7.5f64.sqrt()).abs() < 1e-12, "{all}");
+        assert_eq!(ground.trusted_centroid_vs_silhouette_rms_px, Some(2.0));
+        a.settle(3, true);
+        assert_eq!(a.counts().ground.trusted, 2);
     }
 }

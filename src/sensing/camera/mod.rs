@@ -132,6 +132,8 @@ pub struct CameraSensor {
     backdrop: Option<BackdropAudit>,
     /// The last frame measured, its record and its blob.
     last: Option<(FrameRecord, BlobMeasurement)>,
+    /// The last frame delivered to the estimator (its index) and whether it was trusted.
+    settled: Option<(u64, bool)>,
     lost_frames: u64,
     timings: CameraTimings,
     adapter: String,
@@ -192,6 +194,7 @@ impl CameraSensor {
             audit: MeasurementAudit::default(),
             backdrop,
             last: None,
+            settled: None,
             lost_frames: 0,
             timings: CameraTimings::default(),
             adapter: gpu.description(),
@@ -308,6 +311,7 @@ impl CameraSensor {
         let truth = self.audit.audit(&audited, self.drawing.mesh(), &intrinsics);
         if let (Some(backdrop), Some(truth)) = (&mut self.backdrop, &truth) {
             let frame = BackdropFrame {
+                index: exposure.index,
                 truth,
                 follower: &geometry.follower,
                 ok,
@@ -371,6 +375,22 @@ impl CameraSensor {
     /// old.
     pub fn held_record(&self) -> Option<FrameRecord> {
         self.schedule.held()
+    }
+
+    /// The frame `index` reached the estimator, which took it (`trusted`) or not (a frame not
+    /// `Ok`, or one the filter's innovation gate kept out).
+    pub fn settle(&mut self, index: u64, trusted: bool) {
+        self.settled = Some((index, trusted));
+        if let Some(backdrop) = &mut self.backdrop {
+            backdrop.settle(index, trusted);
+        }
+    }
+
+    /// Whether the frame the guidance holds was trusted (`None` before one is held).
+    pub fn held_trusted(&self) -> Option<bool> {
+        let held = self.held_record()?;
+        self.settled
+            .and_then(|(index, trusted)| (index == held.index).then_some(trusted))
     }
 
     /// The intrinsics of this camera.
