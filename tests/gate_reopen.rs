@@ -13,13 +13,14 @@
 //! after about 3 s here; a follower flying on the lost prediction for 3 s at its slot had
 //! lost the target by then: docs/findings.md, The ring in a tracking window.)
 
+mod common;
+
 use wingman::estimation::{KalmanTracker, TargetTracker};
 use wingman::frames::{Mat3, Vec3};
 use wingman::render::camera::CameraIntrinsics;
 use wingman::scenario::{EstimatorSection, SizeModel};
-use wingman::sensing::FrameRecord;
-use wingman::sensing::transform::{image_from_relative_position, scaled_relative_position};
-use wingman::vision::{BlobStatus, ImageMeasurement};
+use wingman::sensing::transform::image_from_relative_position;
+use wingman::vision::ImageMeasurement;
 
 const SIZE_FT: f64 = 8.0;
 const SPEED_FPS: f64 = 50.0;
@@ -60,8 +61,7 @@ fn fly_bounded(reopen_s: f64, range_ratio: f64, after: After) -> (f64, u64, Opti
     };
     let focal = CameraIntrinsics::from_hfov(640, 480, 60.0).focal_px;
     let mut tracker = KalmanTracker::new(&section, focal, 4.0, (1.0, 30.0));
-    let ned_from_camera = Mat3::identity();
-    let camera_from_ned = ned_from_camera.transpose();
+    let camera_from_ned = Mat3::identity();
     let weave = |t: f64| 6.0 * (std::f64::consts::TAU * t / 6.0).sin();
     let weave_rate =
         |t: f64| 6.0 * std::f64::consts::TAU / 6.0 * (std::f64::consts::TAU * t / 6.0).cos();
@@ -84,18 +84,8 @@ fn fly_bounded(reopen_s: f64, range_ratio: f64, after: After) -> (f64, u64, Opti
             b_i_px: exact.b_i_px * length_factor,
             ..exact
         };
-        let record = FrameRecord {
-            index,
-            t_s,
-            status: BlobStatus::Ok,
-            measured: Some(measured),
-            truth: Some(exact),
-            r_measured: Some(scaled_relative_position(&measured, focal, &camera_from_ned)),
-            follower_position_ned_ft: follower,
-            ned_from_camera,
-            range_ft: relative.norm(),
-            length_direction: None,
-        };
+        let record =
+            common::north_camera_frame((index, t_s), measured, exact, focal, follower, relative);
         tracker.fuse_frame(&record, &Vec3::new(SPEED_FPS, weave_rate(t_s), 0.0));
         let truth = relative / SIZE_FT;
         let estimate = tracker.estimate_at(t_s, &follower).expect("running");

@@ -12,7 +12,7 @@ use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, Innovation, Target
 use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
-use crate::scenario::{EstimatorSection, SizeModel, TargetBank};
+use crate::scenario::{CovarianceAt, EstimatorSection, SizeModel, TargetBank};
 use crate::sensing::{FrameRecord, scaled_position_jacobian, scaled_relative_position};
 use crate::vision::ImageMeasurement;
 
@@ -38,6 +38,8 @@ pub struct KalmanTracker {
     known_sigma_fraction: f64,
     size_model: SizeModel,
     span_aspect_min: f64,
+    /// Where a frame's pixel covariance is mapped to r's (`estimator.covariance_at`).
+    covariance_at: CovarianceAt,
     filter: Option<TargetFilter>,
     known_since_s: Option<f64>,
     /// The capture time of the latest measurement offered, fused or kept out by the gate, s.
@@ -185,6 +187,7 @@ impl KalmanTracker {
             known_sigma_fraction: section.known_sigma_fraction,
             size_model: section.size_model,
             span_aspect_min: section.span_aspect_min,
+            covariance_at: section.covariance_at,
             filter: None,
             known_since_s: None,
             last_measured_s: None,
@@ -269,12 +272,14 @@ impl KalmanTracker {
             ..lengthened
         };
         let relative_sigma = n.sigma(angles.yaw_rad, view_sigma_rad) / n.length;
-        let length_variance_px2 = model.length_sigma_px(corrected.b_i_px).powi(2)
-            + (corrected.b_i_px * relative_sigma).powi(2);
+        let r = scaled_relative_position(&corrected, focal_px, &camera_from_ned) * n.length;
+        let at = self.linearisation_pixels(record, &corrected, n.length);
+        let model = self.airframe.as_mut()?;
+        let length_variance_px2 =
+            model.length_sigma_px(at.b_i_px).powi(2) + (at.b_i_px * relative_sigma).powi(2);
         let mut pixel_covariance = self.pixel_covariance_px2;
         pixel_covariance[(2, 2)] = length_variance_px2 * self.measurement_inflation;
-        let jacobian = scaled_position_jacobian(&corrected, focal_px, &record.ned_from_camera);
-        let r = scaled_relative_position(&corrected, focal_px, &camera_from_ned) * n.length;
+        let jacobian = scaled_position_jacobian(&at, focal_px, &record.ned_from_camera);
         let covariance = jacobian * pixel_covariance * jacobian.transpose() * n.length.powi(2);
         self.views.push(PredictedView {
             t_s: record.t_s,
@@ -320,6 +325,41 @@ impl KalmanTracker {
             (pixels.y_i_px, pixels.z_i_px),
             self.focal_px,
         )
+    }
+
+    /// The pixels the filter predicts for a frame: its r̂ at the frame's capture divided by
+    /// `scale` (the factor the frame's r* is multiplied by: the span's aspect or the
+    /// airframe's n), read back through r = L_BEᵀ [l, yI, -zI]ᵀ / bI (docs/equations.md,
+    /// (3.3)-(3.12)). None before the filter runs or while the prediction is behind the camera.
+    fn predicted_pixels(&self, record: &FrameRecord, scale: f64) -> Option<ImageMeasurement> {
+        let filter = self.filter.as_ref()?;
+        let predicted = filter
+            .estimate_at(record.t_s, &record.follower_position_ned_ft)
+            .r;
+        let camera = record.ned_from_camera.transpose() * predicted / scale;
+        (camera.x > 0.0).then(|| {
+            let b_i_px = self.focal_px / camera.x;
+            ImageMeasurement {
+                y_i_px: camera.y * b_i_px,
+                z_i_px: -camera.z * b_i_px,
+                b_i_px,
+            }
+        })
+    }
+
+    /// The pixels at which a frame's pixel covariance is mapped to r's
+    /// (`estimator.covariance_at`): its own `measured`, or those the filter predicts
+    /// ([`Self::predicted_pixels`], the measured ones where there are none).
+    fn linearisation_pixels(
+        &self,
+        record: &FrameRecord,
+        measured: &ImageMeasurement,
+        scale: f64,
+    ) -> ImageMeasurement {
+        match self.covariance_at {
+            CovarianceAt::Measurement => *measured,
+            CovarianceAt::Prediction => self.predicted_pixels(record, scale).unwrap_or(*measured),
+        }
     }
 
     /// Predicts to the measurement's time and fuses it (or starts the filter on it), unless
@@ -481,25 +521,24 @@ impl TargetTracker for KalmanTracker {
             }
             return;
         }
-        let jacobian = scaled_position_jacobian(&pixels, self.focal_px, &record.ned_from_camera);
         let mut r = r_star;
-        let mut covariance = jacobian * self.pixel_covariance_px2 * jacobian.transpose();
         let aspect = self.predicted_aspect(record, &pixels);
         // A size model that cannot tell the view once the filter runs (β̂ ≤ 0, a velocity
         // without a direction) does not know what the length measures: bearing only.
         let view_unknown = self.size_model != SizeModel::Apparent && self.filter.is_some();
-        match aspect {
-            Some(aspect) if aspect >= self.span_aspect_min => {
-                r *= aspect;
-                covariance *= aspect * aspect;
-            }
-            None if !view_unknown => {}
-            _ => {
-                let mut bearing_only = self.pixel_covariance_px2;
-                bearing_only[(2, 2)] = (BEARING_ONLY_LENGTH_SIGMAS * pixels.b_i_px).powi(2);
-                covariance = jacobian * bearing_only * jacobian.transpose();
-            }
+        let (scale, bearing_only) = match aspect {
+            Some(aspect) if aspect >= self.span_aspect_min => (aspect, false),
+            None if !view_unknown => (1.0, false),
+            _ => (1.0, true),
+        };
+        r *= scale;
+        let at = self.linearisation_pixels(record, &pixels, scale);
+        let jacobian = scaled_position_jacobian(&at, self.focal_px, &record.ned_from_camera);
+        let mut pixel_covariance = self.pixel_covariance_px2;
+        if bearing_only {
+            pixel_covariance[(2, 2)] = (BEARING_ONLY_LENGTH_SIGMAS * at.b_i_px).powi(2);
         }
+        let covariance = jacobian * pixel_covariance * jacobian.transpose() * (scale * scale);
         let fused = self.fuse(
             record.t_s,
             &r,

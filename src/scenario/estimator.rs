@@ -81,6 +81,23 @@ pub enum TargetBank {
     Measured,
 }
 
+/// Where the Kalman filter maps a camera frame's pixel covariance through the Jacobian of
+/// (3.3)-(3.12) (docs/equations.md, Noisy measurements).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CovarianceAt {
+    /// At the frame's own pixels (the seed's mapping of pixel noise, the converted
+    /// measurement's usual choice): a blob shorter than the target brings a σ along the line
+    /// of sight widened by the square of its shortness, so a fragment of a distant target
+    /// fuses as a target farther off.
+    Measurement,
+    /// At the pixels the filter predicts for the frame's capture, as an extended Kalman
+    /// filter linearises: a fragment is weighed as the target it claims to be, and its
+    /// normalised innovation grows with its shortness. Falls back to the measurement before
+    /// the filter runs or while the prediction is behind the camera.
+    Prediction,
+}
+
 /// `[estimator]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -196,6 +213,14 @@ pub struct EstimatorSection {
     /// target's length (docs/findings.md, A whole-covered pixel's rounding). Choice: 2, between
     /// the two. Only with `gate_reopen_s`.
     pub gate_reopen_range_ratio: f64,
+    /// `measurement` (default) or `prediction`: the pixels at which a frame's pixel covariance
+    /// is mapped to r's (Kalman filter, camera frames). `measurement` is the seed's mapping of
+    /// pixel noise at the measurement; `prediction` linearises at the filter's prediction, as
+    /// an extended Kalman filter does, so a short fragment of the target reads a normalised
+    /// innovation as large as its range error warrants. `prediction` loses formation_scene's
+    /// target in the approach on half the streams (docs/findings.md, The covariance at the
+    /// prediction).
+    pub covariance_at: CovarianceAt,
     /// `inferred` (default) or `measured`: whether each frame's wing line is fused as the
     /// target's acceleration across its velocity (Kalman filter only; frames whose span the
     /// filter's view puts below `span_aspect_min` are not).
@@ -238,6 +263,7 @@ impl Default for EstimatorSection {
             innovation_gate: 0.0,
             gate_reopen_s: 0.0,
             gate_reopen_range_ratio: 2.0,
+            covariance_at: CovarianceAt::Measurement,
             target_bank: TargetBank::Inferred,
             bank_end_sigma_px: 0.5,
             bank_accel_sigma_fps2: 1.0,

@@ -4,9 +4,13 @@
 pub mod flight;
 
 use std::path::{Path, PathBuf};
+use wingman::frames::{Mat3, Vec3};
 use wingman::output::{RunReport, run_to_directory};
 use wingman::scenario::Scenario;
+use wingman::sensing::FrameRecord;
+use wingman::sensing::transform::scaled_relative_position;
 use wingman::study::{Progress, SweepOptions};
+use wingman::vision::{BlobStatus, ImageMeasurement};
 
 /// The largest of a run's per-axis RMS errors of R - R_c over the last 20 s, ft.
 pub fn worst_axis_ft(s: &wingman::output::summary::Summary) -> f64 {
@@ -314,3 +318,32 @@ pub const SYSTEM_PACKAGES: [&str; 6] = [
     "python3-venv",
     "ffmpeg",
 ];
+
+/// Frame `index`, taken at `t_s` by a camera looking north (its axes NED's) from
+/// `follower_ned_ft` with the target at `relative_ned_ft`, measured `Ok` as `measured` (the
+/// truth `exact`), for the filter tests' synthetic passes.
+pub fn north_camera_frame(
+    (index, t_s): (u64, f64),
+    measured: ImageMeasurement,
+    exact: ImageMeasurement,
+    focal_px: f64,
+    follower_ned_ft: Vec3,
+    relative_ned_ft: Vec3,
+) -> FrameRecord {
+    FrameRecord {
+        index,
+        t_s,
+        status: BlobStatus::Ok,
+        measured: Some(measured),
+        truth: Some(exact),
+        r_measured: Some(scaled_relative_position(
+            &measured,
+            focal_px,
+            &Mat3::identity(),
+        )),
+        follower_position_ned_ft: follower_ned_ft,
+        ned_from_camera: Mat3::identity(),
+        range_ft: relative_ned_ft.norm(),
+        length_direction: None,
+    }
+}
