@@ -13,6 +13,7 @@ use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{CovarianceAt, EstimatorSection, SizeModel, TargetBank};
+use crate::sensing::transform::image_from_relative_position;
 use crate::sensing::{FrameRecord, scaled_position_jacobian, scaled_relative_position};
 use crate::vision::ImageMeasurement;
 
@@ -327,24 +328,17 @@ impl KalmanTracker {
         )
     }
 
-    /// The pixels the filter predicts for a frame: its r̂ at the frame's capture divided by
-    /// `scale` (the factor the frame's r* is multiplied by: the span's aspect or the
-    /// airframe's n), read back through r = L_BEᵀ [l, yI, -zI]ᵀ / bI (docs/equations.md,
-    /// (3.3)-(3.12)). None before the filter runs or while the prediction is behind the camera.
+    /// The pixels the filter predicts for a frame: the image of its r̂ at the frame's capture
+    /// divided by `scale` (the factor the frame's r* is multiplied by: the span's aspect or
+    /// the airframe's n), r̂ being R/b (docs/equations.md, (3.3)-(3.12)). None before the
+    /// filter runs or while the prediction is behind the camera.
     fn predicted_pixels(&self, record: &FrameRecord, scale: f64) -> Option<ImageMeasurement> {
         let filter = self.filter.as_ref()?;
         let predicted = filter
             .estimate_at(record.t_s, &record.follower_position_ned_ft)
             .r;
-        let camera = record.ned_from_camera.transpose() * predicted / scale;
-        (camera.x > 0.0).then(|| {
-            let b_i_px = self.focal_px / camera.x;
-            ImageMeasurement {
-                y_i_px: camera.y * b_i_px,
-                z_i_px: -camera.z * b_i_px,
-                b_i_px,
-            }
-        })
+        let camera_from_ned = record.ned_from_camera.transpose();
+        image_from_relative_position(&(predicted / scale), &camera_from_ned, 1.0, self.focal_px)
     }
 
     /// The pixels at which a frame's pixel covariance is mapped to r's
