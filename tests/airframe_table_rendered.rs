@@ -7,7 +7,7 @@
 //! perspective the table leaves out (the nearest and farthest vertices of the 8 ft target are
 //! up to 4 ft off the 120 ft range) of f b n / R, n the table's value at the view.
 
-mod common;
+use crate::common;
 
 use wingman::estimation::airframe::{AirframeTable, ViewAngles};
 use wingman::frames::Vec3;

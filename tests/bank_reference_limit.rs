@@ -13,9 +13,7 @@
 //! 15 and 35 against 27, but seed 28 then leaves the slot by 106 ft with the reference held
 //! (docs/findings.md, The speed brake's size, and the bank reference, in moderate air).
 
-mod common;
-
-use common::{run, worst_axis_ft};
+use crate::common::{run, worst_axis_ft};
 use wingman::output::RunReport;
 use wingman::output::summary::RunStatus;
 

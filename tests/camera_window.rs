@@ -26,10 +26,9 @@
 //! saved is measured in its window, binned when it would be, and only then drawn whole for
 //! the saved image.
 
-mod common;
-mod render_support;
+use crate::common;
 
-use render_support::*;
+use crate::render_support::*;
 use wingman::frames::{EulerAngles, Mat3, Vec3};
 use wingman::render::camera::CameraIntrinsics;
 use wingman::render::{Background, PixelNoise, RenderSettings, Renderer, Sky};

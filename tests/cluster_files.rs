@@ -13,7 +13,7 @@
 //!   Docker daemon runs on the machine these tests were written on, so the image build itself
 //!   is run by CI (.ci/run) only where one does.
 
-mod common;
+use crate::common;
 
 use serde_json::{Map, Value};
 use std::path::Path;

@@ -9,7 +9,7 @@
 //!   exit 0, and the merge of the three shards gives the `results.csv` of the same study swept
 //!   on one machine: the same cases, statuses and numbers (wall-clock columns blanked).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};

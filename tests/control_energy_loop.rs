@@ -12,9 +12,7 @@
 //!   kept: 2 keeps the speed (within 1.5 ft/s) and gives up climb rate, 0 keeps the climb
 //!   rate (within 1 ft/s of the demand) and gives up speed, 1 gives up some of each.
 
-mod common;
-
-use common::flight::{FlightSample, fly};
+use crate::common::flight::{FlightSample, fly};
 use wingman::frames::Vec3;
 use wingman::scenario::{AutopilotSection, OuterLoop};
 use wingman::world::aircraft::AircraftParams;

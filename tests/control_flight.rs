@@ -8,7 +8,7 @@
 //! speed command saturates the throttle without the RBF weights winding up, and the aircraft
 //! recovers when the command comes back.
 
-mod common;
+use crate::common;
 
 use wingman::control::{Autopilot, AutopilotInput, AutopilotOutput, AutopilotState, weave_side};
 use wingman::frames::{SEA_LEVEL_DENSITY_SLUG_FT3, Vec3};

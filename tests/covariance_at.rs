@@ -12,7 +12,7 @@
 //! half the target's length about the same centroid; the check is r̂ against the target's
 //! r = R/b at 32 s.
 
-mod common;
+use crate::common;
 
 use wingman::estimation::{KalmanTracker, TargetTracker};
 use wingman::frames::{Mat3, Vec3};

@@ -17,7 +17,7 @@
 //!   along the track, which the throttle could not fly, left it 3.7 and 4.9 ft off the slot;
 //!   with 0.18 it holds under 2.6 ft on streams 1-5, measured.)
 
-mod common;
+use crate::common;
 
 use wingman::output::RunReport;
 use wingman::output::summary::RunStatus;

@@ -5,9 +5,7 @@
 //! a bound) in the summary's `track_check`, and the CLI exits 1. The same scenario without the
 //! noise has no off-target frame and no warning.
 
-mod common;
-
-use common::{repo_root, run, wingman_cli_in};
+use crate::common::{repo_root, run, wingman_cli_in};
 use wingman::output::summary::RunStatus;
 
 const NOISE_LOCK: [&str; 4] = [

@@ -10,7 +10,7 @@
 //! 640x480. And a 2 s occlusion in the middle of the run: the target is found again within 1 s of its
 //! end, and the follower is back within 3 ft of the slot within 15 s.
 
-mod common;
+use crate::common;
 
 use wingman::output::RunReport;
 use wingman::output::summary::{RunStatus, Summary};

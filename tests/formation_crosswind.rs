@@ -13,7 +13,7 @@
 //! under 3 ft (worst axis up to 13.8 ft), in the air mass 5 of 5 (worst 1.46 ft), no frame
 //! lost either way.
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::Summary;
 

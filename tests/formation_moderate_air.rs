@@ -16,9 +16,9 @@
 //!   frame is lost and the worst RMS axis has a median of 3.2 ft; stream 28's is 5.96 ft,
 //!   over the 5 (one of the four of 60 that miss it), so it is held under 6.5 ft.
 
-mod common;
+use crate::common;
 
-use common::worst_axis_ft;
+use crate::common::worst_axis_ft;
 use std::ops::Range;
 use wingman::output::RunReport;
 use wingman::output::summary::RunStatus;

@@ -3,7 +3,7 @@
 //! which the frame was measured and saved (with one frame of latency, measuring a frame
 //! overlaps the exposure of the next, a frame period later).
 
-mod common;
+use crate::common;
 
 use wingman::output::frame_images::{frame_caption, gimbal_captions};
 use wingman::vision::overlay::draw_caption;

@@ -13,7 +13,7 @@
 //! after about 3 s here; a follower flying on the lost prediction for 3 s at its slot had
 //! lost the target by then: docs/findings.md, The ring in a tracking window.)
 
-mod common;
+use crate::common;
 
 use wingman::estimation::{KalmanTracker, TargetTracker};
 use wingman::frames::{Mat3, Vec3};

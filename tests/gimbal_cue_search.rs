@@ -6,9 +6,7 @@
 //! `camera.gimbal.cue = "target"` (or the same line of sight as a stated bearing) the first
 //! frame measures it. Either way the run then tracks as formation.toml does.
 
-mod common;
-
-use common::run;
+use crate::common::run;
 use wingman::output::summary::RunStatus;
 
 const NARROW: [&str; 3] = [

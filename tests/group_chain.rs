@@ -9,9 +9,7 @@
 //! teammate captured a track) and none went unmeasured; (3) the outputs: one folder per
 //! follower with today's files, and `group.json` with the followers leaders first.
 
-mod common;
-
-use common::repo_root;
+use crate::common::repo_root;
 use wingman::output::group::{GroupSummary, load_checked, run_group_to_directory};
 use wingman::vision::{BlobSelection, BlobSummary, VisionConfig, VisionPipeline};
 

@@ -8,9 +8,7 @@
 //! previous frame's blob (`nearest`) the crosser takes the track for frames on end: the
 //! crossing is one a selection without prediction does not survive.
 
-mod common;
-
-use common::repo_root;
+use crate::common::repo_root;
 use wingman::output::group::{load_checked, run_group_to_directory};
 
 /// The follower's result through the crossing with blob selection `selection`.

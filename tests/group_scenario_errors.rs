@@ -3,9 +3,7 @@
 //! a cycle of followers, a member's key out of its range, a member's run key, a name given
 //! twice).
 
-mod common;
-
-use common::wingman_cli;
+use crate::common::wingman_cli;
 
 /// A follower on the target and `extra` after it.
 fn group_file(dir: &std::path::Path, extra: &str) -> std::path::PathBuf {

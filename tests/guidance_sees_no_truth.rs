@@ -3,7 +3,7 @@
 //! really is, and with two or more frames of latency the telemetry's frame columns show the
 //! frame the guidance holds, not the newest one measured.
 
-mod common;
+use crate::common;
 
 use wingman::sim::{Simulation, StepOutcome};
 

@@ -12,7 +12,7 @@
 //! of the frames across, 1-2 unmeasured; before the ring skipped the target's own pixels,
 //! 30-85% and 1-31 (stream 4, this test's: 32% and 31).
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 

@@ -3,7 +3,7 @@
 //! times, for a camera run that completes and for one that loses its target (the same end,
 //! at the same tick); and a command offset set from outside is what the follower flies.
 
-mod common;
+use crate::common;
 
 use wingman::frames::Vec3;
 use wingman::guidance::signals::FollowerCommand;

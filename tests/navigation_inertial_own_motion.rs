@@ -6,9 +6,7 @@
 //! median 7.93 ft). The test flies two of them against a 6% bound. Under perfect navigation the
 //! choice changes nothing.
 
-mod common;
-
-use common::run;
+use crate::common::run;
 
 fn b_hat_ft(overrides: &[&str]) -> f64 {
     let mut all = vec!["output.frames_every=0"];

@@ -4,7 +4,7 @@
 //! unused). An INS/GPS run of the same scenario logs its navigation beside the truth and
 //! differs (so the comparison can fail).
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -5,9 +5,7 @@
 //! without jitter (measured: 7.9316 against 7.9331 ft on run.seed 1); when the stamp moved
 //! the time alone, the 0.25 ft per frame of own-motion error read b̂ 8.022 ft, 1.1% high.
 
-mod common;
-
-use common::run;
+use crate::common::run;
 
 fn b_hat_with_jitter_ms(jitter_ms: &str) -> f64 {
     let jitter = format!("navigation.camera.exposure_jitter_ms={jitter_ms}");

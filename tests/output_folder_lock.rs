@@ -6,7 +6,7 @@
 //! machine the second may start after the first ended: both then succeed, and the folder
 //! holds the second's files only).
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::{Command, Stdio};

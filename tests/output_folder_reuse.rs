@@ -2,9 +2,9 @@
 //! clears the first's files (frames and plots it does not write again are gone), and a folder
 //! with other files in it is refused with exit code 2, naming it, and left as it was.
 
-mod common;
+use crate::common;
 
-use common::wingman_cli as wingman;
+use crate::common::wingman_cli as wingman;
 
 /// `wingman run scenarios/seed_ch4_formation.toml --out OUT --quiet`.
 fn run_seed_ch4_into(out: &std::path::Path) -> (i32, String) {

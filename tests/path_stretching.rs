@@ -9,7 +9,7 @@
 //! 6.4-32 ft ahead, along-track error within 24-27 ft; docs/findings.md, An energy outer
 //! loop.)
 
-mod common;
+use crate::common;
 
 use wingman::output::RunReport;
 

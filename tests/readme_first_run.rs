@@ -6,7 +6,7 @@
 //! `docs/`, it says how to put `wingman` on the PATH, names the dissertation in full (as
 //! docs/equations.md does) and the licence, whose files and `Cargo.toml` key agree.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

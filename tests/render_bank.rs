@@ -7,9 +7,7 @@
 //! 37 and 22 px long): the scatter `estimator.bank_end_sigma_px = 0.5` gives the filter,
 //! √2 · 0.5 / bI, is 0.3° at 140 px and 1.8° at 22 px.
 
-mod render_support;
-
-use render_support::*;
+use crate::render_support::*;
 use wingman::estimation::bank::{WingLine, lateral_acceleration};
 use wingman::frames::{GRAVITY_FPS2, Mat3, Vec3};
 use wingman::scenario::BearingPoint;

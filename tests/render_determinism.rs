@@ -2,9 +2,7 @@
 //! inputs give identical bytes, also from two threads sharing one device.
 //! Pixel noise is keyed by (seed, frame index) and has the requested standard deviation.
 
-mod render_support;
-
-use render_support::*;
+use crate::render_support::*;
 use wingman::render::camera::CameraIntrinsics;
 use wingman::render::{Background, CameraImage, PixelNoise, RenderSettings, Renderer, Sky};
 

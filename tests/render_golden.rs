@@ -8,13 +8,11 @@
 //! float rounding in shading and noise (±1 level).
 //!
 //! Regenerate after an intended change (then look at the PNGs before committing them):
-//! `WINGMAN_UPDATE_GOLDEN=1 cargo test --release --test render_golden`
-
-mod render_support;
+//! `WINGMAN_UPDATE_GOLDEN=1 cargo test --release --test behaviour render_golden::`
 
 use std::path::{Path, PathBuf};
 
-use render_support::*;
+use crate::render_support::*;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{
     Background, CameraImage, CameraInWorld, PixelNoise, RenderSettings, Renderer, Sky,
@@ -57,7 +55,7 @@ fn assert_matches_golden(frame: &CameraImage, name: &str) {
         Ok(img) => img.to_rgba8(),
         Err(e) => panic!(
             "cannot read golden {}: {e}; create it with \
-             WINGMAN_UPDATE_GOLDEN=1 cargo test --release --test render_golden",
+             WINGMAN_UPDATE_GOLDEN=1 cargo test --release --test behaviour render_golden::",
             path.display()
         ),
     };

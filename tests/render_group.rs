@@ -11,9 +11,7 @@
 //! window) holds there the whole frame's pixels, the aircraft outside it left undrawn; (4) an
 //! aircraft wholly behind the camera changes nothing.
 
-mod render_support;
-
-use render_support::*;
+use crate::render_support::*;
 use wingman::render::camera::{AircraftPose, CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{CameraImage, ImageRegion, RenderSettings, Renderer};
 

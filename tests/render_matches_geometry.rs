@@ -9,11 +9,9 @@
 //! camera leaves a sky-only frame; (4) 4x multisampling produces fractional edge pixels that
 //! 1x sampling never does.
 
-mod render_support;
-
 use std::f64::consts::FRAC_PI_2;
 
-use render_support::*;
+use crate::render_support::*;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::settings::DEFAULT_SKY_RGB;
 use wingman::render::{CameraImage, RenderSettings, Renderer};

@@ -7,7 +7,7 @@ use std::process::Command;
 use wingman::render::GpuContext;
 use wingman::render::gpu::INSTALL_HINT;
 
-const TEST_NAME: &str = "missing_driver_error_names_the_install_command";
+const TEST_NAME: &str = "render_no_adapter_hint::missing_driver_error_names_the_install_command";
 const CHILD_FLAG: &str = "WINGMAN_TEST_NO_ADAPTER_CHILD";
 
 #[test]

@@ -4,9 +4,7 @@
 //! a camera looking straight up at the cloud sheet sees about the stated fraction of cloud;
 //! the distant ground does not shimmer under a sub-pixel turn.
 
-mod render_support;
-
-use render_support::*;
+use crate::render_support::*;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{CameraImage, CameraInWorld, ImageRegion, RenderSettings, Renderer, Sky};
 

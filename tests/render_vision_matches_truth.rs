@@ -13,9 +13,7 @@
 //! edge-on projects to a quarter of a pixel, which no camera resolves; that loss is a finding
 //! of the camera-in-the-loop scenario (its length error is in its summary), not hidden here.
 
-mod render_support;
-
-use render_support::*;
+use crate::render_support::*;
 use wingman::render::TargetMesh;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::vision::{BlobStatus, image_truth};

@@ -6,9 +6,7 @@
 //! and read back only in a region of the image holds exactly the bytes the whole
 //! frame holds there.
 
-mod render_support;
-
-use render_support::*;
+use crate::render_support::*;
 use wingman::render::camera::{CameraIntrinsics, TargetPoseInCamera};
 use wingman::render::{Background, ImageRegion, PixelNoise, RenderSettings, Renderer, Sky};
 

@@ -3,7 +3,7 @@
 //! says `interrupted`, the plots are drawn, and the exit code is 128 + the signal (130, 143).
 //! A group run (the platoon) stopped by Ctrl-C writes its `group.json` and exits 130 too.
 
-mod common;
+use crate::common;
 
 #[test]
 fn sigint_writes_summary_and_plots_and_exits_130() {

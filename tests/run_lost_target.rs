@@ -3,9 +3,7 @@
 //! keeps its telemetry, summary and plots, names the lost frames on its last line and exits
 //! 1. With the limit at 0 the same run goes on to its end.
 
-mod common;
-
-use common::wingman_cli as wingman;
+use crate::common::wingman_cli as wingman;
 
 #[test]
 fn a_target_lost_longer_than_the_limit_stops_the_run() {

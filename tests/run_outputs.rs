@@ -2,9 +2,7 @@
 //! telemetry), telemetry.csv, summary.json with its keys, and plots; a diverging run stops
 //! with exit code 1 and keeps the telemetry written so far.
 
-mod common;
-
-use common::wingman_cli as wingman;
+use crate::common::wingman_cli as wingman;
 
 /// Runs the resolved `scenario.toml` of the run in `first` into `second` and checks that it
 /// writes `telemetry` again, byte for byte.

@@ -4,9 +4,7 @@
 //! without the section has no such counts (its frames are those of `camera.sky`); a scene key
 //! out of range is refused with exit code 2, naming it.
 
-mod common;
-
-use common::*;
+use crate::common::*;
 
 /// Two seconds of formation_scene.toml, saving every 15th frame.
 #[test]

@@ -4,7 +4,7 @@
 //! is a scenario error (exit 2, naming the file, the key and what is wrong) before anything
 //! is written; and loading a mesh grows nearly linearly with its vertex count.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::time::{Duration, Instant};

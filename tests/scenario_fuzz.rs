@@ -338,7 +338,7 @@ fn malformed_scenarios_are_rejected_cleanly() {
 }
 
 #[test]
-#[ignore = "2,000 cases: cargo test --release --test scenario_fuzz -- --ignored"]
+#[ignore = "2,000 cases: cargo test --release --test behaviour scenario_fuzz:: -- --ignored"]
 fn two_thousand_malformed_scenarios() {
     fuzz(2026, 2000);
 }

@@ -7,7 +7,7 @@
 //! frames over 30-55 s, r̂ drifted 5 ft long, and at 55-58 s the follower closed from 31.5 to
 //! 15 ft and lost the target.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use wingman::output::summary::RunStatus;

@@ -23,7 +23,7 @@
 //! bounds below are stream 14's with room for the last bits a GPU's pixels differ by: at
 //! most 5 frames off the target, the centroid under 8 px against ground.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::sync::OnceLock;

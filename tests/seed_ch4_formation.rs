@@ -2,7 +2,7 @@
 //! to the true 8 ft, the relative position settles on R_c, and after the first 20 s the
 //! follower's velocity follows the target's.
 
-mod common;
+use crate::common;
 
 #[test]
 fn formation_reproduces_figures_4_3_to_4_5() {

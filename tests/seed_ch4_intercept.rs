@@ -1,7 +1,7 @@
 //! The seed's Chapter 4 interception run (Figures 4.6-4.7): ‖R‖ < 2.4 ft is met at the time
 //! the seed reports (t = 44.8 s, Section 4.4), within a second, and the run stops there.
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::RunStatus;
 

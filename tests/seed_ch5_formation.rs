@@ -4,7 +4,7 @@
 //! (Fig 5.2), the relative position settles on R_c (Fig 5.3), ‖d̂‖ grows and settles (Fig 5.4),
 //! and the intelligent excitation (5.27) fades to k3 once the target stops manoeuvring.
 
-mod common;
+use crate::common;
 
 use wingman::frames::Vec3;
 use wingman::guidance::FollowerCommand;

@@ -3,7 +3,7 @@
 //! time, and stops there, with accelerations a kinematic follower can take as a command for
 //! an aircraft (tens of ft/s², not thousands).
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::RunStatus;
 

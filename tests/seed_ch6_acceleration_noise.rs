@@ -4,7 +4,7 @@
 //! noise is the Chapter 5 run, and the noisy sensor with a vanishing noise reproduces it; a
 //! Riccati observer gain (6.62) that breaks l1 ≥ λ falls back to the fixed gain and says so.
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::RunStatus;
 

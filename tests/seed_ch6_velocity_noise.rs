@@ -5,7 +5,7 @@
 //! without noise reproduces the Chapter 4 run up to the estimator's documented effect; pixel
 //! noise propagated through (6.1)-(6.3) is a small perturbation of the noise-free run.
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::RunStatus;
 

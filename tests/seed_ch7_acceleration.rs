@@ -3,7 +3,7 @@
 //! r measured at SNR 25 dB, the excitation on the y command. Shown: the criteria
 //! ([`common::assert_seed_ch7_criteria`]) and b̂ within 10% of 8 ft.
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::RunStatus;
 

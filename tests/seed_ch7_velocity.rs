@@ -5,7 +5,7 @@
 //! 20 s, no surface at its limit, airspeed within 30-70 ft/s, |β| < 5°, |α| within the trim α
 //! of the slowest airspeed flown), b̂ within 10% of 8 ft, and the Chapter 7 figures drawn.
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::RunStatus;
 

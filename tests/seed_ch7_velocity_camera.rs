@@ -9,7 +9,7 @@
 //! 8 ft span; the scenario file says why b̂ cannot approach 8 ft here). Without the gimbal the
 //! same run loses the target. With the airframe size model b̂ reads the 8 ft size itself.
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::{RunStatus, Summary};
 

@@ -13,7 +13,7 @@
 //! pipeline locates to a fraction of a pixel: within 1.5 px. The implied size is
 //! R bI / √(l² + yI² + zI²) with the measured centroid on the axis within a pixel.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use wingman::study::results::{CaseRecord, read_record};

@@ -8,7 +8,7 @@
 //!   `results::case_statuses` (a run's `summary.json` names, then `failed`), and
 //!   docs/studies.md and docs/outputs.md name every one.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

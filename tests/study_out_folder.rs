@@ -4,7 +4,7 @@
 //! refused with exit code 2 before anything is written, its files left as they were; the
 //! study's own folder is taken again.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -9,7 +9,7 @@
 //!
 //! Cases that could not run: tests/study_case_statuses.rs; `--out`: tests/study_out_folder.rs.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};

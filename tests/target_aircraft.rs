@@ -8,7 +8,7 @@
 //! away ends the run `diverged`, naming it; without the key a run's target is the
 //! closed-form motion, with no target-aircraft columns.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 use wingman::output::RunReport;

@@ -6,9 +6,7 @@
 //! bank fused (the scenario as shipped) 8.17 ft, the truth inside ±3σ_b (over run.seed 1-20:
 //! within 5% and inside ±3σ_b on 20 against 15; docs/findings.md).
 
-mod common;
-
-use common::run;
+use crate::common::run;
 use wingman::output::summary::{RunStatus, Summary};
 
 const TRUE_SIZE_FT: f64 = 8.0;

@@ -8,7 +8,7 @@
 //! reproduced; a bad CSV track is a scenario error (exit 2) naming the file and the line,
 //! before anything is written; the shipped CSV track covers its scenario.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use wingman::frames::{GRAVITY_FPS2, Vec3};

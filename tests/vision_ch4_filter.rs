@@ -5,7 +5,7 @@
 //! The adaptive law of the same scenario identifies b only thanks to its 33 ms delay; the
 //! filter fuses each frame at its capture time, so the delay does not matter.
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::RunStatus;
 

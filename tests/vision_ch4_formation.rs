@@ -7,7 +7,7 @@
 //! (3) the same scenario and seed twice give identical telemetry; (4) why the scenario's
 //! command frame is the heading frame: with the body frame b is not identifiable.
 
-mod common;
+use crate::common;
 
 use wingman::output::summary::RunStatus;
 

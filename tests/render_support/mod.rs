@@ -1,4 +1,4 @@
-//! Helpers shared by the `render_*` tests: one GPU context per test binary (its tests run on
+//! Helpers shared by the `render_*` tests: one GPU context for the test binary (its tests run on
 //! several threads against one device), poses and pixel masks.
 #![allow(dead_code)]
 
