@@ -166,6 +166,17 @@ fn chapter_5_and_6_keys() {
     );
 }
 
+/// A fragment is a blob shorter than a fraction of the expected length: a fraction of 1 or
+/// more would call the target whole a fragment.
+#[test]
+fn a_fragment_fraction_is_under_one() {
+    assert_rejected(
+        "[camera]\nselection_fragment_fraction = 1.0\n",
+        &[],
+        &["camera.selection_fragment_fraction = 1", "[0, 1)"],
+    );
+}
+
 /// An excitation that follows the Kalman filter's σ_b needs the filter: the error names the
 /// mode as the scenario spells it.
 #[test]

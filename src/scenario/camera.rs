@@ -143,6 +143,10 @@ pub struct CameraSection {
     /// 1.5: beside a teammate or a crosser of another size in the image, a wrong blob near the
     /// prediction is not taken for the target (docs/findings.md, Group tracking).
     pub selection_length_ratio: f64,
+    /// `selection = "predicted"`: a blob shorter than this fraction of the expected maximal
+    /// length is a fragment, and its size counts as this fraction's: fragments are told apart
+    /// by their distance from the prediction alone (0: every size counts as it is).
+    pub selection_fragment_fraction: f64,
     /// Where the expected maximal length comes from: `last_measured` (default) or
     /// `estimated` (see [`LengthExpectation`]).
     pub expected_length: LengthExpectation,
@@ -217,6 +221,7 @@ impl Default for CameraSection {
             selection: BlobChoice::Nearest,
             selection_gate_deg: 3.0,
             selection_length_ratio: 1.5,
+            selection_fragment_fraction: 0.0,
             expected_length: LengthExpectation::LastMeasured,
             min_pixel_count: 4,
             mask_coverage: 0.5,
@@ -272,20 +277,7 @@ impl CameraSection {
             "1 or 4",
         )?;
         check::in_closed("camera.noise_std_grey", self.noise_std_grey, 0.0, 100.0)?;
-        check::in_open(
-            "camera.selection_gate_deg",
-            self.selection_gate_deg,
-            0.0,
-            90.0,
-            "(0, 90)",
-        )?;
-        check::require(
-            self.selection_length_ratio == 0.0
-                || (1.01..=100.0).contains(&self.selection_length_ratio),
-            "camera.selection_length_ratio",
-            self.selection_length_ratio,
-            "0 (sizes not compared) or [1.01, 100]",
-        )?;
+        self.validate_selection()?;
         check::require(
             self.target_colour_tolerance_deg == 0.0
                 || (self.segmentation == SegmentationKind::Motion
@@ -331,6 +323,30 @@ impl CameraSection {
             0.0,
             1.0 + 1e-12,
             "(0, 1]",
+        )
+    }
+
+    /// Checks the `predicted` selection's gate and size keys.
+    fn validate_selection(&self) -> Check {
+        check::in_open(
+            "camera.selection_gate_deg",
+            self.selection_gate_deg,
+            0.0,
+            90.0,
+            "(0, 90)",
+        )?;
+        check::require(
+            self.selection_length_ratio == 0.0
+                || (1.01..=100.0).contains(&self.selection_length_ratio),
+            "camera.selection_length_ratio",
+            self.selection_length_ratio,
+            "0 (sizes not compared) or [1.01, 100]",
+        )?;
+        check::require(
+            (0.0..1.0).contains(&self.selection_fragment_fraction),
+            "camera.selection_fragment_fraction",
+            self.selection_fragment_fraction,
+            "[0, 1)",
         )
     }
 

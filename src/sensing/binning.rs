@@ -213,6 +213,7 @@ mod tests {
                     radius_px: 30.0,
                     length_px: 60.0,
                     length_ratio: 1.5,
+                    fragment_fraction: 0.5,
                 },
                 3,
             ),
@@ -222,6 +223,7 @@ mod tests {
                 radius_px: 10.0,
                 length_px: 20.0,
                 length_ratio: 1.5,
+                fragment_fraction: 0.5,
             }
         );
     }

@@ -97,10 +97,12 @@ pub enum BlobSelection {
     },
     /// Among the blobs whose pixel-centre mean lies within `radius_px` of this point and
     /// whose box lies within the square of that half side (a gate about a prediction), the
-    /// one most like the prediction: least (d / radius)² + (ln(e / length) / ln ρ)², d its
-    /// distance from the point, e the longer side of its box, `length_px` the expected
-    /// maximal length and ρ `length_ratio` (either 0: sizes not compared, the nearest); none
-    /// when no blob lies inside the gate.
+    /// one most like the prediction: least (d / radius)² + (ln(max(e / length, φ)) / ln ρ)²,
+    /// d its distance from the point, e the longer side of its box, `length_px` the expected
+    /// maximal length, ρ `length_ratio` (either 0: sizes not compared, the nearest) and φ
+    /// `fragment_fraction` (a blob shorter than φ of the expected length is a fragment, and
+    /// fragments differ by their distance alone; 0: every size counts); none when no blob lies
+    /// inside the gate.
     NearestWithin {
         /// Column of the point, px.
         u_px: f64,
@@ -113,6 +115,9 @@ pub enum BlobSelection {
         /// The ratio of a blob's extent to `length_px` that weighs as much as the gate's
         /// radius (0: sizes not compared).
         length_ratio: f64,
+        /// The fraction of `length_px` below which a blob's size counts as this fraction's
+        /// (0: every size counts).
+        fragment_fraction: f64,
     },
 }
 
@@ -133,6 +138,7 @@ impl BlobSelection {
                 radius_px,
                 length_px,
                 length_ratio,
+                fragment_fraction,
             } => {
                 let (u_px, v_px) = at(u_px, v_px);
                 Self::NearestWithin {
@@ -141,6 +147,7 @@ impl BlobSelection {
                     radius_px: radius_px / scale,
                     length_px: length_px / scale,
                     length_ratio,
+                    fragment_fraction,
                 }
             }
         }

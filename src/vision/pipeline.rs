@@ -435,9 +435,9 @@ fn select_blob(
     min_pixel_count: usize,
     selection: BlobSelection,
 ) -> Option<(usize, bool)> {
-    let (point, radius_px, length_px, length_ratio) = match selection {
+    let (point, radius_px, length_px, length_ratio, fragment_fraction) = match selection {
         BlobSelection::NearestTo { u_px, v_px } if u_px.is_finite() && v_px.is_finite() => {
-            (Some((u_px, v_px)), f64::INFINITY, 0.0, 0.0)
+            (Some((u_px, v_px)), f64::INFINITY, 0.0, 0.0, 0.0)
         }
         BlobSelection::NearestWithin {
             u_px,
@@ -445,8 +445,15 @@ fn select_blob(
             radius_px,
             length_px,
             length_ratio,
-        } => (Some((u_px, v_px)), radius_px, length_px, length_ratio),
-        _ => (None, f64::INFINITY, 0.0, 0.0),
+            fragment_fraction,
+        } => (
+            Some((u_px, v_px)),
+            radius_px,
+            length_px,
+            length_ratio,
+            fragment_fraction,
+        ),
+        _ => (None, f64::INFINITY, 0.0, 0.0, 0.0),
     };
     let distance = |b: &BlobSummary| {
         point.map_or(0.0, |(u_px, v_px)| {
@@ -454,13 +461,15 @@ fn select_blob(
         })
     };
     // How unlike the prediction a blob is: its distance, and with an expected length the
-    // ratio of its box's longer side to it (see `BlobSelection::NearestWithin`).
+    // ratio of its box's longer side to it, a fragment's at the fragment fraction (see
+    // `BlobSelection::NearestWithin`).
     let unlikeness = |b: &BlobSummary| {
         if length_px <= 0.0 || length_ratio <= 1.0 || !radius_px.is_finite() {
             return distance(b);
         }
         let extent = f64::from((b.bbox.max_u - b.bbox.min_u).max(b.bbox.max_v - b.bbox.min_v) + 1);
-        (distance(b) / radius_px).powi(2) + ((extent / length_px).ln() / length_ratio.ln()).powi(2)
+        let size = (extent / length_px).max(fragment_fraction);
+        (distance(b) / radius_px).powi(2) + (size.ln() / length_ratio.ln()).powi(2)
     };
     // Inside the gate: the blob's centre within its radius, and the whole blob within its
     // square (a blob reaching beyond where the target can be is not the target alone).

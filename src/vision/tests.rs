@@ -237,6 +237,7 @@ fn gate_takes_the_blob_like_the_prediction() {
         radius_px,
         length_px,
         length_ratio,
+        fragment_fraction: 0.0,
     };
     let gate = |u_px, radius_px, length_px| gate_with(u_px, radius_px, length_px, 1.5);
     let m = measure_scene(&scene, gate(74.0, 30.0, 20.0));
@@ -258,6 +259,34 @@ fn gate_takes_the_blob_like_the_prediction() {
     // The target's centre inside, its box beyond the gate's square: the fragment only.
     let m = measure_scene(&scene, gate(70.0, 12.0, 20.0));
     assert!((m.centroid_u_px - 75.0).abs() < 1.0, "{m:?}");
+}
+
+/// `NearestWithin` with a fragment fraction: when every blob in the gate is a fragment (under
+/// the fraction of the expected length), the one nearest the prediction is measured, not the
+/// longer one further off that the size term alone would prefer (the target broken into
+/// pieces of the ground's texture: docs/findings.md, Trusted frames).
+#[test]
+fn among_fragments_the_nearest_is_taken() {
+    let mut scene = SyntheticScene::new(160, 120, Background::Uniform(SKY));
+    let near = scene.add_disc(80.0, 60.0, 2.0, DARK);
+    let far = scene.add_disc(80.0, 73.0, 3.5, DARK);
+    let gate = |fragment_fraction| BlobSelection::NearestWithin {
+        u_px: 80.0,
+        v_px: 61.0,
+        radius_px: 40.0,
+        length_px: 23.0,
+        length_ratio: 6.0,
+        fragment_fraction,
+    };
+    // Every size as it is: (ln(5/23) / ln 6)² + (1/40)² = 0.72 for the 4-5 px blob 1 px
+    // away, (ln(8/23) / ln 6)² + (12/40)² = 0.44 for the 7-8 px one 12 px away.
+    check_shape(&measure_scene(&scene, gate(0.0)), &far, 0.1, 0.5);
+    // Both at half the length: 0.15 + 0.0006 against 0.15 + 0.09.
+    check_shape(&measure_scene(&scene, gate(0.5)), &near, 0.1, 0.5);
+    // A blob of about the expected size 13 px away is still preferred to the fragment at the
+    // prediction: (13/40)² + (ln(19/23) / ln 6)² = 0.12 against (ln 0.5 / ln 6)² = 0.15.
+    let whole = scene.add_disc(93.0, 61.0, 9.0, DARK);
+    check_shape(&measure_scene(&scene, gate(0.5)), &whole, 0.05, 0.5);
 }
 
 /// A disc crossing the left edge is `Truncated`; one whose edge is 0.3 px inside the border

@@ -60,6 +60,8 @@ pub(super) struct Metering {
     gate_rad: f64,
     /// `camera.selection_length_ratio`.
     length_ratio: f64,
+    /// `camera.selection_fragment_fraction`.
+    fragment_fraction: f64,
 }
 
 impl Metering {
@@ -90,6 +92,7 @@ impl Metering {
             length_expectation: camera.expected_length,
             gate_rad: camera.selection_gate_deg.to_radians(),
             length_ratio: camera.selection_length_ratio,
+            fragment_fraction: camera.selection_fragment_fraction,
         })
     }
 
@@ -168,6 +171,7 @@ impl Metering {
                         radius_px: intrinsics.focal_px * self.gate_rad.tan() + 0.5 * length_px,
                         length_px,
                         length_ratio: self.length_ratio,
+                        fragment_fraction: self.fragment_fraction,
                     }
                 }
                 None => BlobSelection::Largest,

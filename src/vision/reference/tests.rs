@@ -234,6 +234,7 @@ fn a_fragment_keeps_the_gate_out_of_the_memory() {
         radius_px: 45.0,
         length_px: 0.0,
         length_ratio: 0.0,
+        fragment_fraction: 0.0,
     };
     let frames = [
         (frame(&now(), &intrinsics, None), BlobSelection::Largest),
