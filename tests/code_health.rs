@@ -508,3 +508,27 @@ fn cycle_finder_finds_cycles() {
     let around = cycle(&graph(&[("a", "b"), ("b", "c"), ("c", "a")])).expect("a cycle");
     assert_eq!(around.len(), 4, "{around:?}");
 }
+
+/// The behaviour tests are one test binary (Cargo.toml's `autotests = false`): a file in
+/// tests/ that tests/main.rs does not name as a module would never be built or run.
+#[test]
+fn every_test_file_is_a_module_of_the_test_binary() {
+    let tests = repo().join("tests");
+    let main = std::fs::read_to_string(tests.join("main.rs")).expect("tests/main.rs");
+    let mut missing = Vec::new();
+    for entry in std::fs::read_dir(&tests).expect("tests/") {
+        let path = entry.expect("entry").path();
+        let name = match path.extension() {
+            Some(ext) if ext == "rs" => path.file_stem(),
+            None if path.join("mod.rs").is_file() => path.file_name(),
+            _ => None,
+        };
+        let Some(name) = name.and_then(|n| n.to_str()) else {
+            continue;
+        };
+        if name != "main" && !main.contains(&format!("\nmod {name};\n")) {
+            missing.push(name.to_string());
+        }
+    }
+    assert!(missing.is_empty(), "not in tests/main.rs: {missing:?}");
+}
