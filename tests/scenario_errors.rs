@@ -177,6 +177,16 @@ fn a_fragment_fraction_is_under_one() {
     );
 }
 
+/// A gate on the bearing's normalised square is not negative (0: none).
+#[test]
+fn a_bearing_gate_is_not_negative() {
+    assert_rejected(
+        "[estimator]\nkind = \"kalman\"\nbearing_gate = -1.0\n",
+        &[],
+        &["estimator.bearing_gate = -1", "[0, 1000000]"],
+    );
+}
+
 /// An excitation that follows the Kalman filter's σ_b needs the filter: the error names the
 /// mode as the scenario spells it.
 #[test]

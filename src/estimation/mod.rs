@@ -125,7 +125,7 @@ pub trait TargetTracker: std::fmt::Debug + Send {
     /// Measurements fused so far.
     fn fused(&self) -> u64;
 
-    /// Measurements the innovation gate kept out so far (`estimator.innovation_gate`).
+    /// Measurements the gates kept out so far (`estimator.innovation_gate`, `bearing_gate`).
     fn gated_out(&self) -> u64;
 
     /// Frames whose wing line was fused as the target's turn so far

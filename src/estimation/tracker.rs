@@ -8,7 +8,7 @@
 use super::airframe::{AirframeShape, AirframeTable, ViewAngles};
 use super::aspect::{body_axes_ned, pitched_by_alpha, target_span_aspect};
 use super::bank::{WingLine, lateral_acceleration};
-use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, Innovation, TargetFilter};
+use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, Gates, Innovation, TargetFilter};
 use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
@@ -48,8 +48,9 @@ pub struct KalmanTracker {
     fused: u64,
     /// (capture time, s; νᵀ S⁻¹ ν) of every fused measurement after the first.
     innovations: Vec<(f64, f64)>,
-    /// Measurements whose νᵀ S⁻¹ ν exceeds this are not fused (∞: every one is).
-    innovation_gate: f64,
+    /// Measurements whose νᵀ S⁻¹ ν, or whose bearing's, exceeds these are not fused (∞: every
+    /// one is).
+    gates: Gates,
     /// Measurements the gate kept out.
     gated_out: u64,
     /// When a streak of frames the gate kept out re-opens it.
@@ -194,10 +195,9 @@ impl KalmanTracker {
             last_measured_s: None,
             fused: 0,
             innovations: Vec::new(),
-            innovation_gate: if section.innovation_gate > 0.0 {
-                section.innovation_gate
-            } else {
-                f64::INFINITY
+            gates: Gates {
+                innovation: gate_or_open(section.innovation_gate),
+                bearing: gate_or_open(section.bearing_gate),
             },
             gated_out: 0,
             reopening: GateReopening {
@@ -357,7 +357,8 @@ impl KalmanTracker {
     }
 
     /// Predicts to the measurement's time and fuses it (or starts the filter on it), unless
-    /// its normalised innovation exceeds `estimator.innovation_gate`; whether it was fused.
+    /// its normalised innovation exceeds `estimator.innovation_gate` or its bearing's
+    /// `estimator.bearing_gate`; whether it was fused.
     fn fuse(
         &mut self,
         t_s: f64,
@@ -384,15 +385,16 @@ impl KalmanTracker {
                 // this one out.
                 let mut predicted = filter.clone();
                 predicted.predict_to(t_s, follower_position_ned_ft);
-                let gate = self.innovation_gate;
-                let mut innovation = predicted.update_within(r_star, covariance, gate);
+                let gates = self.gates;
+                let mut innovation = predicted.update_within(r_star, covariance, gates);
                 if !innovation.fused {
                     let kept_out = KeptOutFrame {
                         t_s,
                         r_star,
                         covariance,
-                        normalised_sq: innovation.normalised_sq,
+                        innovation: &innovation,
                     };
+                    let gate = gates.innovation;
                     if let Some(taken) = self.reopening.take(&mut predicted, &kept_out, gate) {
                         innovation = taken;
                     }
@@ -452,7 +454,7 @@ impl KalmanTracker {
             return;
         };
         let variance = turn.sigma_fps2.powi(2) + reading.accel_sigma_fps2.powi(2);
-        let gate = self.innovation_gate;
+        let gate = self.gates.innovation;
         let Some(filter) = self.filter.as_mut() else {
             return;
         };
@@ -629,7 +631,12 @@ impl TargetTracker for KalmanTracker {
     }
 }
 
-/// When frames the innovation gate keeps out re-open it (docs/equations.md, The gate
+/// A gate of `estimator.innovation_gate` or `bearing_gate`: ∞ (none) for 0.
+fn gate_or_open(gate: f64) -> f64 {
+    if gate > 0.0 { gate } else { f64::INFINITY }
+}
+
+/// When frames the gates keep out re-open them (docs/equations.md, The gate
 /// re-opened): a streak of them that agree with each other, lasting `after_s`
 /// (`estimator.gate_reopen_s`; ∞: never), on a frame whose |r*| is within `range_ratio` of
 /// the prediction's |r̂| (`estimator.gate_reopen_range_ratio`).
@@ -641,12 +648,12 @@ struct GateReopening {
     streak: Option<KeptOutStreak>,
 }
 
-/// A frame the gate kept out: its capture time, s, r*, covariance and νᵀ S⁻¹ ν.
+/// A frame the gates kept out: its capture time, s, r*, covariance and innovation.
 struct KeptOutFrame<'a> {
     t_s: f64,
     r_star: &'a Vec3,
     covariance: &'a Mat3,
-    normalised_sq: f64,
+    innovation: &'a Innovation,
 }
 
 impl GateReopening {
@@ -665,7 +672,8 @@ impl GateReopening {
         frame: &KeptOutFrame,
         gate: f64,
     ) -> Option<Innovation> {
-        self.streak = frame.normalised_sq.is_finite().then(|| {
+        let innovation = frame.innovation;
+        self.streak = innovation.normalised_sq.is_finite().then(|| {
             KeptOutStreak::extended(self.streak, gate, frame.t_s, frame.r_star, frame.covariance)
         });
         let due = self
@@ -681,13 +689,15 @@ impl GateReopening {
             return None;
         }
         // The prediction, not the frames, is what is wrong: widened until this frame's
-        // νᵀ S⁻¹ ν is about its 3 degrees of freedom, it takes it.
-        predicted.widen_kinematics(frame.normalised_sq / 3.0);
+        // νᵀ S⁻¹ ν is about its 3 degrees of freedom (and its bearing's about its 2), it takes
+        // it.
+        let factor = (innovation.normalised_sq / 3.0).max(innovation.bearing_normalised_sq / 2.0);
+        predicted.widen_kinematics(factor);
         Some(predicted.update(frame.r_star, frame.covariance))
     }
 }
 
-/// Frames kept out by the innovation gate since the last fused one, each within the gate of
+/// Frames kept out by the gates since the last fused one, each within the gate of
 /// the one before (docs/equations.md, The gate re-opened). Fragments and blobs of the ground
 /// jump between frames; the whole target kept out by a lost prediction does not.
 #[derive(Debug, Clone, Copy)]

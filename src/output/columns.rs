@@ -230,7 +230,7 @@ pub static COLUMNS: &[Column] = &[
     one("frame_t_s", "s", Every, "the time of the camera frame the guidance holds (taken `camera.latency_frames` frames earlier; empty without a camera)", |s| s.frame.map_or(f64::NAN, |f| f.t_s)),
     three(["y_i_px", "z_i_px", "b_i_px"], "px", Every, "the held frame's measured centroid and maximal length (empty without a measurement)", |s| image(s.frame.and_then(|f| f.measured))),
     one("meas_status", "", Every, "the held frame's status: 0 ok, 1 not found, 2 touching the border, 3 too small (empty without a camera)", |s| s.frame.map_or(f64::NAN, |f| status_code(f.status))),
-    one("meas_trusted", "", Every, "whether the estimator took the held frame: 1 when it was ok and (under the Kalman filter) its innovation gate did not keep it out, 0 otherwise (empty without a camera)", |s| s.frame_trusted.map_or(f64::NAN, |t| f64::from(u8::from(t)))),
+    one("meas_trusted", "", Every, "whether the estimator took the held frame: 1 when it was ok and (under the Kalman filter) its innovation and bearing gates did not keep it out, 0 otherwise (empty without a camera)", |s| s.frame_trusted.map_or(f64::NAN, |t| f64::from(u8::from(t)))),
     three(["y_i_true_px", "z_i_true_px", "b_i_true_px"], "px", Every, "the held frame's truth: projection of the target's reference point and maximal length of the projected mesh (empty without a camera)", |s| image(s.frame.and_then(|f| f.truth))),
     three(["fol_an_fps2", "fol_ae_fps2", "fol_ad_fps2"], "ft/s²", AccelerationCommand, "the commanded acceleration a_F (5.38) (NED)", |s| accel(s, |a| a.accel_cmd_ned_fps2)),
     three(["y_model_x", "y_model_y", "y_model_z"], "", AccelerationCommand, "the reference model's output y_m", |s| accel(s, |a| a.y_model)),

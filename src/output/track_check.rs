@@ -4,7 +4,7 @@
 //! than `run.stop_after_lost_s` ends the run as `false_lock`. The follower's own evidence is
 //! reported beside it, as the follower could see it without the truth: the filter's
 //! normalised innovations over the last 20 s (about 3 when its model holds), how long b̂
-//! sat at a bound of the guidance's projection, and the frames its innovation gate kept out.
+//! sat at a bound of the guidance's projection, and the frames its gates kept out.
 
 use crate::sim::{Simulation, Snapshot};
 use serde::Serialize;
@@ -32,7 +32,7 @@ pub struct TrackCheck {
     pub nis_mean_last20s: Option<f64>,
     /// Time b̂ spent at b_min_ft or b_max_ft over the last 20 s, s.
     pub b_hat_at_bound_last20s_s: f64,
-    /// Frames the filter's innovation gate kept out over the whole run
+    /// Frames the filter's innovation or bearing gate kept out over the whole run
     /// (`estimator.innovation_gate`; 0 without a gate or a filter).
     pub gated_out_frames: u64,
     /// Frames whose wing line the filter fused as the target's turn over the whole run

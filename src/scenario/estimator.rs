@@ -200,6 +200,15 @@ pub struct EstimatorSection {
     /// χ² with 3 degrees of freedom when the filter's model holds: 16.3 keeps out one
     /// frame in 1,000 of the target's own.
     pub innovation_gate: f64,
+    /// The Kalman filter's gate on a frame's bearing alone (docs/equations.md, The bearing
+    /// gate): a frame whose ray, where it meets the plane across the predicted line of sight
+    /// at the predicted range, lies further from the prediction than this normalised square
+    /// allows is not fused, whatever its length (0, the default: no such gate). The
+    /// innovation gate takes a fragment of the target far off the prediction: its short
+    /// length puts it far along its own ray, where its range is uncertain enough to explain
+    /// the innovation. It is χ² with 2 degrees of freedom when the filter's model holds:
+    /// 13.8 keeps out one frame in 1,000 of the target's own.
+    pub bearing_gate: f64,
     /// With the innovation gate, how long a streak of frames it kept out, each within the gate
     /// of the one before, may last before the filter takes the next one, s (docs/equations.md,
     /// The gate re-opened): its kinematic covariance widened until that frame's normalised
@@ -261,6 +270,7 @@ impl Default for EstimatorSection {
             airframe_angle_of_attack: AirframeAlpha::Zero,
             airframe_shape_sigma: 0.025,
             innovation_gate: 0.0,
+            bearing_gate: 0.0,
             gate_reopen_s: 0.0,
             gate_reopen_range_ratio: 2.0,
             covariance_at: CovarianceAt::Measurement,
@@ -325,14 +335,6 @@ impl EstimatorSection {
                 100.0,
             ),
             ("airframe_shape_sigma", self.airframe_shape_sigma, 0.0, 1.0),
-            ("innovation_gate", self.innovation_gate, 0.0, 1e6),
-            ("gate_reopen_s", self.gate_reopen_s, 0.0, 1e6),
-            (
-                "gate_reopen_range_ratio",
-                self.gate_reopen_range_ratio,
-                1.0,
-                1e6,
-            ),
             ("bank_end_sigma_px", self.bank_end_sigma_px, 1e-3, 1e3),
             (
                 "bank_accel_sigma_fps2",
@@ -341,7 +343,7 @@ impl EstimatorSection {
                 1e3,
             ),
         ];
-        for (key, value, min, max) in scalars {
+        for (key, value, min, max) in scalars.into_iter().chain(self.gate_scalars()) {
             check::in_closed(&format!("estimator.{key}"), value, min, max)?;
         }
         for (i, sigma) in self.pixel_sigma_px.iter().enumerate() {
@@ -352,6 +354,21 @@ impl EstimatorSection {
             check::in_closed(&key, *sigma, 0.0, 1e4)?;
         }
         Ok(())
+    }
+
+    /// (key, value, allowed [min, max]) of the validation gates' scalars.
+    fn gate_scalars(&self) -> [(&'static str, f64, f64, f64); 4] {
+        [
+            ("innovation_gate", self.innovation_gate, 0.0, 1e6),
+            ("bearing_gate", self.bearing_gate, 0.0, 1e6),
+            ("gate_reopen_s", self.gate_reopen_s, 0.0, 1e6),
+            (
+                "gate_reopen_range_ratio",
+                self.gate_reopen_range_ratio,
+                1.0,
+                1e6,
+            ),
+        ]
     }
 }
 

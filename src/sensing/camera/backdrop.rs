@@ -26,7 +26,7 @@ pub struct BackdropFrames {
     /// frames' `Ok` measurements, px (null without any).
     pub centroid_vs_silhouette_rms_px: Option<f64>,
     /// Of those frames, the ones the estimator took (trusted: `Ok`, and fused by a Kalman
-    /// filter whose innovation gate did not keep them out).
+    /// filter whose gates did not keep them out).
     pub trusted: u64,
     /// The RMS distance over the trusted frames alone, px (null without any).
     pub trusted_centroid_vs_silhouette_rms_px: Option<f64>,

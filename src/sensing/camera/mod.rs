@@ -378,7 +378,7 @@ impl CameraSensor {
     }
 
     /// The frame `index` reached the estimator, which took it (`trusted`) or not (a frame not
-    /// `Ok`, or one the filter's innovation gate kept out).
+    /// `Ok`, or one the filter's gates kept out).
     pub fn settle(&mut self, index: u64, trusted: bool) {
         self.settled = Some((index, trusted));
         if let Some(backdrop) = &mut self.backdrop {
