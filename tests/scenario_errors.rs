@@ -177,13 +177,19 @@ fn a_fragment_fraction_is_under_one() {
     );
 }
 
-/// A gate on the bearing's normalised square is not negative (0: none).
+/// A gate on the bearing's normalised square is not negative (0: none), and the factor off
+/// the predicted range beyond which it weighs a frame is at least 1 (1: every frame).
 #[test]
-fn a_bearing_gate_is_not_negative() {
+fn a_bearing_gate_and_its_range_ratio_are_in_range() {
     assert_rejected(
         "[estimator]\nkind = \"kalman\"\nbearing_gate = -1.0\n",
         &[],
         &["estimator.bearing_gate = -1", "[0, 1000000]"],
+    );
+    assert_rejected(
+        "[estimator]\nkind = \"kalman\"\nbearing_gate_range_ratio = 0.5\n",
+        &[],
+        &["estimator.bearing_gate_range_ratio = 0.5", "[1, 1000000]"],
     );
 }
 

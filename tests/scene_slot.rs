@@ -15,8 +15,9 @@ use wingman::vision::BlobStatus;
 
 /// Invariant: the run holds the slot (no frame off the target, RMS over 50-70 s under 3 ft
 /// per axis, b̂ within 5%) and the length at the slot (30-70 s) reads under 0.7 of the
-/// silhouette's in fewer than 4% of the frames. Measured: 0 off, RMS [2.36, 1.33, 1.18] ft,
-/// b̂ 7.85 ft, short lengths in 1 of 1199 frames (0 before fragments were told apart by their
+/// silhouette's in fewer than 4% of the frames. Measured: 0 off, RMS [2.35, 1.39, 1.20] ft,
+/// b̂ 7.90 ft, short lengths in 0 of 1199 frames (before the bearing gate on fragments: RMS
+/// [2.36, 1.33, 1.18] ft, b̂ 7.85 ft, 1 short; 0 before fragments were told apart by their
 /// distance, with RMS [2.34, 1.38, 1.24] ft and b̂ 7.92 ft; 14 before a whole-covered pixel was
 /// always the target's colour: docs/findings.md, A whole-covered pixel's rounding); on the
 /// build before that, with the ring's points beyond the window left out (the gate's

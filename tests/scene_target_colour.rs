@@ -21,9 +21,13 @@
 //! rounding), 1 frame and 4.85 px; since a core pixel must be a mixture with it
 //! (docs/findings.md, A changed background inside the blob), 1 frame and 4.49 px; since
 //! fragments are told apart by their distance (docs/findings.md, Fragments told apart by
-//! their distance), 1.66 px. The
+//! their distance), 1.66 px; since the bearing gate weighs fragments (docs/findings.md, The
+//! bearing gate: a fragment's length cannot explain its bearing), 1.64 px. The
 //! bounds below are stream 14's with room for the last bits a GPU's pixels differ by: at
-//! most 5 frames off the target, the centroid under 8 px against ground.
+//! most 5 frames off the target, the centroid under 8 px against ground. Since the bearing
+//! gate, the run without the colour no longer ends in a false lock (it did at 10.1 s) but
+//! measures 10 frames off the target: without the colour the run ends in a false lock or
+//! measures more than the 5 frames off the target that bound the run with it.
 
 use crate::common;
 
@@ -68,16 +72,22 @@ fn the_targets_colour_keeps_the_track_against_the_ground() {
     let ground = s.background.as_ref().map(|b| b.ground);
     let centroid_px = ground.and_then(|g| g.centroid_vs_silhouette_rms_px);
     assert!(centroid_px.is_some_and(|px| px < 8.0), "{ground:?}");
-    assert_eq!(w.status, RunStatus::FalseLock, "{:?}", w.message);
+    let off = w.track_check.off_target_frames;
+    assert!(
+        w.status == RunStatus::FalseLock || off > 5,
+        "{:?}, {off} off",
+        w.status
+    );
 }
 
 /// Invariant: a frame is trusted (`meas_trusted`, the summary's `background.*.trusted`) when
 /// the estimator took it: every frame not `Ok` is untrusted, the untrusted `Ok` frames are
-/// exactly those the innovation gate kept out, and the frames against ground the estimator
+/// exactly those the gates kept out, and the frames against ground the estimator
 /// took are at most those measured there, and at most as far from the silhouette's centroid
-/// (measured on stream 14: 478 frames against ground, 1 of them lost, 457 trusted; 1.66 px
-/// RMS over every `Ok` frame, 1.01 px over the trusted ones; the gate kept out 20 of the 899
-/// frames held. Before fragments were told apart by their distance: 448 frames, 3 lost, 408
+/// (measured on stream 14: 484 frames against ground, 1 of them lost, 460 trusted; 1.64 px
+/// RMS over every `Ok` frame, 0.97 px over the trusted ones; the gates kept out 23 of the 899
+/// frames held. Before the bearing gate: 478 frames, 1 lost, 457 trusted, 1.66 and 1.01 px,
+/// 20 kept out; before fragments were told apart by their distance: 448 frames, 3 lost, 408
 /// trusted, 4.49 and 2.24 px, 40 kept out).
 #[test]
 fn a_trusted_frame_is_one_the_estimator_took() {

@@ -139,8 +139,12 @@ pub struct Innovation {
 pub struct Gates {
     /// The largest νᵀ S⁻¹ ν fused (∞: no gate).
     pub innovation: f64,
-    /// The largest ν_⊥ᵀ S_⊥⁻¹ ν_⊥ fused (∞: no gate).
+    /// The largest ν_⊥ᵀ S_⊥⁻¹ ν_⊥ fused (∞: no gate), of a measurement the bearing gate
+    /// weighs ([`Self::weighs_bearing`]).
     pub bearing: f64,
+    /// ρ_⊥ ≥ 1: the bearing gate weighs a measurement whose ‖r*‖ is off the prediction's
+    /// ‖r̂⁻‖ by this factor or more, either way (1: every measurement).
+    pub bearing_range_ratio: f64,
 }
 
 impl Gates {
@@ -148,7 +152,17 @@ impl Gates {
     pub const OPEN: Self = Self {
         innovation: f64::INFINITY,
         bearing: f64::INFINITY,
+        bearing_range_ratio: 1.0,
     };
+
+    /// Whether the bearing gate weighs a measurement r* against the prediction r̂⁻:
+    /// |ln(‖r*‖ / ‖r̂⁻‖)| ≥ ln ρ_⊥, a length off the predicted one by ρ_⊥ or more (a ratio
+    /// that is not a number: yes).
+    fn weighs_bearing(&self, r_star: &Vec3, predicted: &Vec3) -> bool {
+        let ratio = r_star.norm() / predicted.norm();
+        self.bearing.is_finite()
+            && (ratio.is_nan() || ratio.ln().abs() >= self.bearing_range_ratio.ln())
+    }
 }
 
 /// The Kalman filter of this module: posterior at the time of the last fused measurement.
@@ -257,7 +271,8 @@ impl TargetFilter {
 
     /// [`Self::update`], unless the measurement's normalised innovation νᵀ S⁻¹ ν exceeds
     /// `gates.innovation` (a validation gate, docs/equations.md, The innovation gate), that of
-    /// its bearing exceeds `gates.bearing` (The bearing gate), or either is not finite: then
+    /// its bearing exceeds `gates.bearing` where that gate weighs it (The bearing gate), or
+    /// either is not finite: then
     /// the posterior is left as it is, and the innovation says so (`fused` false).
     pub fn update_within(
         &mut self,
@@ -265,9 +280,10 @@ impl TargetFilter {
         r_covariance: &Mat3,
         gates: Gates,
     ) -> Innovation {
-        let residual = r_star - self.x.fixed_rows::<3>(R);
+        let predicted: Vec3 = self.x.fixed_rows::<3>(R).into_owned();
+        let residual = r_star - predicted;
         let s: Mat3 = self.p.fixed_view::<3, 3>(R, R) + r_covariance;
-        let bearing_normalised_sq = if gates.bearing.is_finite() {
+        let bearing_normalised_sq = if gates.weighs_bearing(r_star, &predicted) {
             self.bearing_normalised_sq(r_star, r_covariance)
         } else {
             0.0

@@ -198,6 +198,7 @@ impl KalmanTracker {
             gates: Gates {
                 innovation: gate_or_open(section.innovation_gate),
                 bearing: gate_or_open(section.bearing_gate),
+                bearing_range_ratio: section.bearing_gate_range_ratio,
             },
             gated_out: 0,
             reopening: GateReopening {

@@ -209,6 +209,13 @@ pub struct EstimatorSection {
     /// the innovation. It is χ² with 2 degrees of freedom when the filter's model holds:
     /// 13.8 keeps out one frame in 1,000 of the target's own.
     pub bearing_gate: f64,
+    /// The bearing gate weighs only a frame whose |r*| is off the prediction's |r̂| by this
+    /// factor or more, either way: a length under its inverse or over it times the
+    /// predicted length (a fragment, or the target merged with something), which the
+    /// innovation gate weighs by its range's wide σ rather than its bearing. 1 (the
+    /// default): every frame. A frame of the whole target then meets the innovation gate
+    /// alone.
+    pub bearing_gate_range_ratio: f64,
     /// With the innovation gate, how long a streak of frames it kept out, each within the gate
     /// of the one before, may last before the filter takes the next one, s (docs/equations.md,
     /// The gate re-opened): its kinematic covariance widened until that frame's normalised
@@ -271,6 +278,7 @@ impl Default for EstimatorSection {
             airframe_shape_sigma: 0.025,
             innovation_gate: 0.0,
             bearing_gate: 0.0,
+            bearing_gate_range_ratio: 1.0,
             gate_reopen_s: 0.0,
             gate_reopen_range_ratio: 2.0,
             covariance_at: CovarianceAt::Measurement,
@@ -357,10 +365,16 @@ impl EstimatorSection {
     }
 
     /// (key, value, allowed [min, max]) of the validation gates' scalars.
-    fn gate_scalars(&self) -> [(&'static str, f64, f64, f64); 4] {
+    fn gate_scalars(&self) -> [(&'static str, f64, f64, f64); 5] {
         [
             ("innovation_gate", self.innovation_gate, 0.0, 1e6),
             ("bearing_gate", self.bearing_gate, 0.0, 1e6),
+            (
+                "bearing_gate_range_ratio",
+                self.bearing_gate_range_ratio,
+                1.0,
+                1e6,
+            ),
             ("gate_reopen_s", self.gate_reopen_s, 0.0, 1e6),
             (
                 "gate_reopen_range_ratio",

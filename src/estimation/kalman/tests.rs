@@ -310,7 +310,8 @@ fn frame(y_px: f64, z_px: f64, b_px: f64) -> (Vec3, Mat3) {
 /// prediction passes the innovation gate, its innovation lying along its own ray where its
 /// length makes it uncertain, and the bearing gate keeps it out (docs/equations.md, The
 /// bearing gate); the same fragment on the prediction's ray, and the whole target 2 px off
-/// it, pass both.
+/// it, pass both; with the bearing gate on lengths off the prediction's by 2 or more only,
+/// the fragment is kept out and the whole target's bearing not weighed.
 #[test]
 fn bearing_gate_keeps_out_a_fragment_off_the_prediction() {
     let (whole, covariance) = frame(30.0, 20.0, 120.0);
@@ -319,6 +320,7 @@ fn bearing_gate_keeps_out_a_fragment_off_the_prediction() {
     let gates = Gates {
         innovation: 16.3,
         bearing: 13.8,
+        bearing_range_ratio: 1.0,
     };
     let (off, off_covariance) = frame(70.0, 20.0, 5.0);
     let full = filter
@@ -340,6 +342,23 @@ fn bearing_gate_keeps_out_a_fragment_off_the_prediction() {
     assert!(
         taken.fused && taken.bearing_normalised_sq < 2.0,
         "{taken:?}"
+    );
+    // Weighing only lengths off the prediction's by a factor of 2: the fragment still, the
+    // whole target not at all.
+    let fragments_only = Gates {
+        bearing_range_ratio: 2.0,
+        ..gates
+    };
+    let kept_out = filter
+        .clone()
+        .update_within(&off, &off_covariance, fragments_only);
+    assert!(!kept_out.fused, "{kept_out:?}");
+    let whole = filter
+        .clone()
+        .update_within(&near, &near_covariance, fragments_only);
+    assert!(
+        whole.fused && whole.bearing_normalised_sq == 0.0,
+        "{whole:?}"
     );
 }
 
