@@ -155,13 +155,12 @@ impl Gates {
         bearing_range_ratio: 1.0,
     };
 
-    /// Whether the bearing gate weighs a measurement r* against the prediction r̂⁻:
-    /// |ln(‖r*‖ / ‖r̂⁻‖)| ≥ ln ρ_⊥, a length off the predicted one by ρ_⊥ or more (a ratio
-    /// that is not a number: yes).
-    fn weighs_bearing(&self, r_star: &Vec3, predicted: &Vec3) -> bool {
-        let ratio = r_star.norm() / predicted.norm();
+    /// Whether the bearing gate weighs a measurement whose |ln(‖r*‖ / ‖r̂⁻‖)| is `range_off`
+    /// ([`TargetFilter::range_off`]): ≥ ln ρ_⊥, a length off the predicted one by ρ_⊥ or more
+    /// (not a number: yes).
+    fn weighs_bearing(&self, range_off: f64) -> bool {
         self.bearing.is_finite()
-            && (ratio.is_nan() || ratio.ln().abs() >= self.bearing_range_ratio.ln())
+            && (range_off.is_nan() || range_off >= self.bearing_range_ratio.ln())
     }
 }
 
@@ -283,7 +282,7 @@ impl TargetFilter {
         let predicted: Vec3 = self.x.fixed_rows::<3>(R).into_owned();
         let residual = r_star - predicted;
         let s: Mat3 = self.p.fixed_view::<3, 3>(R, R) + r_covariance;
-        let bearing_normalised_sq = if gates.weighs_bearing(r_star, &predicted) {
+        let bearing_normalised_sq = if gates.weighs_bearing(self.range_off(r_star)) {
             self.bearing_normalised_sq(r_star, r_covariance)
         } else {
             0.0
@@ -318,6 +317,16 @@ impl TargetFilter {
             bearing_normalised_sq,
             fused: true,
         }
+    }
+
+    /// |ln(‖r*‖ / ‖r̂‖)|, r̂ the posterior's: how far a measurement's range, and so its length,
+    /// is off the prediction's, either way (not a number where either is not finite or r̂ is
+    /// zero). The bearing gate weighs the measurements far off it, the gate's re-opening takes
+    /// only those near it.
+    pub fn range_off(&self, r_star: &Vec3) -> f64 {
+        (r_star.norm() / self.x.fixed_rows::<3>(R).norm())
+            .ln()
+            .abs()
     }
 
     /// The normalised square of a measurement's bearing innovation against the posterior

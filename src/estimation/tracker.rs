@@ -685,8 +685,8 @@ impl GateReopening {
         }
         // A range far off the prediction's is not a drifted prediction but something else
         // measured steadily (the target's blob merged with a road).
-        let range_ratio = frame.r_star.norm() / predicted.posterior().r.norm();
-        if range_ratio.ln().abs() > self.range_ratio.ln() || range_ratio.is_nan() {
+        let range_off = predicted.range_off(frame.r_star);
+        if range_off > self.range_ratio.ln() || range_off.is_nan() {
             return None;
         }
         // The prediction, not the frames, is what is wrong: widened until this frame's
