@@ -40,19 +40,19 @@
 //! steeply down from low height), a background that changes, and a target at rest against the
 //! world since before the memory saw the background behind it are taken for target or lost.
 
+mod pixels;
+
 use super::image_view::RgbaView;
 use super::target_colour::ColourGate;
 use crate::frames::{Mat3, Vec3};
 use crate::render::camera::CameraIntrinsics;
+use pixels::{PixelExplainer, threads_for};
 
 /// Pixels around the previous frame's target mask that explain nothing at least (its
 /// anti-aliased edge, and the target's motion in the image between frames).
 pub(crate) const TARGET_MARGIN_PX: usize = 3;
 /// Pixels on the ring of the local colour model.
 const RING_POINTS: usize = 16;
-/// A pixel within this colour distance of the remembered background in its direction is
-/// background without looking further, grey levels: half the default detection floor.
-const EXPLAINED_GREY: f64 = 4.0;
 /// Points around a remembered pixel whose colours (and mixtures) explain a pixel that moved
 /// by parallax.
 const PARALLAX_POINTS: usize = 8;
@@ -178,8 +178,6 @@ pub(crate) struct MotionReference {
     ring: Vec<(isize, isize)>,
     /// The ring's radius, px.
     ring_radius_px: usize,
-    /// The colours on the ring around the pixel being explained.
-    ring_colours: Vec<[f32; 3]>,
     /// Reference colour of each pixel of the frame being measured, row-major.
     pub reference: Vec<[f32; 3]>,
     /// The remembered background in the direction of each pixel of the frame being measured,
@@ -197,36 +195,6 @@ pub(crate) struct MotionReference {
     gate: Option<ColourGate>,
 }
 
-fn distance2(a: [f32; 3], b: [f32; 3]) -> f32 {
-    (0..3).map(|c| (a[c] - b[c]) * (a[c] - b[c])).sum()
-}
-
-/// The point of the segment from `a` to `b` nearest `p` (colours).
-fn nearest_on_segment(p: [f32; 3], a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
-    let ab: [f32; 3] = std::array::from_fn(|c| b[c] - a[c]);
-    let length2: f32 = ab.iter().map(|x| x * x).sum();
-    if length2 <= f32::EPSILON {
-        return a;
-    }
-    let t = ((0..3).map(|c| (p[c] - a[c]) * ab[c]).sum::<f32>() / length2).clamp(0.0, 1.0);
-    std::array::from_fn(|c| a[c] + t * ab[c])
-}
-
-/// The colour nearest `p` among `colours` and their pairwise mixtures (None when empty).
-fn nearest_mixture(colours: &[[f32; 3]], p: [f32; 3]) -> Option<[f32; 3]> {
-    let mut best: Option<([f32; 3], f32)> = None;
-    for (k, &a) in colours.iter().enumerate() {
-        for &b in &colours[k..] {
-            let q = nearest_on_segment(p, a, b);
-            let d = distance2(p, q);
-            if best.is_none_or(|(_, bd)| d < bd) {
-                best = Some((q, d));
-            }
-        }
-    }
-    best.map(|(q, _)| q)
-}
-
 fn rgb_f32(frame: &RgbaView<'_>, idx: usize) -> [f32; 3] {
     frame.rgb(idx).map(|x| x as f32)
 }
@@ -242,7 +210,11 @@ impl MotionReference {
     /// levels: the robust scale of the pixels' distances to the remembered background where
     /// it sees them (their difference holds two frames' noise), else `floor`.
     pub fn build(&mut self, frame: &RgbaView<'_>, floor: f64) -> f64 {
-        let explained2 = (EXPLAINED_GREY * EXPLAINED_GREY) as f32;
+        self.build_on(frame, floor, threads_for(frame.width, frame.height))
+    }
+
+    /// [`Self::build`] on `threads` threads.
+    fn build_on(&mut self, frame: &RgbaView<'_>, floor: f64, threads: usize) -> f64 {
         if self.ring.is_empty() {
             self.set_ring_radius(DEFAULT_RING_RADIUS_PX);
         }
@@ -250,51 +222,28 @@ impl MotionReference {
         let window = self.is_window(frame);
         let (w, h) = (frame.width, frame.height);
         self.locate_in_previous(frame, to_previous.as_ref());
+        let image_size = self.geometry.map_or((w, h), |g| {
+            let size = (g.intrinsics.width_px, g.intrinsics.height_px);
+            (size.0 as usize, size.1 as usize)
+        });
+        let explainer = PixelExplainer {
+            frame,
+            previous: &self.previous,
+            in_previous: &self.in_previous,
+            on_previous_target: &self.on_previous_target,
+            ring: &self.ring,
+            ring_radius_px: self.ring_radius_px,
+            gate: self.gate,
+            window,
+            new_strip_at_edge: to_previous.is_some(),
+            image_size,
+        };
         self.reference.clear();
-        self.reference.reserve(w * h);
+        self.reference.resize(w * h, [0.0; 3]);
         self.carried.clear();
-        self.carried.reserve(w * h);
-        let mut differences = Vec::new();
-        for v in 0..h {
-            for u in 0..w {
-                let p = rgb_f32(frame, v * w + u);
-                let at = self.in_previous[v * w + u];
-                let seen = at.map_or(Seen::Outside, |(x, y)| self.previous.sample(x, y));
-                self.carried.push(match seen {
-                    Seen::Colour(c) => Some(c),
-                    _ => None,
-                });
-                let reference = match (seen, at) {
-                    (Seen::Colour(c), Some((x, y))) => {
-                        differences.push(distance2(p, c));
-                        if distance2(p, c) < explained2 {
-                            c
-                        } else {
-                            self.remembered_colours(x, y);
-                            if self.gate.is_some() {
-                                // A memory mislaid by a frame's errors leaves the ring.
-                                self.push_ring_colours(frame, u, v, window);
-                            }
-                            self.explain(p)
-                        }
-                    }
-                    // A strip the camera's turn brought into view at the image's edge holds
-                    // no target yet: the memory did not see it and the ring lies half outside.
-                    // (The image's edge, not a tracking window's: a target may enter a window.)
-                    (Seen::Outside, _)
-                        if to_previous.is_some() && self.at_image_edge(frame, u, v) =>
-                    {
-                        p
-                    }
-                    _ => {
-                        self.ring_colours.clear();
-                        self.push_ring_colours(frame, u, v, window);
-                        self.explain(p)
-                    }
-                };
-                self.reference.push(reference);
-            }
-        }
+        self.carried.resize(w * h, None);
+        let mut differences =
+            explainer.explain_rows(&mut self.reference, &mut self.carried, threads);
         noise_sigma(&mut differences, floor)
     }
 
@@ -316,60 +265,6 @@ impl MotionReference {
         );
     }
 
-    /// The remembered background at position (x, y) of the memory and at
-    /// [`PARALLAX_POINTS`] points [`PARALLAX_PX`] around it, into `ring_colours`: ground at a
-    /// finite distance moves by parallax beyond the camera's rotation, and a pixel an edge
-    /// moved onto is a mixture of the colours on either side of it.
-    fn remembered_colours(&mut self, x: f64, y: f64) {
-        self.ring_colours.clear();
-        for k in 0..=PARALLAX_POINTS {
-            let (dx, dy) = if k == 0 {
-                (0.0, 0.0)
-            } else {
-                let a = std::f64::consts::TAU * k as f64 / PARALLAX_POINTS as f64;
-                (PARALLAX_PX * a.cos(), PARALLAX_PX * a.sin())
-            };
-            if let Seen::Colour(c) = self.previous.sample(x + dx, y + dy) {
-                self.ring_colours.push(c);
-            }
-        }
-    }
-
-    /// The reference of a pixel of colour `p` from the background colours around it
-    /// (`ring_colours`): the nearest of them and their pairwise mixtures. With the target's
-    /// colour known, where that does not explain `p` (within twice [`EXPLAINED_GREY`], the
-    /// detection floor): the background colour `p` is a mixture of with a shade of the
-    /// target, or else `p` itself (neither background nor target: a field's edge the memory
-    /// mislaid).
-    fn explain(&self, p: [f32; 3]) -> [f32; 3] {
-        let nearest = nearest_mixture(&self.ring_colours, p).unwrap_or(p);
-        let Some(gate) = self.gate else {
-            return nearest;
-        };
-        let floor = (2.0 * EXPLAINED_GREY) as f32;
-        if distance2(p, nearest) < floor * floor {
-            return nearest;
-        }
-        gate.best_background(p, &self.ring_colours).unwrap_or(p)
-    }
-
-    /// Whether pixel (u, v) of `frame` lies within the ring's radius of the whole image's
-    /// edge (unknown intrinsics: of the frame's own edge).
-    fn at_image_edge(&self, frame: &RgbaView<'_>, u: usize, v: usize) -> bool {
-        let (iu, iv) = (u + frame.origin[0], v + frame.origin[1]);
-        let (width, height) = self.geometry.map_or((frame.width, frame.height), |g| {
-            (
-                g.intrinsics.width_px as usize,
-                g.intrinsics.height_px as usize,
-            )
-        });
-        let from_edge = iu
-            .min(iv)
-            .min(width.saturating_sub(iu + 1))
-            .min(height.saturating_sub(iv + 1));
-        from_edge < self.ring_radius_px
-    }
-
     /// The map from the frame being measured to the memory, when both views are known.
     fn views_to_previous(&self) -> Option<Warp> {
         let now = self.geometry?;
@@ -378,32 +273,6 @@ impl MotionReference {
             now,
             before: self.previous.geometry?,
         })
-    }
-
-    /// Adds to `ring_colours` the pixels on a ring of radius `ring_radius_px` around (u, v)
-    /// (those inside the frame and not on the target the memory measured): a pixel an edge
-    /// between two fields cuts is a mixture of the two, and the ring crosses both. The ring
-    /// around a pixel near one end of the target crosses the target's other parts, whose
-    /// colour would explain it. In a tracking window (`window`, [`Self::is_window`], decided
-    /// once per frame) a ring point beyond the window is taken where its ray leaves the
-    /// window, on the border: the ring about a target 130 px long
-    /// has a radius of about 90 px, and a window 80 px tall about it would otherwise leave
-    /// only the ring's points on the target itself, which explain its wings as background.
-    fn push_ring_colours(&mut self, frame: &RgbaView<'_>, u: usize, v: usize, window: bool) {
-        let on_target = &self.on_previous_target;
-        let from_target = on_target[v * frame.width + u];
-        for &(du, dv) in &self.ring {
-            let at = if window {
-                Some(onto_border(frame, u, v, du, dv))
-            } else {
-                inside(frame, u as isize + du, v as isize + dv)
-            };
-            if let Some(i) = at
-                && !(from_target && on_target[i])
-            {
-                self.ring_colours.push(rgb_f32(frame, i));
-            }
-        }
     }
 
     /// Whether `frame` is a tracking window inside a larger image (the view's image size
@@ -510,31 +379,6 @@ impl MotionReference {
     pub fn commit(&mut self) {
         std::mem::swap(&mut self.previous, &mut self.pending);
     }
-}
-
-/// The index of pixel (u, v) of `frame`, when inside it.
-fn inside(frame: &RgbaView<'_>, u: isize, v: isize) -> Option<usize> {
-    let (w, h) = (frame.width as isize, frame.height as isize);
-    (u >= 0 && v >= 0 && u < w && v < h).then(|| (v * w + u) as usize)
-}
-
-/// The index of the pixel of `frame` at (u, v) + (du, dv), or, beyond the frame, where the
-/// ray from (u, v) towards it leaves the frame.
-fn onto_border(frame: &RgbaView<'_>, u: usize, v: usize, du: isize, dv: isize) -> usize {
-    let (w, h) = (frame.width as f64, frame.height as f64);
-    let (x, y) = (u as f64, v as f64);
-    // The largest share t of the step that stays within [0, w - 1] x [0, h - 1].
-    let reach = |from: f64, step: isize, last: f64| match step {
-        0 => 1.0,
-        s if s > 0 => (last - from) / s as f64,
-        s => from / -s as f64,
-    };
-    let t = reach(x, du, w - 1.0)
-        .min(reach(y, dv, h - 1.0))
-        .clamp(0.0, 1.0);
-    let uu = (x + t * du as f64).round().clamp(0.0, w - 1.0) as usize;
-    let vv = (y + t * dv as f64).round().clamp(0.0, h - 1.0) as usize;
-    vv * frame.width + uu
 }
 
 /// The map of a frame's image positions into the memory's image (one per frame).

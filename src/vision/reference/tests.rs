@@ -2,6 +2,7 @@
 //! world, the ground's parallax, the first frame, and the ring and the memory about a
 //! target in a tracking window.
 
+use super::pixels::{distance2, nearest_mixture};
 use super::*;
 use crate::frames::{EulerAngles, Vec3};
 use crate::vision::{BlobSelection, BlobStatus, VisionConfig, VisionPipeline};
@@ -337,4 +338,122 @@ fn first_frame_only_sets_up() {
         .measure(&pixels, WIDTH, HEIGHT, BlobSelection::Largest)
         .unwrap();
     assert_eq!(m.status, BlobStatus::NotFound);
+}
+
+/// The nearest point of the segment from `a` to `b` to `p`, segment by segment, each sum an
+/// iterator's: the form `nearest_mixture` is written out from.
+fn nearest_on_segment(p: [f32; 3], a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    let ab: [f32; 3] = std::array::from_fn(|c| b[c] - a[c]);
+    let length2: f32 = ab.iter().map(|x| x * x).sum();
+    if length2 <= f32::EPSILON {
+        return a;
+    }
+    let t = ((0..3).map(|c| (p[c] - a[c]) * ab[c]).sum::<f32>() / length2).clamp(0.0, 1.0);
+    std::array::from_fn(|c| a[c] + t * ab[c])
+}
+
+/// `nearest_mixture` equals, to the bit, the first nearest of every segment's nearest
+/// point, over random colours drawn from palettes small enough to repeat (as a ring across
+/// one field does), with `p` sometimes one of them: its shortcuts change no frame's
+/// reference.
+#[test]
+fn nearest_mixture_is_the_nearest_point() {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    let colour = |rng: &mut rand_chacha::ChaCha8Rng| -> [f32; 3] {
+        std::array::from_fn(|_| {
+            f32::from(rng.random_range(0u8..=255)) * rng.random_range(0.5f32..1.0)
+        })
+    };
+    let (mut repeated, mut equal) = (0, 0);
+    for case in 0..4_000 {
+        let palette: Vec<[f32; 3]> = (0..rng.random_range(1..12))
+            .map(|_| colour(&mut rng))
+            .collect();
+        let n = rng.random_range(1..30);
+        let colours: Vec<[f32; 3]> = (0..n)
+            .map(|_| palette[rng.random_range(0..palette.len())])
+            .collect();
+        let p = if case % 4 == 0 {
+            colours[rng.random_range(0..n)]
+        } else {
+            colour(&mut rng)
+        };
+        let mut expected: Option<([f32; 3], f32)> = None;
+        for (k, &a) in colours.iter().enumerate() {
+            for &b in &colours[k..] {
+                let q = nearest_on_segment(p, a, b);
+                let d: f32 = (0..3).map(|c| (p[c] - q[c]) * (p[c] - q[c])).sum();
+                if expected.is_none_or(|(_, bd)| d < bd) {
+                    expected = Some((q, d));
+                }
+            }
+        }
+        let got = nearest_mixture(&colours, p).unwrap();
+        assert_eq!(
+            got.map(f32::to_bits),
+            expected.unwrap().0.map(f32::to_bits),
+            "case {case}"
+        );
+        repeated += usize::from(palette.len() < n);
+        equal += usize::from(colours.contains(&p));
+    }
+    assert!(
+        repeated > 2_000 && equal > 900,
+        "{repeated} cases with repeats, {equal} with p"
+    );
+    assert_eq!(nearest_mixture(&[], [1.0; 3]), None);
+}
+
+/// A frame's rows shared among threads give every pixel the reference and the remembered
+/// colour that one thread gives, to the bit, and the same noise σ: the threads a machine
+/// has do not change a run.
+#[test]
+fn threads_explain_a_frame_as_one_does() {
+    let intrinsics = CameraIntrinsics::from_hfov(WIDTH, HEIGHT, 60.0);
+    let geometry = |camera_from_ned| {
+        Some(ViewGeometry {
+            intrinsics,
+            camera_from_ned,
+            position_ned_ft: Vec3::zeros(),
+            ground_down_ft: None,
+        })
+    };
+    let mut motion = MotionReference::default();
+    motion.set_geometry(geometry(before()));
+    let first = frame(&before(), &intrinsics, None);
+    motion.keep(&RgbaView::new(&first, WIDTH, HEIGHT).unwrap(), None);
+    motion.commit();
+    motion.set_geometry(geometry(now()));
+    motion.set_colour_gate(Some(ColourGate {
+        target_rgb: TARGET_RGB.map(f64::from),
+        max_sin: 4f64.to_radians().sin(),
+    }));
+    let second = frame(&now(), &intrinsics, Some(CENTRE));
+    let view = RgbaView::new(&second, WIDTH, HEIGHT).unwrap();
+    let built = |threads| {
+        let mut m = motion.clone();
+        let sigma = m.build_on(&view, 0.5, threads);
+        (m.reference, m.carried, sigma)
+    };
+    let bits = |c: &[f32; 3]| c.map(f32::to_bits);
+    let (reference, carried, sigma) = built(1);
+    let unexplained = (reference.iter().zip(&carried))
+        .filter(|(r, c)| c.is_none_or(|c| bits(&c) != bits(r)))
+        .count();
+    assert!(
+        unexplained > 100,
+        "{unexplained} pixels not the memory's colour"
+    );
+    for threads in [2, 3, 7] {
+        let (r, c, s) = built(threads);
+        assert!(reference.iter().zip(&r).all(|(a, b)| bits(a) == bits(b)));
+        assert!(
+            carried
+                .iter()
+                .zip(&c)
+                .all(|(a, b)| a.map(|a| bits(&a)) == b.map(|b| bits(&b)))
+        );
+        assert_eq!(sigma.to_bits(), s.to_bits(), "{threads} threads");
+    }
 }
