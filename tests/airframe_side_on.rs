@@ -114,6 +114,8 @@ fn fly(
             ned_from_camera,
             range_ft: relative.norm(),
             length_direction: None,
+            centroid_vs_silhouette_px: None,
+            background: None,
         };
         let velocity = Vec3::new(SPEED_FPS + weave(t_s), 0.0, 0.0);
         tracker.fuse_frame(&record, &velocity);

@@ -160,6 +160,8 @@ mod tests {
             ned_from_camera: crate::frames::Mat3::identity(),
             range_ft: 200.0,
             length_direction: None,
+            centroid_vs_silhouette_px: None,
+            background: None,
         }
     }
 

@@ -345,5 +345,7 @@ pub fn north_camera_frame(
         ned_from_camera: Mat3::identity(),
         range_ft: relative_ned_ft.norm(),
         length_direction: None,
+        centroid_vs_silhouette_px: None,
+        background: None,
     }
 }

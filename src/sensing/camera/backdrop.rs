@@ -97,7 +97,7 @@ struct Unsettled {
 
 /// What a frame showed behind its target.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum FrameBackground {
+pub enum FrameBackground {
     /// Open sky all round.
     Sky,
     /// Ground all round.
@@ -184,8 +184,12 @@ impl BackdropAudit {
         }
     }
 
-    /// Counts a measured frame.
-    pub fn count(&mut self, frame: &BackdropFrame, intrinsics: &CameraIntrinsics) {
+    /// Counts a measured frame; returns what lay behind its target.
+    pub fn count(
+        &mut self,
+        frame: &BackdropFrame,
+        intrinsics: &CameraIntrinsics,
+    ) -> FrameBackground {
         let kind = self.classify(frame.truth, frame.follower, intrinsics);
         let tally = &mut self.tallies[kind as usize];
         tally.frames += 1;
@@ -196,6 +200,7 @@ impl BackdropAudit {
             kind,
             silhouette_sq_px2: frame.silhouette_sq_px2,
         });
+        kind
     }
 
     /// The frame `index` reached the estimator, which took it (`trusted`) or not; frames

@@ -32,7 +32,7 @@ mod schedule;
 mod setup;
 
 pub use audit::MeasurementErrors;
-pub use backdrop::{BackdropFrames, BackgroundCounts};
+pub use backdrop::{BackdropFrames, BackgroundCounts, FrameBackground};
 pub use drawing::WindowCounts;
 pub use setup::{SensorError, load_target_mesh, world_scene};
 
@@ -80,6 +80,11 @@ pub struct FrameRecord {
     /// The unit direction of the measured maximal length in (yI, zI) (either sense; None
     /// when nothing was measured).
     pub length_direction: Option<[f64; 2]>,
+    /// The distance of the measured centroid from the true centroid of the target's
+    /// silhouette, px (None when not `Ok`, or the silhouette is not known).
+    pub centroid_vs_silhouette_px: Option<f64>,
+    /// What lay behind the target, by the truth (None without a world scene).
+    pub background: Option<FrameBackground>,
 }
 
 /// How far a measured point may lie from the target's true reference point beyond the
@@ -309,6 +314,7 @@ impl CameraSensor {
             ok,
         };
         let truth = self.audit.audit(&audited, self.drawing.mesh(), &intrinsics);
+        let mut background = None;
         if let (Some(backdrop), Some(truth)) = (&mut self.backdrop, &truth) {
             let frame = BackdropFrame {
                 index: exposure.index,
@@ -317,7 +323,7 @@ impl CameraSensor {
                 ok,
                 silhouette_sq_px2: self.audit.last_silhouette_sq_px2(),
             };
-            backdrop.count(&frame, &intrinsics);
+            background = Some(backdrop.count(&frame, &intrinsics));
         }
         let r_measured = match (ok, measured) {
             (true, Some(m)) => Some(scaled_relative_position(
@@ -344,6 +350,8 @@ impl CameraSensor {
             ned_from_camera: camera_from_ned.transpose(),
             range_ft: geometry.relative_ned_ft.norm(),
             length_direction: blob.length_direction(),
+            centroid_vs_silhouette_px: self.audit.last_silhouette_sq_px2().map(f64::sqrt),
+            background,
         };
         self.last = Some((record, blob));
         self.schedule.queue(record);
