@@ -223,8 +223,8 @@ impl MotionReference {
         let (w, h) = (frame.width, frame.height);
         self.locate_in_previous(frame, to_previous.as_ref());
         let image_size = self.geometry.map_or((w, h), |g| {
-            let size = (g.intrinsics.width_px, g.intrinsics.height_px);
-            (size.0 as usize, size.1 as usize)
+            let i = g.intrinsics;
+            (i.width_px as usize, i.height_px as usize)
         });
         let explainer = PixelExplainer {
             frame,

@@ -314,17 +314,19 @@ impl CameraSensor {
             ok,
         };
         let truth = self.audit.audit(&audited, self.drawing.mesh(), &intrinsics);
-        let mut background = None;
-        if let (Some(backdrop), Some(truth)) = (&mut self.backdrop, &truth) {
-            let frame = BackdropFrame {
-                index: exposure.index,
-                truth,
-                follower: &geometry.follower,
-                ok,
-                silhouette_sq_px2: self.audit.last_silhouette_sq_px2(),
-            };
-            background = Some(backdrop.count(&frame, &intrinsics));
-        }
+        let background = match (&mut self.backdrop, &truth) {
+            (Some(backdrop), Some(truth)) => {
+                let frame = BackdropFrame {
+                    index: exposure.index,
+                    truth,
+                    follower: &geometry.follower,
+                    ok,
+                    silhouette_sq_px2: self.audit.last_silhouette_sq_px2(),
+                };
+                Some(backdrop.count(&frame, &intrinsics))
+            }
+            _ => None,
+        };
         let r_measured = match (ok, measured) {
             (true, Some(m)) => Some(scaled_relative_position(
                 &m,

@@ -10,7 +10,9 @@ use std::sync::OnceLock;
 
 /// A pixel within this colour distance of the remembered background in its direction is
 /// background without looking further, grey levels: half the default detection floor.
-pub(super) const EXPLAINED_GREY: f64 = 4.0;
+const EXPLAINED_GREY: f64 = 4.0;
+/// Its square, in the colours' type.
+const EXPLAINED2: f32 = (EXPLAINED_GREY * EXPLAINED_GREY) as f32;
 /// Pixels each thread explaining a frame takes at least: below it a thread costs more to
 /// start than it saves (a thread starts in tens of µs; a pixel the memory does not explain
 /// costs about 0.5 µs).
@@ -117,7 +119,6 @@ impl PixelExplainer<'_> {
         colours: &mut Vec<[f32; 3]>,
         differences: &mut Vec<f32>,
     ) -> ([f32; 3], Option<[f32; 3]>) {
-        let explained2 = (EXPLAINED_GREY * EXPLAINED_GREY) as f32;
         let i = v * self.frame.width + u;
         let p = rgb_f32(self.frame, i);
         let at = self.in_previous[i];
@@ -128,8 +129,9 @@ impl PixelExplainer<'_> {
         };
         let reference = match (seen, at) {
             (Seen::Colour(c), Some((x, y))) => {
-                differences.push(distance2(p, c));
-                if distance2(p, c) < explained2 {
+                let off2 = distance2(p, c);
+                differences.push(off2);
+                if off2 < EXPLAINED2 {
                     c
                 } else {
                     self.remembered_colours(x, y, colours);
@@ -286,10 +288,14 @@ fn inside(frame: &RgbaView<'_>, u: isize, v: isize) -> Option<usize> {
 /// The index of the pixel of `frame` at (u, v) + (du, dv), or, beyond the frame, where the
 /// ray from (u, v) towards it leaves the frame.
 fn onto_border(frame: &RgbaView<'_>, u: usize, v: usize, du: isize, dv: isize) -> usize {
-    // Inside the frame the share below is 1, and the pixel the point itself.
-    if let Some(i) = inside(frame, u as isize + du, v as isize + dv) {
-        return i;
-    }
+    inside(frame, u as isize + du, v as isize + dv)
+        .unwrap_or_else(|| where_ray_leaves(frame, u, v, du, dv))
+}
+
+/// The index of the pixel where the ray from pixel (u, v) of `frame` towards (u, v) +
+/// (du, dv) leaves the frame: the point itself when it is inside (the share below is then
+/// 1; test `the_ray_ends_on_a_point_inside`).
+fn where_ray_leaves(frame: &RgbaView<'_>, u: usize, v: usize, du: isize, dv: isize) -> usize {
     let (w, h) = (frame.width as f64, frame.height as f64);
     let (x, y) = (u as f64, v as f64);
     // The largest share t of the step that stays within [0, w - 1] x [0, h - 1].
@@ -304,4 +310,33 @@ fn onto_border(frame: &RgbaView<'_>, u: usize, v: usize, du: isize, dv: isize) -
     let uu = (x + t * du as f64).round().clamp(0.0, w - 1.0) as usize;
     let vv = (y + t * dv as f64).round().clamp(0.0, h - 1.0) as usize;
     vv * frame.width + uu
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ring point inside the frame is the pixel itself, as the ray's formula gives it, so
+    /// taking it at once changes no ring colour.
+    #[test]
+    fn the_ray_ends_on_a_point_inside() {
+        let rgba = vec![0u8; 37 * 23 * 4];
+        let frame = RgbaView::new(&rgba, 37, 23).unwrap();
+        let mut checked = 0;
+        for (u, v) in [(0, 0), (5, 7), (36, 22), (18, 11)] {
+            for du in -40..=40 {
+                for dv in -30..=30 {
+                    if let Some(i) = inside(&frame, u as isize + du, v as isize + dv) {
+                        assert_eq!(
+                            where_ray_leaves(&frame, u, v, du, dv),
+                            i,
+                            "({u}, {v}) + ({du}, {dv})"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 4 * 37 * 23);
+    }
 }
