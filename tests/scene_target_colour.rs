@@ -85,8 +85,9 @@ fn the_targets_colour_keeps_the_track_against_the_ground() {
 /// the estimator took it: every frame not `Ok` is untrusted, the untrusted `Ok` frames are
 /// exactly those the gates kept out, and the frames against ground the estimator
 /// took are at most those measured there, and at most as far from the silhouette's centroid,
-/// as the held frames' own columns say too (measured on stream 14: 484 frames against ground, 1 of them lost, 460 trusted; 1.64 px
-/// RMS over every `Ok` frame, 0.97 px over the trusted ones; the gates kept out 23 of the 899
+/// as the held frames' own columns say too (measured on stream 14: 484 frames against
+/// ground, 1 of them lost, 460 trusted; 1.64 px RMS over every `Ok` frame, 0.97 px over the
+/// trusted ones; the gates kept out 23 of the 899
 /// frames held. Before the bearing gate: 478 frames, 1 lost, 457 trusted, 1.66 and 1.01 px,
 /// 20 kept out; before fragments were told apart by their distance: 448 frames, 3 lost, 408
 /// trusted, 4.49 and 2.24 px, 40 kept out).
