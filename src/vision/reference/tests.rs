@@ -374,10 +374,22 @@ fn nearest_mixture_is_the_nearest_point() {
         let colours: Vec<[f32; 3]> = (0..n)
             .map(|_| palette[rng.random_range(0..palette.len())])
             .collect();
-        let p = if case % 4 == 0 {
-            colours[rng.random_range(0..n)]
-        } else {
-            colour(&mut rng)
+        let p = match case % 4 {
+            0 => colours[rng.random_range(0..n)],
+            // On or within a grey level of a mixture of two of them: where the pairs that
+            // `nearest_mixture` skips by their line's distance come nearest to winning.
+            1 => {
+                let (a, b) = (
+                    colours[rng.random_range(0..n)],
+                    colours[rng.random_range(0..n)],
+                );
+                let t = rng.random_range(0.0f32..1.0);
+                let jitter = rng.random_range(0.0f32..1.0);
+                std::array::from_fn(|c| {
+                    a[c] + t * (b[c] - a[c]) + jitter * rng.random_range(-1.0f32..1.0)
+                })
+            }
+            _ => colour(&mut rng),
         };
         let mut expected: Option<([f32; 3], f32)> = None;
         for (k, &a) in colours.iter().enumerate() {
