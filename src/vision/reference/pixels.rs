@@ -256,7 +256,9 @@ pub(super) fn nearest_mixture(colours: &[[f32; 3]], p: [f32; 3]) -> Option<[f32;
     if colours.contains(&p) {
         return Some(p);
     }
-    let mut best: Option<([f32; 3], f32)> = None;
+    // The first pair, the first colour with itself, is that colour: the best so far.
+    let &first = colours.first()?;
+    let mut best = (first, distance2(p, first));
     for (k, &a) in colours.iter().enumerate() {
         if k > 0 && colours[k - 1].map(f32::to_bits) == a.map(f32::to_bits) {
             continue;
@@ -270,19 +272,19 @@ pub(super) fn nearest_mixture(colours: &[[f32; 3]], p: [f32; 3]) -> Option<[f32;
                 a
             } else {
                 let along = dot(pa, ab);
-                if best.is_some_and(|(_, bd)| beyond_line(pa2, along, length2, bd)) {
+                if beyond_line(pa2, along, length2, best.1) {
                     continue;
                 }
                 let t = (along / length2).clamp(0.0, 1.0);
                 [a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]]
             };
             let d = distance2(p, q);
-            if best.is_none_or(|(_, bd)| d < bd) {
-                best = Some((q, d));
+            if d < best.1 {
+                best = (q, d);
             }
         }
     }
-    best.map(|(q, _)| q)
+    Some(best.0)
 }
 
 /// Whether the line through a segment lies so far from `p` that no point of the segment can
