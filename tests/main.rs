@@ -23,6 +23,7 @@ mod camera_window;
 mod cluster_files;
 mod cluster_job_array;
 mod code_health;
+mod control_course_response;
 mod control_energy_loop;
 mod control_flight;
 mod control_prefilter;
