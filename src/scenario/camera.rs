@@ -26,7 +26,9 @@ pub enum BlobChoice {
     /// plus half the expected maximal length (`expected_length`): the estimator's predicted line of sight (before
     /// the target is first measured, the gimbal's cue; without either, the previous frame's
     /// centroid turned by the camera's rotation since); none when no blob lies inside the
-    /// gate. The largest only with no expectation at all.
+    /// gate, or when a blob centred in it but reaching beyond it (the tracked aircraft joined
+    /// to another) is more like the prediction than every blob inside. The largest only with
+    /// no expectation at all.
     Predicted,
 }
 

@@ -102,7 +102,9 @@ pub enum BlobSelection {
     /// maximal length, ρ `length_ratio` (either 0: sizes not compared, the nearest) and φ
     /// `fragment_fraction` (a blob shorter than φ of the expected length is a fragment, and
     /// fragments differ by their distance alone; 0: every size counts); none when no blob lies
-    /// inside the gate.
+    /// inside the gate, or when a blob centred within the radius but reaching beyond the square
+    /// is more like the prediction than every blob inside (the target joined to something
+    /// else: it is there, unmeasured, and no lesser blob stands in for it).
     NearestWithin {
         /// Column of the point, px.
         u_px: f64,

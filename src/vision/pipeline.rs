@@ -428,8 +428,10 @@ impl VisionPipeline {
 }
 
 /// Index of the blob to measure and whether it is below `min_pixel_count` (then it is the
-/// largest blob, because no blob is big enough); `None` when there are no blobs, or none inside
-/// a `NearestWithin` gate (its centre within the radius and its box within the gate's square). A non-finite `NearestTo` point falls back to `Largest`.
+/// largest blob, because no blob is big enough); `None` when there are no blobs, none inside
+/// a `NearestWithin` gate (its centre within the radius and its box within the gate's square),
+/// or a merge (a blob centred in the gate, reaching beyond its square, more like the
+/// prediction than every blob inside). A non-finite `NearestTo` point falls back to `Largest`.
 fn select_blob(
     blobs: &[BlobSummary],
     min_pixel_count: usize,
@@ -494,13 +496,24 @@ fn select_blob(
             .map(|(i, _)| i)
     };
     let big_enough = |b: &BlobSummary| b.pixel_count >= min_pixel_count;
-    let chosen = match point {
-        Some(_) => blobs
+    let most_like = |eligible: &dyn Fn(&BlobSummary) -> bool| {
+        blobs
             .iter()
             .enumerate()
-            .filter(|(_, b)| big_enough(b) && inside(b))
+            .filter(|(_, b)| big_enough(b) && eligible(b))
             .min_by(|(_, a), (_, b)| unlikeness(a).total_cmp(&unlikeness(b)))
-            .map(|(i, _)| i),
+    };
+    // A blob centred in the gate but reaching beyond its square (the tracked aircraft joined
+    // to another, or moved further than the gate allows) that is more like the prediction
+    // than every blob inside: the aircraft is there and unmeasured, not in a lesser blob.
+    let reaching = |b: &BlobSummary| !inside(b) && distance(b) <= radius_px;
+    let chosen = match point {
+        Some(_) => match (most_like(&inside), most_like(&reaching)) {
+            (Some((_, best)), Some((_, beyond))) if unlikeness(beyond) < unlikeness(best) => {
+                return None;
+            }
+            (best, _) => best.map(|(i, _)| i),
+        },
         None => largest(&big_enough),
     };
     match chosen {

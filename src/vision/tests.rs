@@ -225,7 +225,8 @@ fn largest_versus_nearest() {
 
 /// `NearestWithin`: of the blobs inside the gate, the one most like the expected length is
 /// measured, not the nearest; a blob outside the gate, or one reaching beyond its square, is
-/// never taken (nothing is measured then).
+/// never taken, and while one reaching beyond it is more like the prediction than every blob
+/// inside, nothing is measured.
 #[test]
 fn gate_takes_the_blob_like_the_prediction() {
     let mut scene = SyntheticScene::new(160, 120, Background::Uniform(SKY));
@@ -256,9 +257,42 @@ fn gate_takes_the_blob_like_the_prediction() {
     // Both centres outside the gate: nothing.
     let m = measure_scene(&scene, gate(130.0, 30.0, 20.0));
     assert_eq!(m.status, BlobStatus::NotFound);
-    // The target's centre inside, its box beyond the gate's square: the fragment only.
+    // The target's centre inside, its box beyond the gate's square: not taken, and as it is
+    // more like the prediction than the fragment ((10.2/12)² + (ln(21/20) / ln 1.5)² = 0.73
+    // against (5/12)² + (ln(6/20) / ln 1.5)² = 8.8), nothing is.
     let m = measure_scene(&scene, gate(70.0, 12.0, 20.0));
+    assert_eq!(m.status, BlobStatus::NotFound, "{m:?}");
+    // Expecting the fragment's length, the fragment is the more like: it is taken.
+    let m = measure_scene(&scene, gate(70.0, 12.0, 5.0));
     assert!((m.centroid_u_px - 75.0).abs() < 1.0, "{m:?}");
+}
+
+/// A merge (docs/design.md, Group tracking): the tracked aircraft's blob joined to a
+/// teammate's reaches beyond the gate, and a distant aircraft a third as long lies inside
+/// it. The distant one is not taken; nothing is measured until the blobs part, and then
+/// the tracked aircraft is.
+#[test]
+fn a_merged_blob_is_not_replaced_by_a_lesser_one() {
+    let expected = |u_px| BlobSelection::NearestWithin {
+        u_px,
+        v_px: 60.0,
+        radius_px: 35.0,
+        length_px: 30.0,
+        length_ratio: 1.5,
+        fragment_fraction: 0.0,
+    };
+    let distant = |scene: &mut SyntheticScene| scene.add_disc(72.0, 86.0, 4.0, DARK);
+    let mut merged = SyntheticScene::new(200, 140, Background::Uniform(SKY));
+    merged.add_disc(70.0, 60.0, 15.0, DARK);
+    merged.add_disc(95.0, 60.0, 12.0, DARK);
+    distant(&mut merged);
+    let m = measure_scene(&merged, expected(70.0));
+    assert_eq!(m.status, BlobStatus::NotFound, "{m:?}");
+    let mut parted = SyntheticScene::new(200, 140, Background::Uniform(SKY));
+    let tracked = parted.add_disc(70.0, 60.0, 15.0, DARK);
+    parted.add_disc(110.0, 60.0, 12.0, DARK);
+    distant(&mut parted);
+    check_shape(&measure_scene(&parted, expected(70.0)), &tracked, 0.05, 0.5);
 }
 
 /// `NearestWithin` with a fragment fraction: when every blob in the gate is a fragment (under
