@@ -427,71 +427,106 @@ impl VisionPipeline {
     }
 }
 
+/// A selection's point and gate, read once: the point a blob is judged against (none for
+/// `Largest`), the gate's radius (infinite for `NearestTo`), and the expected length and
+/// size weights of `NearestWithin` (0 for the others).
+struct SelectionGate {
+    point: Option<(f64, f64)>,
+    radius_px: f64,
+    length_px: f64,
+    length_ratio: f64,
+    fragment_fraction: f64,
+}
+
+impl SelectionGate {
+    fn of(selection: BlobSelection) -> Self {
+        let ungated = |point| Self {
+            point,
+            radius_px: f64::INFINITY,
+            length_px: 0.0,
+            length_ratio: 0.0,
+            fragment_fraction: 0.0,
+        };
+        match selection {
+            BlobSelection::NearestTo { u_px, v_px } if u_px.is_finite() && v_px.is_finite() => {
+                ungated(Some((u_px, v_px)))
+            }
+            BlobSelection::NearestWithin {
+                u_px,
+                v_px,
+                radius_px,
+                length_px,
+                length_ratio,
+                fragment_fraction,
+            } => Self {
+                point: Some((u_px, v_px)),
+                radius_px,
+                length_px,
+                length_ratio,
+                fragment_fraction,
+            },
+            _ => ungated(None),
+        }
+    }
+
+    fn distance(&self, b: &BlobSummary) -> f64 {
+        self.point.map_or(0.0, |(u_px, v_px)| {
+            (b.mean_u_px - u_px).hypot(b.mean_v_px - v_px)
+        })
+    }
+
+    /// How unlike the prediction a blob is: its distance, and with an expected length the
+    /// ratio of its box's longer side to it, a fragment's at the fragment fraction (see
+    /// `BlobSelection::NearestWithin`).
+    fn unlikeness(&self, b: &BlobSummary) -> f64 {
+        if self.length_px <= 0.0 || self.length_ratio <= 1.0 || !self.radius_px.is_finite() {
+            return self.distance(b);
+        }
+        let extent = f64::from((b.bbox.max_u - b.bbox.min_u).max(b.bbox.max_v - b.bbox.min_v) + 1);
+        let size = (extent / self.length_px).max(self.fragment_fraction);
+        (self.distance(b) / self.radius_px).powi(2) + (size.ln() / self.length_ratio.ln()).powi(2)
+    }
+
+    /// Inside the gate: the blob's centre within its radius, and the whole blob within its
+    /// square (a blob reaching beyond where the target can be is not the target alone).
+    fn inside(&self, b: &BlobSummary) -> bool {
+        let r = self.radius_px;
+        let Some((u_px, v_px)) = self.point.filter(|_| r.is_finite()) else {
+            return true;
+        };
+        let (u0, v0) = (f64::from(b.bbox.min_u), f64::from(b.bbox.min_v));
+        let (u1, v1) = (f64::from(b.bbox.max_u) + 1.0, f64::from(b.bbox.max_v) + 1.0);
+        self.distance(b) <= r
+            && u0 >= u_px - r
+            && u1 <= u_px + r
+            && v0 >= v_px - r
+            && v1 <= v_px + r
+    }
+
+    /// Centred in the gate but reaching beyond its square: the tracked aircraft joined to
+    /// another, or moved further than the gate allows.
+    fn reaching(&self, b: &BlobSummary) -> bool {
+        !self.inside(b) && self.distance(b) <= self.radius_px
+    }
+}
+
 /// Index of the blob to measure and whether it is below `min_pixel_count` (then it is the
 /// largest blob, because no blob is big enough); `None` when there are no blobs, none inside
 /// a `NearestWithin` gate (its centre within the radius and its box within the gate's square),
 /// or a merge (a blob centred in the gate, reaching beyond its square, more like the
-/// prediction than every blob inside). A non-finite `NearestTo` point falls back to `Largest`.
+/// prediction than every blob inside: the aircraft is there and unmeasured, not in a lesser
+/// blob). A non-finite `NearestTo` point falls back to `Largest`.
 fn select_blob(
     blobs: &[BlobSummary],
     min_pixel_count: usize,
     selection: BlobSelection,
 ) -> Option<(usize, bool)> {
-    let (point, radius_px, length_px, length_ratio, fragment_fraction) = match selection {
-        BlobSelection::NearestTo { u_px, v_px } if u_px.is_finite() && v_px.is_finite() => {
-            (Some((u_px, v_px)), f64::INFINITY, 0.0, 0.0, 0.0)
-        }
-        BlobSelection::NearestWithin {
-            u_px,
-            v_px,
-            radius_px,
-            length_px,
-            length_ratio,
-            fragment_fraction,
-        } => (
-            Some((u_px, v_px)),
-            radius_px,
-            length_px,
-            length_ratio,
-            fragment_fraction,
-        ),
-        _ => (None, f64::INFINITY, 0.0, 0.0, 0.0),
-    };
-    let distance = |b: &BlobSummary| {
-        point.map_or(0.0, |(u_px, v_px)| {
-            (b.mean_u_px - u_px).hypot(b.mean_v_px - v_px)
-        })
-    };
-    // How unlike the prediction a blob is: its distance, and with an expected length the
-    // ratio of its box's longer side to it, a fragment's at the fragment fraction (see
-    // `BlobSelection::NearestWithin`).
-    let unlikeness = |b: &BlobSummary| {
-        if length_px <= 0.0 || length_ratio <= 1.0 || !radius_px.is_finite() {
-            return distance(b);
-        }
-        let extent = f64::from((b.bbox.max_u - b.bbox.min_u).max(b.bbox.max_v - b.bbox.min_v) + 1);
-        let size = (extent / length_px).max(fragment_fraction);
-        (distance(b) / radius_px).powi(2) + (size.ln() / length_ratio.ln()).powi(2)
-    };
-    // Inside the gate: the blob's centre within its radius, and the whole blob within its
-    // square (a blob reaching beyond where the target can be is not the target alone).
-    let inside = |b: &BlobSummary| {
-        let Some((u_px, v_px)) = point.filter(|_| radius_px.is_finite()) else {
-            return true;
-        };
-        let (u0, v0) = (f64::from(b.bbox.min_u), f64::from(b.bbox.min_v));
-        let (u1, v1) = (f64::from(b.bbox.max_u) + 1.0, f64::from(b.bbox.max_v) + 1.0);
-        distance(b) <= radius_px
-            && u0 >= u_px - radius_px
-            && u1 <= u_px + radius_px
-            && v0 >= v_px - radius_px
-            && v1 <= v_px + radius_px
-    };
+    let gate = SelectionGate::of(selection);
     let largest = |eligible: &dyn Fn(&BlobSummary) -> bool| {
         blobs
             .iter()
             .enumerate()
-            .filter(|(_, b)| eligible(b) && inside(b))
+            .filter(|(_, b)| eligible(b) && gate.inside(b))
             .max_by_key(|(i, b)| (b.pixel_count, std::cmp::Reverse(*i)))
             .map(|(i, _)| i)
     };
@@ -501,15 +536,16 @@ fn select_blob(
             .iter()
             .enumerate()
             .filter(|(_, b)| big_enough(b) && eligible(b))
-            .min_by(|(_, a), (_, b)| unlikeness(a).total_cmp(&unlikeness(b)))
+            .min_by(|(_, a), (_, b)| gate.unlikeness(a).total_cmp(&gate.unlikeness(b)))
     };
-    // A blob centred in the gate but reaching beyond its square (the tracked aircraft joined
-    // to another, or moved further than the gate allows) that is more like the prediction
-    // than every blob inside: the aircraft is there and unmeasured, not in a lesser blob.
-    let reaching = |b: &BlobSummary| !inside(b) && distance(b) <= radius_px;
-    let chosen = match point {
-        Some(_) => match (most_like(&inside), most_like(&reaching)) {
-            (Some((_, best)), Some((_, beyond))) if unlikeness(beyond) < unlikeness(best) => {
+    let chosen = match gate.point {
+        Some(_) => match (
+            most_like(&|b| gate.inside(b)),
+            most_like(&|b| gate.reaching(b)),
+        ) {
+            (Some((_, best)), Some((_, beyond)))
+                if gate.unlikeness(beyond) < gate.unlikeness(best) =>
+            {
                 return None;
             }
             (best, _) => best.map(|(i, _)| i),

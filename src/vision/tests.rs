@@ -273,8 +273,8 @@ fn gate_takes_the_blob_like_the_prediction() {
 /// the tracked aircraft is.
 #[test]
 fn a_merged_blob_is_not_replaced_by_a_lesser_one() {
-    let expected = |u_px| BlobSelection::NearestWithin {
-        u_px,
+    let expected = BlobSelection::NearestWithin {
+        u_px: 70.0,
         v_px: 60.0,
         radius_px: 35.0,
         length_px: 30.0,
@@ -286,13 +286,13 @@ fn a_merged_blob_is_not_replaced_by_a_lesser_one() {
     merged.add_disc(70.0, 60.0, 15.0, DARK);
     merged.add_disc(95.0, 60.0, 12.0, DARK);
     distant(&mut merged);
-    let m = measure_scene(&merged, expected(70.0));
+    let m = measure_scene(&merged, expected);
     assert_eq!(m.status, BlobStatus::NotFound, "{m:?}");
     let mut parted = SyntheticScene::new(200, 140, Background::Uniform(SKY));
     let tracked = parted.add_disc(70.0, 60.0, 15.0, DARK);
     parted.add_disc(110.0, 60.0, 12.0, DARK);
     distant(&mut parted);
-    check_shape(&measure_scene(&parted, expected(70.0)), &tracked, 0.05, 0.5);
+    check_shape(&measure_scene(&parted, expected), &tracked, 0.05, 0.5);
 }
 
 /// `NearestWithin` with a fragment fraction: when every blob in the gate is a fragment (under
