@@ -7,7 +7,7 @@
 //! inside the heading loop, the heading prefilter at ζ 0.9) the aircraft's velocity across its
 //! track answers a 4 s swing of its command more than 1.7 times over (1.97, measured) and a
 //! 40° course step peaks above 50° (51.1°); (2) with the heading prefilter at ζ 1.5 and the
-//! roll prefilter at 6 rad/s (the damped setting measured for the platoon's links, not shipped)
+//! roll prefilter at 6 rad/s (the damped setting scenarios/platoon.toml's links fly)
 //! no period from 3 to 12 s is answered by more than 1.25 times (1.19 at most, measured), the
 //! step peaks under 44° (43.2°), and 90% of it is reached no later than with the defaults
 //! (1.70 s against 1.77 s).
