@@ -531,23 +531,21 @@ fn select_blob(
             .map(|(i, _)| i)
     };
     let big_enough = |b: &BlobSummary| b.pixel_count >= min_pixel_count;
+    // The eligible blob most like the prediction, and its unlikeness.
     let most_like = |eligible: &dyn Fn(&BlobSummary) -> bool| {
         blobs
             .iter()
             .enumerate()
             .filter(|(_, b)| big_enough(b) && eligible(b))
-            .min_by(|(_, a), (_, b)| gate.unlikeness(a).total_cmp(&gate.unlikeness(b)))
+            .map(|(i, b)| (i, gate.unlikeness(b)))
+            .min_by(|(_, a), (_, b)| a.total_cmp(b))
     };
     let chosen = match gate.point {
         Some(_) => match (
             most_like(&|b| gate.inside(b)),
             most_like(&|b| gate.reaching(b)),
         ) {
-            (Some((_, best)), Some((_, beyond)))
-                if gate.unlikeness(beyond) < gate.unlikeness(best) =>
-            {
-                return None;
-            }
+            (Some((_, best)), Some((_, beyond))) if beyond < best => return None,
             (best, _) => best.map(|(i, _)| i),
         },
         None => largest(&big_enough),
