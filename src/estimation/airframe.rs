@@ -129,6 +129,12 @@ impl AirframeTable {
         })
     }
 
+    /// The shortest n over every view: the narrowest view's maximal length over the size
+    /// (docs/equations.md, The length's bounds at any view).
+    pub fn narrowest(&self) -> f64 {
+        self.lengths.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
     fn node(&self, i: usize, j: usize) -> f64 {
         self.lengths[i * self.pitch_nodes + j]
     }

@@ -39,6 +39,9 @@ pub struct KalmanTracker {
     known_sigma_fraction: f64,
     size_model: SizeModel,
     span_aspect_min: f64,
+    /// The silhouette's shortest maximal length over the span at any view (0: no bound;
+    /// `estimator.span_length_min_fraction`).
+    span_length_min_fraction: f64,
     /// Where a frame's pixel covariance is mapped to r's (`estimator.covariance_at`).
     covariance_at: CovarianceAt,
     filter: Option<TargetFilter>,
@@ -189,6 +192,7 @@ impl KalmanTracker {
             known_sigma_fraction: section.known_sigma_fraction,
             size_model: section.size_model,
             span_aspect_min: section.span_aspect_min,
+            span_length_min_fraction: section.span_length_min_fraction,
             covariance_at: section.covariance_at,
             filter: None,
             known_since_s: None,
@@ -327,6 +331,28 @@ impl KalmanTracker {
             (pixels.y_i_px, pixels.z_i_px),
             self.focal_px,
         )
+    }
+
+    /// For a frame whose view the filter cannot tell: the nearer end of the interval the
+    /// length bounds R/b to whatever the view, [`span_length_min_fraction`, 1] times r*,
+    /// where the filter's prediction lies outside it (docs/equations.md, The length's bounds
+    /// at any view); None inside it, or without the bound.
+    ///
+    /// [`span_length_min_fraction`]: crate::scenario::EstimatorSection::span_length_min_fraction
+    fn range_outside_length_bounds(&self, record: &FrameRecord, r_star: &Vec3) -> Option<f64> {
+        if self.span_length_min_fraction <= 0.0 {
+            return None;
+        }
+        let filter = self.filter.as_ref()?;
+        let predicted = filter.estimate_at(record.t_s, &record.follower_position_ned_ft);
+        let ratio = predicted.r.norm() / r_star.norm();
+        if ratio < self.span_length_min_fraction {
+            Some(self.span_length_min_fraction)
+        } else if ratio > 1.0 {
+            Some(1.0)
+        } else {
+            None
+        }
     }
 
     /// The pixels the filter predicts for a frame: the image of its r̂ at the frame's capture
@@ -526,7 +552,10 @@ impl TargetTracker for KalmanTracker {
         let (scale, bearing_only) = match aspect {
             Some(aspect) if aspect >= self.span_aspect_min => (aspect, false),
             None if !view_unknown => (1.0, false),
-            _ => (1.0, true),
+            _ => match self.range_outside_length_bounds(record, &r_star) {
+                Some(bound) => (bound, false),
+                None => (1.0, true),
+            },
         };
         r *= scale;
         let at = self.linearisation_pixels(record, &pixels, scale);

@@ -155,6 +155,14 @@ pub struct EstimatorSection {
     /// span seen up to 37° off the target's plane of symmetry: the fuselage, at most as long
     /// as the span on an aircraft, is then at most 0.6 of it in the image.
     pub span_aspect_min: f64,
+    /// With the span model, the shortest the silhouette's maximal length can be at any view,
+    /// as a fraction of the span (docs/equations.md, The length's bounds at any view). A
+    /// frame counted for its bearing alone still bounds the range: R/b lies between this
+    /// times r* and r*, and a prediction outside that interval is pulled to its nearer end, so
+    /// a filter whose own view of the target is wrong cannot drift its range away from what
+    /// the lengths allow. 0 (default): no bound, such frames measure the bearing only. The
+    /// seed target's mesh (8 ft span, 6 ft long) reads 0.709 at its narrowest view.
+    pub span_length_min_fraction: f64,
     /// `position` (default) or `inertial`: where the follower's own displacement comes from,
     /// for the filter and the measurement hold alike.
     pub own_motion: OwnMotion,
@@ -270,6 +278,7 @@ impl Default for EstimatorSection {
             known_sigma_fraction: 0.05,
             size_model: SizeModel::Apparent,
             span_aspect_min: 0.8,
+            span_length_min_fraction: 0.0,
             own_motion: OwnMotion::Position,
             airframe_view_sigma_deg: 5.0,
             airframe_length_bias_px: 2.1,
@@ -330,6 +339,12 @@ impl EstimatorSection {
             ),
             ("known_sigma_fraction", self.known_sigma_fraction, 1e-6, 1.0),
             ("span_aspect_min", self.span_aspect_min, 0.0, 1.0),
+            (
+                "span_length_min_fraction",
+                self.span_length_min_fraction,
+                0.0,
+                1.0,
+            ),
             (
                 "airframe_view_sigma_deg",
                 self.airframe_view_sigma_deg,
