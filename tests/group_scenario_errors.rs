@@ -1,7 +1,7 @@
 //! A group scenario the run cannot take is refused before anything runs: exit code 2 and one
 //! line naming the file, the member, the key and the value (an unknown aircraft in `tracks`,
 //! a cycle of followers, a member's key out of its range, a member's run key, a name given
-//! twice).
+//! twice, an air mass that is neither shared nor independent).
 
 use crate::common::wingman_cli;
 
@@ -72,5 +72,13 @@ fn run_keys_and_names_are_the_groups() {
     refused(
         "[[group.follower]]\nname = \"f1\"\ntracks = \"target\"\n",
         &["name = \"f1\" is taken"],
+    );
+}
+
+#[test]
+fn gusts_are_shared_or_independent() {
+    refused(
+        "[group]\ngusts = \"calm\"\n",
+        &["group.gusts = \"calm\"", "\"independent\" or \"shared\""],
     );
 }

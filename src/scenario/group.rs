@@ -18,7 +18,16 @@
 //! (after the command line's), so every follower is a whole [`Scenario`] passed by the same
 //! checks; each extra target is the file's scenario with its entry's keys set in `[target]`.
 //! The run section is the group's: the followers step together. Follower `k` (0-based, in
-//! the file's order) flies its own turbulence stream, `run.seed + k·2³²` (modulo 2⁶³).
+//! the file's order) runs on its own `run.seed + k·2³²` (modulo 2⁶³): its turbulence and
+//! any noise. With `gusts = "shared"` in `[group]` the followers fly one air mass instead:
+//! every follower's Dryden stream is the group's `run.seed`'s (the first follower's), the
+//! same white noise shaped at each one's own airspeed and altitude, as a target's with
+//! `target.gusts = "shared"`. Their noise stays their own.
+//!
+//! ```toml
+//! [group]
+//! gusts = "shared"                          # default "independent"
+//! ```
 
 use super::origin::ScenarioSource;
 use super::{Scenario, ScenarioError};
@@ -99,6 +108,9 @@ impl GroupScenario {
             let mut scenario = member_scenario(&source, "group.follower", &name, &sets)?;
             // Within the key's range, [0, 2⁶³ - 1].
             scenario.run.seed = base.run.seed.wrapping_add((k as u64) << 32) & (i64::MAX as u64);
+            if entries.gusts_shared {
+                scenario.run.shared_air_seed = Some(base.run.seed);
+            }
             followers.push(GroupFollower {
                 name,
                 tracks,
@@ -124,10 +136,11 @@ fn member_scenario(
 }
 
 /// The `[group]` table's members: names, what each follower tracks, and each member's keys
-/// as `section.key=value` overrides.
+/// as `section.key=value` overrides; and whether the followers share one air mass.
 struct GroupEntries {
     followers: Vec<(String, String, Vec<String>)>,
     targets: Vec<(String, Vec<String>)>,
+    gusts_shared: bool,
 }
 
 impl GroupEntries {
@@ -141,13 +154,26 @@ impl GroupEntries {
         })?;
         if let Some(key) = table
             .keys()
-            .find(|k| !["follower", "target"].contains(&k.as_str()))
+            .find(|k| !["follower", "target", "gusts"].contains(&k.as_str()))
         {
             return Err(reject(
                 &format!("group.{key}"),
-                format!("group.{key} is not a key of [group]: allowed follower, target"),
+                format!("group.{key} is not a key of [group]: allowed follower, target, gusts"),
             ));
         }
+        let gusts_shared = match table.get("gusts") {
+            None => false,
+            Some(toml::Value::String(s)) if s == "independent" => false,
+            Some(toml::Value::String(s)) if s == "shared" => true,
+            Some(other) => {
+                return Err(reject(
+                    "group.gusts",
+                    format!(
+                        "group.gusts = {other} is invalid: allowed \"independent\" or \"shared\""
+                    ),
+                ));
+            }
+        };
         let members = |key: &str| member_tables(table, key, source);
         let mut names = vec![BASE_TARGET.to_string()];
         let mut take_name = |entry: &mut toml::Table, key: &str| -> Result<String, ScenarioError> {
@@ -192,7 +218,11 @@ impl GroupEntries {
                 "a group needs at least one [[group.follower]]".into(),
             ));
         }
-        Ok(Self { followers, targets })
+        Ok(Self {
+            followers,
+            targets,
+            gusts_shared,
+        })
     }
 }
 

@@ -23,6 +23,11 @@ pub struct RunSection {
     /// about 1 s after it) are survived: the guidance coasts on its estimator. 5 s leaves
     /// room above those 3 s; a target gone longer is not coming back by itself.
     pub stop_after_lost_s: f64,
+    /// The seed of the air's Dryden stream where it is not the run's own `seed`: the group's
+    /// `run.seed`, for a follower of a group in one air mass (`group.gusts = "shared"`). Set
+    /// by the group, not a file key.
+    #[serde(skip)]
+    pub shared_air_seed: Option<u64>,
 }
 
 impl Default for RunSection {
@@ -33,11 +38,18 @@ impl Default for RunSection {
             seed: 1,
             log_every: 10,
             stop_after_lost_s: 5.0,
+            shared_air_seed: None,
         }
     }
 }
 
 impl RunSection {
+    /// The seed of the Dryden stream the follower flies through (and a target sharing its
+    /// air, `target.gusts = "shared"`): the group's in a shared air mass, else `seed`.
+    pub fn air_seed(&self) -> u64 {
+        self.shared_air_seed.unwrap_or(self.seed)
+    }
+
     fn validate(&self) -> Check {
         check::in_closed("run.duration_s", self.duration_s, 1e-3, 1e5)?;
         check::in_closed("run.dt_s", self.dt_s, 1e-5, 0.1)?;

@@ -60,14 +60,14 @@ pub(super) fn excitation_view_bound(scenario: &Scenario) -> Option<ViewBound> {
     })
 }
 
-/// The follower `[follower]` describes, flying in `[atmosphere]` with `[autopilot]` (its own
-/// turbulence stream), realising the command of `[guidance]`'s law; and its initial state.
+/// The follower `[follower]` describes, flying in `[atmosphere]` with `[autopilot]` (the
+/// turbulence stream of `run.air_seed`), realising the command of `[guidance]`'s law; and its initial state.
 pub(super) fn follower_of(scenario: &Scenario) -> Result<(Follower, Vec<f64>), AircraftSetupError> {
     Follower::new(&FollowerConfig {
         follower: &scenario.follower,
         autopilot: &scenario.autopilot,
         atmosphere: &scenario.atmosphere,
-        turbulence_seed: scenario.run.seed ^ DRYDEN_SEED_SALT,
+        turbulence_seed: scenario.run.air_seed() ^ DRYDEN_SEED_SALT,
         command_kind: match scenario.guidance.law {
             GuidanceLawKind::Velocity => CommandKind::Velocity,
             GuidanceLawKind::Acceleration => CommandKind::Acceleration,
@@ -248,11 +248,10 @@ fn carried_by_air(scenario: &Scenario, motion: Box<dyn TargetModel>) -> CarriedB
 /// The seed of the target's Dryden stream: its own, or the follower's when the two
 /// share the air (`target.gusts`).
 fn target_turbulence_seed(scenario: &Scenario) -> u64 {
-    scenario.run.seed
-        ^ match scenario.target.gusts {
-            TargetGusts::Independent => TARGET_DRYDEN_SEED_SALT,
-            TargetGusts::Shared => DRYDEN_SEED_SALT,
-        }
+    match scenario.target.gusts {
+        TargetGusts::Independent => scenario.run.seed ^ TARGET_DRYDEN_SEED_SALT,
+        TargetGusts::Shared => scenario.run.air_seed() ^ DRYDEN_SEED_SALT,
+    }
 }
 
 /// The path `[target]` describes.

@@ -76,6 +76,8 @@ fn bare_type(rust_type: &str) -> String {
 pub fn parse_source(text: &str, schema: &mut Schema) {
     let mut pending: Vec<String> = Vec::new();
     let mut open: Option<(String, TypeDoc)> = None;
+    // A field serde skips is not a key a file may set.
+    let mut skipped = false;
     for line in text.lines() {
         let trimmed = line.trim();
         if let Some(doc) = trimmed.strip_prefix("///") {
@@ -83,6 +85,7 @@ pub fn parse_source(text: &str, schema: &mut Schema) {
             continue;
         }
         if trimmed.starts_with("#[") {
+            skipped |= trimmed == "#[serde(skip)]";
             continue;
         }
         let doc = pending.join(" ");
@@ -91,7 +94,9 @@ pub fn parse_source(text: &str, schema: &mut Schema) {
             if line.starts_with('}') {
                 schema.insert(std::mem::take(name), item.clone());
                 open = None;
-            } else if let Some(member) = parse_member(trimmed, item.is_enum, doc) {
+            } else if !std::mem::take(&mut skipped)
+                && let Some(member) = parse_member(trimmed, item.is_enum, doc)
+            {
                 item.members.push(member);
             }
             continue;
@@ -192,6 +197,9 @@ pub struct Top {
     pub inner: super::Inner,
     /// Points.
     pub points: Vec<Point>,
+    /// Set by the program, not a file key.
+    #[serde(skip)]
+    pub hidden: u64,
 }
 
 /// Inner.
@@ -216,7 +224,8 @@ pub enum Kind {
 }
 ";
 
-    /// Fields, nested sections, arrays of tables and enum variants are found with their docs.
+    /// Fields, nested sections, arrays of tables and enum variants are found with their docs;
+    /// a field serde skips is not a key.
     #[test]
     fn walks_sections_arrays_and_enums() {
         let mut schema = Schema::new();
