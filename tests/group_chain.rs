@@ -206,11 +206,16 @@ fn column(path: &std::path::Path, name: &str) -> Vec<f64> {
 /// one's Dryden filters; `independent` (the default): each its own stream. The RMS
 /// difference of f3's gusts from f1's over the first 2 s, against f1's own RMS: 0.05-0.10
 /// shared (f1 chases at 64 ft/s, f3 flies 50: each filter is shaped at its own airspeed),
-/// 0.7-4.7 independent (measured).
+/// 0.7-4.7 independent (measured). `group.json` names the air.
 #[test]
 fn followers_in_one_air_mass_share_their_gusts() {
     for (gusts, (low, high)) in [("shared", (0.0, 0.2)), ("independent", (0.5, 100.0))] {
         let dir = run_platoon_with_gusts(gusts);
+        let summary: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.path().join("group.json")).expect("group.json"),
+        )
+        .expect("json");
+        assert_eq!(summary["gusts"], gusts, "group.json names the air");
         for axis in ["gust_u_fps", "gust_v_fps", "gust_w_fps"] {
             let lead = column(&dir.path().join("f1/telemetry.csv"), axis);
             let last = column(&dir.path().join("f3/telemetry.csv"), axis);

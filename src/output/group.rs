@@ -54,6 +54,9 @@ pub struct GroupSummary {
     pub realtime_factor: f64,
     /// Why the group stopped before its end (the first follower whose run ended), if it did.
     pub stopped_by: Option<String>,
+    /// The air the followers flew: `independent` (each its own turbulence stream) or
+    /// `shared` (one air mass, `[group] gusts`).
+    pub gusts: &'static str,
     /// The followers, leaders first.
     pub followers: Vec<FollowerResult>,
 }
@@ -200,6 +203,15 @@ fn group_summary(
         wall_s,
         realtime_factor: duration_s / wall_s.max(1e-9),
         stopped_by,
+        gusts: if run
+            .members()
+            .iter()
+            .any(|m| m.sim.scenario().run.shared_air_seed.is_some())
+        {
+            "shared"
+        } else {
+            "independent"
+        },
         followers,
     }
 }
