@@ -84,19 +84,14 @@ fn group_plots_the_formation_and_each_follower() {
 /// Per row: the follower's position (`fol`) or the tracked aircraft's (`tgt`: rel + fol),
 /// NED, ft.
 fn positions(path: &std::path::Path, which: &str) -> Vec<[f64; 3]> {
-    let mut reader = csv::Reader::from_path(path).expect("telemetry");
-    let header = reader.headers().expect("header").clone();
-    let col = |name: &str| header.iter().position(|h| h == name).expect(name);
-    let fol = ["fol_n_ft", "fol_e_ft", "fol_d_ft"].map(&col);
-    let rel = ["rel_n_ft", "rel_e_ft", "rel_d_ft"].map(&col);
-    reader
-        .records()
-        .map(|r| {
-            let r = r.expect("row");
-            let v = |i: usize| r[i].parse::<f64>().expect("number");
+    let axes = |names: [&str; 3]| names.map(|name| column(path, name));
+    let fol = axes(["fol_n_ft", "fol_e_ft", "fol_d_ft"]);
+    let rel = axes(["rel_n_ft", "rel_e_ft", "rel_d_ft"]);
+    (0..fol[0].len())
+        .map(|i| {
             std::array::from_fn(|k| match which {
-                "fol" => v(fol[k]),
-                _ => v(fol[k]) + v(rel[k]),
+                "fol" => fol[k][i],
+                _ => fol[k][i] + rel[k][i],
             })
         })
         .collect()

@@ -21,12 +21,13 @@
 //!   bounds at any view (`estimator.span_length_min_fraction`, the mesh's 0.70, rounded down) the 6 ft
 //!   fuselage still bounds the range, and b̂ ends between 6 ft and 6/0.70 ft.
 
+use crate::common::repo_root;
 use wingman::estimation::airframe::{AirframeShape, AirframeTable};
 use wingman::estimation::{AirframeModel, KalmanTracker, TargetTracker};
 use wingman::frames::{EulerAngles, Vec3};
 use wingman::render::camera::CameraIntrinsics;
 use wingman::render::mesh::TargetMesh;
-use wingman::scenario::{BearingPoint, EstimatorSection, SizeModel};
+use wingman::scenario::{BearingPoint, EstimatorSection, Scenario, SizeModel};
 use wingman::sensing::transform::scaled_relative_position;
 use wingman::sensing::{CaptureGeometry, FollowerPose, FrameRecord};
 use wingman::vision::silhouette::SilhouetteCentroid;
@@ -166,12 +167,20 @@ fn shape_floor_covers_a_systematic_length_error() {
     assert!(z_white.abs() > 3.0, "b̂ = {b_white} ± {sigma_white} ft");
 }
 
-/// The bound's value: the seed mesh's narrowest view reads 0.709 of its span.
+/// The bound's value: the seed mesh's narrowest view reads 0.709 of its span, and the bound
+/// scenarios/platoon.toml sets lies under it (a bound above the mesh's narrowest view would
+/// pull a true range away).
 #[test]
 fn the_seed_mesh_is_never_shorter_than_0_7_of_its_span() {
     let table = AirframeTable::of_mesh(&mesh().vertices_ft, SIZE_FT).expect("table");
     let narrowest = table.narrowest();
     assert!((0.70..0.72).contains(&narrowest), "n = {narrowest}");
+    let platoon = Scenario::load(&repo_root().join("scenarios/platoon.toml"), &[]).expect("load");
+    let bound = platoon.estimator.span_length_min_fraction;
+    assert!(
+        bound > 0.0 && bound <= narrowest,
+        "platoon's bound {bound} against the mesh's {narrowest}"
+    );
 }
 
 /// The span end-on, the first second's blob merged with something as long again: the
