@@ -193,6 +193,25 @@ fn a_bearing_gate_and_its_range_ratio_are_in_range() {
     );
 }
 
+/// The leader's swing: a period of 0 (none) or at least 0.1 s, and a wander time no shorter
+/// than the period, which keeps the oscillator underdamped.
+#[test]
+fn a_leader_swing_is_in_range() {
+    assert_rejected(
+        "[estimator]\nkind = \"kalman\"\nleader_swing_period_s = 0.05\n",
+        &[],
+        &[
+            "estimator.leader_swing_period_s = 0.05",
+            "0 (none) or [0.1, 1000]",
+        ],
+    );
+    assert_rejected(
+        "[estimator]\nkind = \"kalman\"\nleader_swing_period_s = 4\nleader_swing_time_s = 3\n",
+        &[],
+        &["estimator.leader_swing_time_s = 3", "[4, 10000]"],
+    );
+}
+
 /// An excitation that follows the Kalman filter's σ_b needs the filter: the error names the
 /// mode as the scenario spells it.
 #[test]

@@ -24,6 +24,15 @@
 //! without bound (and β with it). Its intensity q_g = 2 σ_g² β̂² / τ_g keeps σ_g stationary in
 //! feet per second whatever b is; σ_g = 0 (the default) leaves g at zero.
 //!
+//! A leader that swings across its track at a known period T_L (a teammate's own excitation)
+//! may be given a swing (p, q) = (s, ṡ)/b per axis, a damped oscillator at ω_L = 2π/T_L whose
+//! amplitude and phase wander over τ_s (docs/equations.md, The leader's swing in its model):
+//! ```text
+//! ṙ = d + g + q - β V_F    ṗ = q    q̇ = -ω_L² p - (2/τ_s) q + w_s
+//! ```
+//! so the relative motion at ω_L is explained as the leader's, whatever the follower's own
+//! motion does there; its noise keeps the swing velocity's stationary σ at σ_s ft/s.
+//!
 //! Observability: with V_F constant, -β V_F t cannot be told from d t; β is learned only while
 //! the follower's velocity changes differently from the target's (the excitation's job).
 
@@ -31,7 +40,7 @@ use crate::frames::{Mat3, Vec3};
 use nalgebra::{Matrix2, SMatrix, SVector};
 
 /// Length of the filter's state.
-pub const FILTER_STATE_LEN: usize = 13;
+pub const FILTER_STATE_LEN: usize = 19;
 
 type State = SVector<f64, FILTER_STATE_LEN>;
 type Covariance = SMatrix<f64, FILTER_STATE_LEN, FILTER_STATE_LEN>;
@@ -43,6 +52,8 @@ const D: usize = 3;
 const A: usize = 6;
 const BETA: usize = 9;
 const G: usize = 10;
+const SWING: usize = 13;
+const SWING_RATE: usize = 16;
 
 /// Iterations of the lateral acceleration's iterated update.
 const LATERAL_ITERATIONS: usize = 5;
@@ -58,6 +69,43 @@ pub struct FilterNoise {
     pub gust_sigma_fps: f64,
     /// τ_g, its correlation time, s (> 0).
     pub gust_time_s: f64,
+    /// The leader's swing at a known period, if it has one.
+    pub swing: Option<SwingModel>,
+}
+
+/// The leader's swing across its track at a known period: a damped oscillator driven by white
+/// noise (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SwingModel {
+    /// ω_L, rad/s.
+    pub omega_rps: f64,
+    /// σ_s, the stationary σ of the swing's velocity per axis, ft/s.
+    pub sigma_fps: f64,
+    /// τ_s, the time over which its amplitude and phase wander, s (> 1/ω_L).
+    pub time_s: f64,
+}
+
+impl SwingModel {
+    /// Φ over `dt` of one axis's (p, q): rows and columns in that order.
+    fn transition(&self, dt: f64) -> Matrix2<f64> {
+        let (omega, decay_rate) = (self.omega_rps, 1.0 / self.time_s);
+        let damped = (omega * omega - decay_rate * decay_rate).sqrt();
+        let (sin, cos) = (damped * dt).sin_cos();
+        let envelope = (-decay_rate * dt).exp();
+        Matrix2::new(
+            cos + decay_rate / damped * sin,
+            sin / damped,
+            -omega * omega / damped * sin,
+            cos - decay_rate / damped * sin,
+        ) * envelope
+    }
+
+    /// The stationary covariance of one axis's (p, q) for a leader of inverse size
+    /// `beta_per_ft`: diag(σ_q²/ω², σ_q²), σ_q = σ_s β.
+    fn stationary(&self, beta_per_ft: f64) -> Matrix2<f64> {
+        let rate = (self.sigma_fps * beta_per_ft).powi(2);
+        Matrix2::new(rate / self.omega_rps.powi(2), 0.0, 0.0, rate)
+    }
 }
 
 impl FilterNoise {
@@ -68,6 +116,7 @@ impl FilterNoise {
             inverse_size_psd,
             gust_sigma_fps: 0.0,
             gust_time_s: 1.0,
+            swing: None,
         }
     }
 
@@ -105,6 +154,8 @@ pub struct FilterEstimate {
     pub beta_per_ft: f64,
     /// σ of β̂, 1/ft.
     pub beta_sigma_per_ft: f64,
+    /// p̂, the leader's swing in r̂ (zero without the swing model): r̂ - p̂ is its path's.
+    pub swing: Vec3,
 }
 
 impl FilterEstimate {
@@ -212,6 +263,13 @@ impl TargetFilter {
         let gust = noise.gust_variance(beta);
         p.fixed_view_mut::<3, 3>(G, G)
             .copy_from(&(Mat3::identity() * gust));
+        if let Some(swing) = noise.swing {
+            let stationary = swing.stationary(beta);
+            for i in 0..3 {
+                p[(SWING + i, SWING + i)] = stationary[(0, 0)];
+                p[(SWING_RATE + i, SWING_RATE + i)] = stationary[(1, 1)];
+            }
+        }
         Self {
             x,
             p,
@@ -375,8 +433,8 @@ impl TargetFilter {
 
     /// Fuses a measured acceleration of the target across its velocity, `accel_fps2` ft/s²
     /// along the unit vector `across_ned` with variance `variance_fps4`, at the posterior's
-    /// time (docs/equations.md, The target's bank from its wing line): h(x) = c · (a - g/τ_g) / β,
-    /// the path's and the gust's acceleration in feet, by an iterated extended Kalman update
+    /// time (docs/equations.md, The target's bank from its wing line): h(x) = c · (a - g/τ_g +
+    /// q̇) / β, the path's, the gust's and the swing's acceleration in feet, by an iterated extended Kalman update
     /// (relinearised at each iterate, so that the update does not claim from a linearisation
     /// about a lagging â an information about b that the measurement does not carry). Not
     /// fused, as [`Self::update_within`], outside `gate` or while β̂ ≤ 0; whether it was.
@@ -388,14 +446,23 @@ impl TargetFilter {
         gate: f64,
     ) -> bool {
         let tau = self.noise.gust_time_s;
+        // The swing's acceleration q̇ = -ω² p - (2/τ_s) q, as coefficients on p and q.
+        let (on_swing, on_swing_rate) = self
+            .noise
+            .swing
+            .map_or((0.0, 0.0), |s| (-s.omega_rps.powi(2), -2.0 / s.time_s));
         let model = |x: &State| -> (f64, State) {
             let beta = x[BETA];
-            let scaled: Vec3 = x.fixed_rows::<3>(A) - x.fixed_rows::<3>(G) / tau;
+            let scaled: Vec3 = x.fixed_rows::<3>(A) - x.fixed_rows::<3>(G) / tau
+                + x.fixed_rows::<3>(SWING) * on_swing
+                + x.fixed_rows::<3>(SWING_RATE) * on_swing_rate;
             let predicted = across_ned.dot(&scaled) / beta;
             let mut h = State::zeros();
             for i in 0..3 {
                 h[A + i] = across_ned[i] / beta;
                 h[G + i] = -across_ned[i] / (tau * beta);
+                h[SWING + i] = across_ned[i] * on_swing / beta;
+                h[SWING_RATE + i] = across_ned[i] * on_swing_rate / beta;
             }
             h[BETA] = -predicted / beta;
             (predicted, h)
@@ -447,6 +514,9 @@ impl TargetFilter {
             phi[(R + i, G + i)] = tau * (1.0 - decay);
             phi[(G + i, G + i)] = decay;
         }
+        if let Some(swing) = self.noise.swing {
+            add_swing_transition(&mut phi, &swing.transition(dt));
+        }
         phi
     }
 
@@ -476,7 +546,36 @@ impl TargetFilter {
         }
         q[(BETA, BETA)] = qb * dt;
         self.add_gust_noise(&mut q, dt);
+        self.add_swing_noise(&mut q, dt);
         q
+    }
+
+    /// Adds the swing's share of Q over `dt`: per axis, the oscillator's Q_d = P∞ - Φ P∞ Φᵀ
+    /// (P∞ its stationary covariance at β̂), which r, moving by p's increment, shares with p.
+    fn add_swing_noise(&self, q: &mut Covariance, dt: f64) {
+        let Some(swing) = self.noise.swing else {
+            return;
+        };
+        let stationary = swing.stationary(self.x[BETA].max(0.0));
+        let phi = swing.transition(dt);
+        let q_d = stationary - phi * stationary * phi.transpose();
+        for i in 0..3 {
+            let (p, v, r) = (SWING + i, SWING_RATE + i, R + i);
+            let blocks = [
+                (p, p, q_d[(0, 0)]),
+                (p, v, q_d[(0, 1)]),
+                (v, v, q_d[(1, 1)]),
+                (r, r, q_d[(0, 0)]),
+                (r, p, q_d[(0, 0)]),
+                (r, v, q_d[(0, 1)]),
+            ];
+            for (a, b, value) in blocks {
+                q[(a, b)] += value;
+                if a != b {
+                    q[(b, a)] += value;
+                }
+            }
+        }
     }
 
     /// Adds the integrated Gauss-Markov gust's share of Q over `dt` (module docs): with
@@ -508,7 +607,22 @@ impl TargetFilter {
             a_per_s2: x.fixed_rows::<3>(A) - x.fixed_rows::<3>(G) / self.noise.gust_time_s,
             beta_per_ft: x[BETA],
             beta_sigma_per_ft: p[(BETA, BETA)].max(0.0).sqrt(),
+            swing: x.fixed_rows::<3>(SWING).into(),
         }
+    }
+}
+
+/// Writes one axis's swing transition `swing` (rows and columns p, q) into Φ for every axis,
+/// with r moving by p's increment: r⁺ = r + ... + (p⁺ - p).
+fn add_swing_transition(phi: &mut Covariance, swing: &Matrix2<f64>) {
+    for i in 0..3 {
+        let (p, v, r) = (SWING + i, SWING_RATE + i, R + i);
+        phi[(p, p)] = swing[(0, 0)];
+        phi[(p, v)] = swing[(0, 1)];
+        phi[(v, p)] = swing[(1, 0)];
+        phi[(v, v)] = swing[(1, 1)];
+        phi[(r, p)] = swing[(0, 0)] - 1.0;
+        phi[(r, v)] = swing[(0, 1)];
     }
 }
 

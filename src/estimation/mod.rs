@@ -69,6 +69,9 @@ pub enum GuidanceMeasurement {
 pub struct TargetEstimate {
     /// r̂ = R̂/b.
     pub r: Vec3,
+    /// The leader's swing in r̂, scaled (zero unless the estimator models one,
+    /// `estimator.leader_swing_period_s`): r̂ less it is the leader's path, which the law flies.
+    pub swing: Vec3,
     /// d̂ = V̂_T/b, 1/s.
     pub d_per_s: Vec3,
     /// â = â_T/b, 1/s².

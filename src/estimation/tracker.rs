@@ -8,7 +8,9 @@
 use super::airframe::{AirframeShape, AirframeTable, ViewAngles};
 use super::aspect::{body_axes_ned, pitched_by_alpha, target_span_aspect};
 use super::bank::{WingLine, lateral_acceleration};
-use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, Gates, Innovation, TargetFilter};
+use super::kalman::{
+    FilterEstimate, FilterNoise, FilterPrior, Gates, Innovation, SwingModel, TargetFilter,
+};
 use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
@@ -176,6 +178,11 @@ impl KalmanTracker {
                 inverse_size_psd: section.inverse_size_psd,
                 gust_sigma_fps: section.target_gust_sigma_fps,
                 gust_time_s: section.target_gust_time_s,
+                swing: (section.leader_swing_period_s > 0.0).then(|| SwingModel {
+                    omega_rps: std::f64::consts::TAU / section.leader_swing_period_s,
+                    sigma_fps: section.leader_swing_sigma_fps,
+                    time_s: section.leader_swing_time_s,
+                }),
             },
             prior: FilterPrior {
                 size_ft: b0_ft,
@@ -505,6 +512,7 @@ impl KalmanTracker {
             .map_or(0.0, |model| model.size_sigma_floor_ft(b_hat_ft));
         TargetEstimate {
             r: est.r,
+            swing: est.swing,
             d_per_s: est.d_per_s,
             a_per_s2: est.a_per_s2,
             b_hat_ft,

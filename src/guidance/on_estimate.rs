@@ -1,6 +1,7 @@
 //! The seed's velocity law flown on the Kalman estimator's estimates (docs/equations.md, Beyond the
 //! seed: range from the follower's own motion; certainty equivalence): with b̂ = 1/β̂, d̂ and r̂
-//! from the filter, e = r̂ - r_c and
+//! from the filter, e = r̂ - p̂ - r_c (p̂ the leader's swing where the filter models one, so that
+//! a link flies its leader's path: docs/equations.md, The leader's swing in its model) and
 //! ```text
 //! V_F = b̂ (k_F e + d̂ - ṙ_c)       (4.3) with the filter's estimates in place of (4.5)'s
 //! ```
@@ -91,7 +92,7 @@ impl VelocityOnEstimate {
         let filter = Vec3::from_column_slice(&x[..INTEGRAL]);
         let integral_ft_s = Vec3::from_column_slice(&x[INTEGRAL..]);
         let command = self.shaping.command(&filter, b_hat, input);
-        let error = estimate.r - command.value;
+        let error = estimate.r - estimate.swing - command.value;
         let g = error * self.feedback_gain_per_s + estimate.d_per_s - command.rate(0.0)
             + estimate.a_per_s2 * self.lead_s;
         dx[..INTEGRAL].copy_from_slice(command.filter_rate.as_slice());
@@ -155,6 +156,7 @@ mod tests {
     fn estimate(r: Vec3) -> TargetEstimate {
         TargetEstimate {
             r,
+            swing: Vec3::zeros(),
             d_per_s: Vec3::new(6.25, 0.0, 0.0),
             a_per_s2: Vec3::zeros(),
             b_hat_ft: 8.0,
@@ -193,6 +195,33 @@ mod tests {
         assert_eq!(
             out.command,
             FollowerCommand::Velocity(Vec3::new(54.0, 0.0, 0.0))
+        );
+    }
+
+    /// A leader estimated 1 ft ahead of its path by its swing is flown on its path: the command
+    /// is the one for r̂ - p̂, the error's swing left out.
+    #[test]
+    fn the_leaders_swing_is_not_flown() {
+        let section = GuidanceSection {
+            shaping_pole_rps: 0.0,
+            ..GuidanceSection::default()
+        };
+        let law = VelocityOnEstimate::new(&section, 0.5);
+        let slot = Vec3::new(32.0, 8.0, 0.0);
+        let x = law.initial_state(&(slot / 8.0));
+        let mut dx = vec![0.0; STATE_LEN];
+        let swing = Vec3::new(1.0, 0.0, 0.0) / 8.0;
+        let swinging = GuidanceInput {
+            estimate: Some(TargetEstimate {
+                swing,
+                ..estimate(slot / 8.0 + swing)
+            }),
+            ..GuidanceInput::steady(slot / 8.0, slot)
+        };
+        let out = law.derivative(&x, &swinging, &mut dx);
+        assert_eq!(
+            out.command,
+            FollowerCommand::Velocity(Vec3::new(50.0, 0.0, 0.0))
         );
     }
 

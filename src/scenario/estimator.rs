@@ -125,6 +125,20 @@ pub struct EstimatorSection {
     /// τ_g, the gust velocity's correlation time, s: the time over which the target's
     /// response to a gust fades (its phugoid and its autopilot's speed hold; choice 2 s).
     pub target_gust_time_s: f64,
+    /// T_L, the period of the tracked aircraft's swing across its track, s, when it is a
+    /// teammate that excites its own motion at a known period (docs/equations.md, The
+    /// leader's swing in its model): the filter explains the relative motion at 2π/T_L as the
+    /// leader's, and hands on the leader's path (its velocity and position without the
+    /// swing), which the law flies. 0 (default): no swing; otherwise at least 0.1 s. The
+    /// follower's own excitation needs another period.
+    pub leader_swing_period_s: f64,
+    /// σ_s, the stationary σ per axis of the swing's velocity, ft/s. Choice: a teammate
+    /// excited by ±2-3 ft at 3-5 s swings at about 3-4 ft/s across its track, 2.5 ft/s RMS.
+    pub leader_swing_sigma_fps: f64,
+    /// τ_s, the time over which the swing's amplitude and phase wander, s (at least T_L).
+    /// Choice: 20 s, the time over which a teammate's excitation amplitude, following its own
+    /// uncertainty, changes.
+    pub leader_swing_time_s: f64,
     /// σ of the image measurements (yI, zI, bI), px, that the measurement covariance maps
     /// through the Jacobian of (3.3)-(3.12). Choice: the vision pipeline's centroid is within
     /// 0.2 px of the silhouette's, and the silhouette's centroid moves by a few pixels from
@@ -269,6 +283,9 @@ impl Default for EstimatorSection {
             inverse_size_psd: 1e-7,
             target_gust_sigma_fps: 0.0,
             target_gust_time_s: 2.0,
+            leader_swing_period_s: 0.0,
+            leader_swing_sigma_fps: 2.5,
+            leader_swing_time_s: 20.0,
             pixel_sigma_px: [1.0, 1.0, 2.0],
             measurement_inflation: 2.0,
             scaled_sigma_floor: 1e-4,
@@ -369,6 +386,7 @@ impl EstimatorSection {
         for (key, value, min, max) in scalars.into_iter().chain(self.gate_scalars()) {
             check::in_closed(&format!("estimator.{key}"), value, min, max)?;
         }
+        self.validate_swing()?;
         for (i, sigma) in self.pixel_sigma_px.iter().enumerate() {
             check::in_closed(&format!("estimator.pixel_sigma_px[{i}]"), *sigma, 1e-3, 1e3)?;
         }
@@ -377,6 +395,31 @@ impl EstimatorSection {
             check::in_closed(&key, *sigma, 0.0, 1e4)?;
         }
         Ok(())
+    }
+
+    /// The leader's swing: a period of 0 (none) or at least 0.1 s, a σ, and a wander time
+    /// no shorter than the period (the oscillator stays underdamped).
+    fn validate_swing(&self) -> Check {
+        let period = self.leader_swing_period_s;
+        check::in_closed("estimator.leader_swing_period_s", period, 0.0, 1e3)?;
+        check::require(
+            period == 0.0 || period >= 0.1,
+            "estimator.leader_swing_period_s",
+            period,
+            "0 (none) or [0.1, 1000]",
+        )?;
+        check::in_closed(
+            "estimator.leader_swing_sigma_fps",
+            self.leader_swing_sigma_fps,
+            0.0,
+            1e3,
+        )?;
+        check::in_closed(
+            "estimator.leader_swing_time_s",
+            self.leader_swing_time_s,
+            period.max(0.1),
+            1e4,
+        )
     }
 
     /// (key, value, allowed [min, max]) of the validation gates' scalars.
