@@ -470,7 +470,7 @@ impl TargetFilter {
         // The first iterate is the prior: its innovation decides the gate.
         let (mut predicted, mut h) = model(&self.x);
         let p_h = self.p * h;
-        let s = h.dot(&p_h) + variance_fps4;
+        let s = state_dot(&h, &p_h) + variance_fps4;
         let residual = accel_fps2 - predicted;
         let normalised_sq = residual * residual / s;
         // β̂ ≤ 0, not a number, or outside the gate.
@@ -480,7 +480,8 @@ impl TargetFilter {
         let mut iterate = self.x;
         let mut gain = p_h / s;
         for remaining in (0..LATERAL_ITERATIONS).rev() {
-            let next = self.x + gain * (accel_fps2 - predicted - h.dot(&(self.x - iterate)));
+            let next =
+                self.x + gain * (accel_fps2 - predicted - state_dot(&h, &(self.x - iterate)));
             if next[BETA] <= 0.0 {
                 break;
             }
@@ -490,7 +491,7 @@ impl TargetFilter {
             }
             (predicted, h) = model(&iterate);
             let p_h = self.p * h;
-            gain = p_h / (h.dot(&p_h) + variance_fps4);
+            gain = p_h / (state_dot(&h, &p_h) + variance_fps4);
         }
         self.x = iterate;
         let i_kh = Covariance::identity() - gain * h.transpose();
@@ -610,6 +611,14 @@ impl TargetFilter {
             swing: x.fixed_rows::<3>(SWING).into(),
         }
     }
+}
+
+/// a · b over the state, summed as the kinematic and size states first and the swing's
+/// after: a filter without the swing (whose states are zero) gets the sum, to the bit, of
+/// the state it had before the swing joined it.
+fn state_dot(a: &State, b: &State) -> f64 {
+    a.fixed_rows::<SWING>(0).dot(&b.fixed_rows::<SWING>(0))
+        + a.fixed_rows::<6>(SWING).dot(&b.fixed_rows::<6>(SWING))
 }
 
 /// Writes one axis's swing transition `swing` (rows and columns p, q) into Φ for every axis,
