@@ -434,10 +434,11 @@ impl TargetFilter {
     /// Fuses a measured acceleration of the target across its velocity, `accel_fps2` ft/s²
     /// along the unit vector `across_ned` with variance `variance_fps4`, at the posterior's
     /// time (docs/equations.md, The target's bank from its wing line): h(x) = c · (a - g/τ_g +
-    /// q̇) / β, the path's, the gust's and the swing's acceleration in feet, by an iterated extended Kalman update
-    /// (relinearised at each iterate, so that the update does not claim from a linearisation
-    /// about a lagging â an information about b that the measurement does not carry). Not
-    /// fused, as [`Self::update_within`], outside `gate` or while β̂ ≤ 0; whether it was.
+    /// q̇) / β, the path's, the gust's and the swing's acceleration in feet, by an iterated
+    /// extended Kalman update (relinearised at each iterate, so that the update does not claim
+    /// from a linearisation about a lagging â an information about b that the measurement does
+    /// not carry). Not fused, as [`Self::update_within`], outside `gate` or while β̂ ≤ 0;
+    /// whether it was.
     pub fn update_lateral_acceleration(
         &mut self,
         across_ned: &Vec3,
@@ -614,8 +615,8 @@ impl TargetFilter {
 }
 
 /// a · b over the state, summed as the kinematic and size states first and the swing's
-/// after: a filter without the swing (whose states are zero) gets the sum, to the bit, of
-/// the state it had before the swing joined it.
+/// after: without the swing (its entries zero) the sum is, to the bit, the one over the
+/// 13-state filter it had before the swing joined it (nalgebra sums in blocks of eight).
 fn state_dot(a: &State, b: &State) -> f64 {
     a.fixed_rows::<SWING>(0).dot(&b.fixed_rows::<SWING>(0))
         + a.fixed_rows::<6>(SWING).dot(&b.fixed_rows::<6>(SWING))
