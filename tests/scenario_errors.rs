@@ -193,8 +193,9 @@ fn a_bearing_gate_and_its_range_ratio_are_in_range() {
     );
 }
 
-/// The leader's swing: a period of 0 (none) or at least 0.1 s, and a wander time no shorter
-/// than the period, which keeps the oscillator underdamped.
+/// The leader's swing: a period of 0 (none) or at least 0.1 s, a wander time no shorter than
+/// the period, which keeps the oscillator underdamped, and not the follower's own excitation
+/// period.
 #[test]
 fn a_leader_swing_is_in_range() {
     assert_rejected(
@@ -209,6 +210,12 @@ fn a_leader_swing_is_in_range() {
         "[estimator]\nkind = \"kalman\"\nleader_swing_period_s = 4\nleader_swing_time_s = 3\n",
         &[],
         &["estimator.leader_swing_time_s = 3", "[4, 10000]"],
+    );
+    assert_rejected(
+        "[estimator]\nkind = \"kalman\"\nleader_swing_period_s = 3\n\
+         [excitation]\nmode = \"continuous\"\nperiod_s = 3\n",
+        &[],
+        &["estimator.leader_swing_period_s = 3", "excitation.period_s"],
     );
 }
 

@@ -685,6 +685,21 @@ impl Scenario {
             }
     }
 
+    /// A leader's swing the filter models at the follower's own excitation period would take
+    /// the image's answer to the follower's own swing for the leader's (docs/equations.md,
+    /// The leader's swing in its model).
+    fn validate_leader_swing(&self) -> Check {
+        let swing_s = self.estimator.leader_swing_period_s;
+        check::require(
+            swing_s == 0.0
+                || self.excitation.mode == ExcitationMode::Off
+                || swing_s != self.excitation.period_s,
+            "estimator.leader_swing_period_s",
+            swing_s,
+            "another period than excitation.period_s (the follower's own swing)",
+        )
+    }
+
     /// Checks every value and every cross-key condition.
     pub fn validate(&self) -> Check {
         self.run.validate()?;
@@ -702,6 +717,7 @@ impl Scenario {
              velocity law)",
         )?;
         self.excitation.validate()?;
+        self.validate_leader_swing()?;
         check::require(
             !self.excitation.mode.follows_the_filter()
                 || self.estimator.kind == super::EstimatorKind::Kalman
