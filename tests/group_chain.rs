@@ -227,3 +227,29 @@ fn followers_in_one_air_mass_share_their_gusts() {
         }
     }
 }
+
+/// A link that models its leader's swing (`estimator.leader_swing_period_s`) models it at the
+/// period its leader swings at, and swings at another itself: in platoon.toml f3 models f2's
+/// 3 s and swings at 4.6 s.
+#[test]
+fn a_link_models_its_leaders_swing_at_the_leaders_period() {
+    let path = repo_root().join("scenarios/platoon.toml");
+    let group = load_checked(&path, &[]).expect("valid").expect("a group");
+    let period_of = |name: &str| {
+        group
+            .followers
+            .iter()
+            .find(|f| f.name == name)
+            .map(|f| f.scenario.excitation.period_s)
+    };
+    let mut modelled = 0;
+    for link in &group.followers {
+        let swing_s = link.scenario.estimator.leader_swing_period_s;
+        if swing_s > 0.0 {
+            modelled += 1;
+            assert_eq!(Some(swing_s), period_of(&link.tracks), "{}", link.name);
+            assert_ne!(swing_s, link.scenario.excitation.period_s, "{}", link.name);
+        }
+    }
+    assert_eq!(modelled, 1, "f3 alone models its leader's swing");
+}
