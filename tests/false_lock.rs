@@ -3,7 +3,8 @@
 //! follower hundreds of feet off its slot). The truth check ends it as `false_lock` after
 //! `run.stop_after_lost_s`, with the off-target frames and the follower's own evidence (b̂ at
 //! a bound) in the summary's `track_check`, and the CLI exits 1. The same scenario without the
-//! noise has no off-target frame and no warning.
+//! noise has no off-target frame and no warning, and its telemetry's `kf_nis`, once per fused
+//! frame, averages to the summary's normalised innovation.
 
 use crate::common::{repo_root, run, wingman_cli_in};
 use wingman::output::summary::RunStatus;
@@ -42,6 +43,26 @@ fn a_clean_run_is_on_target_throughout() {
     assert!(check.warnings.is_empty(), "{check:?}");
     let nis = check.nis_mean_last20s.expect("the filter fused frames");
     assert!(nis > 0.0 && nis < 3.0, "mean NIS {nis}");
+    // The telemetry's `kf_nis` holds each fused frame's νᵀ S⁻¹ ν while the frame is held:
+    // once per frame, they average to the summary's figure (the run is under 20 s long).
+    let mut per_frame: Vec<(u64, f64)> = Vec::new();
+    for s in &report.logged {
+        let (Some(frame), Some(true), Some(nis)) = (s.frame, s.frame_trusted, s.filter_nis) else {
+            continue;
+        };
+        if per_frame
+            .last()
+            .is_none_or(|(index, _)| *index != frame.index)
+        {
+            per_frame.push((frame.index, nis));
+        }
+    }
+    let mean = per_frame.iter().map(|(_, n)| n).sum::<f64>() / per_frame.len() as f64;
+    assert!(per_frame.len() > 300, "{} frames", per_frame.len());
+    assert!(
+        (mean - nis).abs() < 1e-9 * nis,
+        "telemetry {mean} against summary {nis}"
+    );
 }
 
 #[test]

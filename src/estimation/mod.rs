@@ -140,6 +140,10 @@ pub trait TargetTracker: std::fmt::Debug + Send {
     /// when none was.
     fn mean_normalised_innovation_since(&self, t_s: f64) -> Option<f64>;
 
+    /// The normalised innovation squared νᵀ S⁻¹ ν of the latest measurement fused; `None`
+    /// before the first.
+    fn last_normalised_innovation(&self) -> Option<f64>;
+
     /// What the airframe size model predicted for the frames it corrected at or after `t_s`
     /// (none with the other size models).
     fn predicted_views_since(&self, t_s: f64) -> Vec<PredictedView>;

@@ -659,6 +659,10 @@ impl TargetTracker for KalmanTracker {
         (!recent.is_empty()).then(|| recent.iter().sum::<f64>() / recent.len() as f64)
     }
 
+    fn last_normalised_innovation(&self) -> Option<f64> {
+        self.innovations.last().map(|(_, nis)| *nis)
+    }
+
     /// The airframe model's predicted views since `t_s`.
     fn predicted_views_since(&self, t_s: f64) -> Vec<PredictedView> {
         self.views

@@ -263,6 +263,7 @@ pub static COLUMNS: &[Column] = &[
     three(["gust_u_fps", "gust_v_fps", "gust_w_fps"], "ft/s", Aircraft, "the gust (body axes)", |s| aircraft3(s, |a| a.gust_body_fps)),
     one("kf_b_hat_ft", "ft", Filter, "the filter's b̂ (empty before its first measurement)", |s| filter(s, |f| f.b_hat_ft)),
     one("kf_b_sigma_ft", "ft", Filter, "the filter's σ_b", |s| filter(s, |f| f.b_sigma_ft)),
+    one("kf_nis", "", Filter, "νᵀ S⁻¹ ν of the latest measurement the filter fused, held until the next (χ² with 3 degrees of freedom where the filter's model holds: 3 on average; empty before the first)", |s| s.filter_nis.unwrap_or(f64::NAN)),
     three(["kf_r_x", "kf_r_y", "kf_r_z"], "", Filter, "the filter's r", |s| filter3(s, |f| f.r)),
     three(["kf_d_x_per_s", "kf_d_y_per_s", "kf_d_z_per_s"], "1/s", Filter, "the filter's d", |s| filter3(s, |f| f.d_per_s)),
     three(["kf_a_x_per_s2", "kf_a_y_per_s2", "kf_a_z_per_s2"], "1/s²", Filter, "the filter's a", |s| filter3(s, |f| f.a_per_s2)),

@@ -449,6 +449,7 @@ impl Simulation {
             filter: self
                 .estimator
                 .filter_reading(t_s, &self.navigated_position_ned_ft(follower_x)),
+            filter_nis: (self.estimator.filter()).and_then(|f| f.last_normalised_innovation()),
             navigation: self.navigation_reading(),
             guidance: out,
             frame: self.camera().and_then(CameraSensor::held_record),

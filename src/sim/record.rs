@@ -42,6 +42,9 @@ pub struct Snapshot {
     /// The filter's estimate now, when the run has a filter (flying on it or beside the
     /// adaptive law).
     pub filter: FilterReading,
+    /// The filter's νᵀ S⁻¹ ν of the latest measurement it fused (None before the first, or
+    /// without a filter).
+    pub filter_nis: Option<f64>,
     /// Guidance output.
     pub guidance: GuidanceOutput,
     /// The measurement and truth of the frame the guidance holds (camera runs).
