@@ -165,35 +165,36 @@ mod tests {
         }
     }
 
-    /// On the slot with d̂ = d the follower flies the target's velocity b d; ahead of the slot
-    /// it speeds up by k_F b e.
-    #[test]
-    fn flies_the_target_velocity_plus_feedback() {
+    /// The slot R_c of an 8 ft target, ft.
+    const SLOT_FT: Vec3 = Vec3::new(32.0, 8.0, 0.0);
+
+    /// V_F of a law without shaping (k_F = 0.5) on its slot's scaled command, its filter
+    /// started there, for `estimate`.
+    fn command_for(estimate: TargetEstimate) -> FollowerCommand {
         let section = GuidanceSection {
             shaping_pole_rps: 0.0,
             ..GuidanceSection::default()
         };
         let law = VelocityOnEstimate::new(&section, 0.5);
-        let slot = Vec3::new(32.0, 8.0, 0.0);
-        let input = GuidanceInput::steady(slot / 8.0, slot);
+        let x = law.initial_state(&(SLOT_FT / 8.0));
         let mut dx = vec![0.0; STATE_LEN];
-        let x = law.initial_state(&(slot / 8.0));
-        let on_slot = GuidanceInput {
-            estimate: Some(estimate(slot / 8.0)),
-            ..input
+        let input = GuidanceInput {
+            estimate: Some(estimate),
+            ..GuidanceInput::steady(SLOT_FT / 8.0, SLOT_FT)
         };
-        let out = law.derivative(&x, &on_slot, &mut dx);
+        law.derivative(&x, &input, &mut dx).command
+    }
+
+    /// On the slot with d̂ = d the follower flies the target's velocity b d; ahead of the slot
+    /// it speeds up by k_F b e.
+    #[test]
+    fn flies_the_target_velocity_plus_feedback() {
         assert_eq!(
-            out.command,
+            command_for(estimate(SLOT_FT / 8.0)),
             FollowerCommand::Velocity(Vec3::new(50.0, 0.0, 0.0))
         );
-        let ahead = GuidanceInput {
-            estimate: Some(estimate(slot / 8.0 + Vec3::new(1.0, 0.0, 0.0))),
-            ..input
-        };
-        let out = law.derivative(&x, &ahead, &mut dx);
         assert_eq!(
-            out.command,
+            command_for(estimate(SLOT_FT / 8.0 + Vec3::new(1.0, 0.0, 0.0))),
             FollowerCommand::Velocity(Vec3::new(54.0, 0.0, 0.0))
         );
     }
