@@ -16,6 +16,7 @@ fn one_frame(c: &mut Criterion) {
         inverse_size_sigma_per_ft: 0.15,
         relative_velocity_sigma_fps: 15.0,
         acceleration_sigma_fps2: 3.0,
+        size_bounds_ft: None,
     };
     let white_jerk = FilterNoise::without_gust(1e-4, 1e-7);
     let gust = FilterNoise {

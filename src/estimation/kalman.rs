@@ -139,6 +139,10 @@ pub struct FilterPrior {
     pub relative_velocity_sigma_fps: f64,
     /// σ of the target's acceleration at the start, per axis, ft/s².
     pub acceleration_sigma_fps2: f64,
+    /// [b_min, b_max], ft, when the filter's estimate is kept within them: after every
+    /// update x̂ is projected onto β ∈ [1/b_max, 1/b_min] (None: β is free, and only the
+    /// law bounds b̂; docs/equations.md, The size's bounds in the filter).
+    pub size_bounds_ft: Option<(f64, f64)>,
 }
 
 /// The filter's estimate at one instant.
@@ -225,6 +229,8 @@ pub struct TargetFilter {
     t_s: f64,
     /// The follower's position then, NED, ft.
     follower_position_ned_ft: Vec3,
+    /// [1/b_max, 1/b_min], 1/ft, when the estimate is kept within the size's bounds.
+    beta_bounds_per_ft: Option<(f64, f64)>,
 }
 
 impl TargetFilter {
@@ -276,7 +282,29 @@ impl TargetFilter {
             noise,
             t_s,
             follower_position_ned_ft: *follower_position_ned_ft,
+            beta_bounds_per_ft: prior
+                .size_bounds_ft
+                .map(|(min, max)| (1.0 / max, 1.0 / min)),
         }
+    }
+
+    /// With the size's bounds, projects x̂ onto β ∈ [1/b_max, 1/b_min], weighted by P⁻¹ (the
+    /// estimate projection of a linearly constrained Kalman filter): x̂ ← x̂ - P e_β (β̂ - β_b)
+    /// / P_ββ with β_b the nearer bound, which moves every state with β by its covariance
+    /// with β, so that r̂, d̂ and â stay the ones the measurements give for that β. P is kept.
+    fn keep_size_within_bounds(&mut self) {
+        let Some((low, high)) = self.beta_bounds_per_ft else {
+            return;
+        };
+        let beta = self.x[BETA];
+        let variance = self.p[(BETA, BETA)];
+        if (low..=high).contains(&beta) || variance <= 0.0 {
+            return;
+        }
+        let excess = beta - beta.clamp(low, high);
+        let column: State = self.p.column(BETA).into_owned();
+        self.x -= column * (excess / variance);
+        self.x[BETA] = beta.clamp(low, high);
     }
 
     /// The posterior's estimate.
@@ -369,6 +397,7 @@ impl TargetFilter {
         let i_kh = Covariance::identity() - kh;
         self.p = i_kh * self.p * i_kh.transpose() + gain * r_covariance * gain.transpose();
         self.p = (self.p + self.p.transpose()) * 0.5;
+        self.keep_size_within_bounds();
         Innovation {
             residual,
             normalised_sq,
@@ -498,6 +527,7 @@ impl TargetFilter {
         let i_kh = Covariance::identity() - gain * h.transpose();
         self.p = i_kh * self.p * i_kh.transpose() + gain * gain.transpose() * variance_fps4;
         self.p = (self.p + self.p.transpose()) * 0.5;
+        self.keep_size_within_bounds();
         true
     }
 

@@ -14,7 +14,7 @@ use super::kalman::{
 use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
-use crate::scenario::{CovarianceAt, EstimatorSection, SizeModel, TargetBank};
+use crate::scenario::{CovarianceAt, EstimatorSection, SizeBounds, SizeModel, TargetBank};
 use crate::sensing::transform::image_from_relative_position;
 use crate::sensing::{FrameRecord, scaled_position_jacobian, scaled_relative_position};
 use crate::vision::ImageMeasurement;
@@ -189,6 +189,8 @@ impl KalmanTracker {
                 inverse_size_sigma_per_ft: section.initial_inverse_size_sigma_per_ft,
                 relative_velocity_sigma_fps: section.initial_relative_velocity_sigma_fps,
                 acceleration_sigma_fps2: section.initial_acceleration_sigma_fps2,
+                size_bounds_ft: (section.size_bounds == SizeBounds::Filter)
+                    .then_some(size_bounds_ft),
             },
             pixel_covariance_px2: Mat3::from_diagonal(&Vec3::new(sy * sy, sz * sz, sb * sb))
                 * section.measurement_inflation,

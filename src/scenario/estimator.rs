@@ -67,6 +67,20 @@ pub enum OwnMotion {
     Inertial,
 }
 
+/// Where the size's bounds [b_min, b_max] (`guidance.b_min_ft`, `b_max_ft`) act
+/// (docs/equations.md, The size's bounds in the filter).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SizeBounds {
+    /// The seed's: the law projects b̂ into them (its adaptive law's projection); the filter's
+    /// β is free, and its other states follow the β it holds.
+    Law,
+    /// The filter's estimate too is projected onto β ∈ [1/b_max, 1/b_min] after every
+    /// update, every state moved with β by its covariance with it, so that the velocity the law
+    /// flies, b̂ d̂, is the one the measurements give for the bounded size.
+    Filter,
+}
+
 /// Whether the filter reads the target's turn from its bank (docs/equations.md, The target's
 /// bank from its wing line).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -139,6 +153,9 @@ pub struct EstimatorSection {
     /// Choice: 20 s, the time over which a teammate's excitation amplitude, following its own
     /// uncertainty, changes.
     pub leader_swing_time_s: f64,
+    /// `law` (default, the seed's) or `filter`: whether the filter's estimate is kept within
+    /// the size's bounds too (docs/equations.md, The size's bounds in the filter).
+    pub size_bounds: SizeBounds,
     /// σ of the image measurements (yI, zI, bI), px, that the measurement covariance maps
     /// through the Jacobian of (3.3)-(3.12). Choice: the vision pipeline's centroid is within
     /// 0.2 px of the silhouette's, and the silhouette's centroid moves by a few pixels from
@@ -286,6 +303,7 @@ impl Default for EstimatorSection {
             leader_swing_period_s: 0.0,
             leader_swing_sigma_fps: 2.5,
             leader_swing_time_s: 20.0,
+            size_bounds: SizeBounds::Law,
             pixel_sigma_px: [1.0, 1.0, 2.0],
             measurement_inflation: 2.0,
             scaled_sigma_floor: 1e-4,

@@ -13,6 +13,7 @@ fn prior() -> FilterPrior {
         inverse_size_sigma_per_ft: 0.15,
         relative_velocity_sigma_fps: 15.0,
         acceleration_sigma_fps2: 3.0,
+        size_bounds_ft: None,
     }
 }
 
@@ -466,5 +467,60 @@ fn swing_states_explain_a_leader_that_swings_at_its_period() {
     assert!(
         (path_velocity_fps - Vec3::new(50.0, 0.0, 0.0)).norm() < 0.4,
         "{path_velocity_fps}"
+    );
+}
+
+/// A leader that copies the follower's speed-up exactly (the chase of a chain's link): r*
+/// does not change while the follower speeds up from 50 to 66 ft/s, which the model reads as
+/// a far, large leader. Returns β̂ over the frames and the filter at the end.
+fn copied_speed_up(size_bounds_ft: Option<(f64, f64)>) -> (Vec<f64>, TargetFilter) {
+    let noise = FilterNoise::without_gust(1e-4, 1e-7);
+    let start = FilterPrior {
+        size_bounds_ft,
+        ..prior()
+    };
+    let r = Vec3::new(4.0, 1.0, 0.0);
+    let covariance = Mat3::identity() * 1e-4;
+    let speed_fps = |t: f64| 50.0 + 16.0 * ((t - 1.0) / 2.5).clamp(0.0, 1.0);
+    let mut position = Vec3::zeros();
+    let velocity = Vec3::new(speed_fps(0.0), 0.0, 0.0);
+    let mut filter = TargetFilter::new(noise, &start, &r, &covariance, 0.0, &position, &velocity);
+    let (dt, mut betas) = (1.0 / 30.0, Vec::new());
+    for k in 1..=180 {
+        let t = f64::from(k) * dt;
+        position.x += 0.5 * (speed_fps(t - dt) + speed_fps(t)) * dt;
+        filter.predict_to(t, &position);
+        filter.update(&r, &covariance);
+        betas.push(filter.posterior().beta_per_ft);
+    }
+    (betas, filter)
+}
+
+/// Invariant: with the size's bounds in the filter, β̂ never leaves [1/b_max, 1/b_min], and
+/// the velocity the law flies at the bound, b_max d̂, is the follower's own (the leader's,
+/// which copies it) within 1 ft/s; without them β̂ falls past 1/b_max and b_max d̂ is not the
+/// leader's velocity (docs/equations.md, The size's bounds in the filter).
+#[test]
+fn the_size_bounds_keep_the_filter_on_the_leaders_velocity() {
+    let (b_min, b_max) = (1.0, 30.0);
+    let (free, free_end) = copied_speed_up(None);
+    let lowest = free.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(
+        lowest < 1.0 / b_max,
+        "the free β̂ stays at {lowest} and above"
+    );
+    let (bounded, end) = copied_speed_up(Some((b_min, b_max)));
+    assert!(
+        bounded
+            .iter()
+            .all(|&beta| (1.0 / b_max..=1.0 / b_min).contains(&beta)),
+        "{bounded:?}"
+    );
+    let flown_fps = |f: &TargetFilter| f.posterior().d_per_s.x * b_max;
+    assert!((flown_fps(&end) - 66.0).abs() < 1.0, "{}", flown_fps(&end));
+    assert!(
+        (flown_fps(&free_end) - 66.0).abs() > 5.0,
+        "{}",
+        flown_fps(&free_end)
     );
 }
