@@ -296,15 +296,14 @@ impl TargetFilter {
         let Some((low, high)) = self.beta_bounds_per_ft else {
             return;
         };
-        let beta = self.x[BETA];
-        let variance = self.p[(BETA, BETA)];
-        if (low..=high).contains(&beta) || variance <= 0.0 {
+        let (beta, variance) = (self.x[BETA], self.p[(BETA, BETA)]);
+        let bound = beta.clamp(low, high);
+        if bound == beta || variance <= 0.0 {
             return;
         }
-        let excess = beta - beta.clamp(low, high);
         let column: State = self.p.column(BETA).into_owned();
-        self.x -= column * (excess / variance);
-        self.x[BETA] = beta.clamp(low, high);
+        self.x -= column * ((beta - bound) / variance);
+        self.x[BETA] = bound;
     }
 
     /// The posterior's estimate.
