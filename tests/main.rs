@@ -41,6 +41,7 @@ mod group_scenario_errors;
 mod guidance_sees_no_truth;
 mod horizon_crossing;
 mod live_run;
+mod merged_frames;
 mod mesa_quiet;
 mod navigation_inertial_own_motion;
 mod navigation_ins_statistics;

@@ -177,6 +177,17 @@ fn a_fragment_fraction_is_under_one() {
     );
 }
 
+/// A merge is a blob longer than the target can be: a ratio of 1 or less would call the
+/// target whole a merge.
+#[test]
+fn a_merge_ratio_is_over_one() {
+    assert_rejected(
+        "[camera]\nselection_merge_ratio = 0.9\n",
+        &[],
+        &["camera.selection_merge_ratio = 0.9", "[1.01, 100]"],
+    );
+}
+
 /// A gate on the bearing's normalised square is not negative (0: none), and the factor off
 /// the predicted range beyond which it weighs a frame is at least 1 (1: every frame).
 #[test]

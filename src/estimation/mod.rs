@@ -12,6 +12,8 @@ pub mod aspect;
 pub mod bank;
 pub mod hold;
 pub mod kalman;
+pub mod merge;
+mod reopening;
 pub mod tracker;
 pub mod trim_alpha;
 
@@ -217,7 +219,7 @@ impl Estimator {
             },
             Self::OnFilter(tracker) => Delivery {
                 first: fused_before == 0 && tracker.fused() > 0,
-                trusted: tracker.fused() > fused_before,
+                trusted: tracker.fused() > fused_before && record.r_measured.is_some(),
             },
         }
     }

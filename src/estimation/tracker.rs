@@ -8,16 +8,16 @@
 use super::airframe::{AirframeShape, AirframeTable, ViewAngles};
 use super::aspect::{body_axes_ned, pitched_by_alpha, target_span_aspect};
 use super::bank::{WingLine, lateral_acceleration};
-use super::kalman::{
-    FilterEstimate, FilterNoise, FilterPrior, Gates, Innovation, SwingModel, TargetFilter,
-};
+use super::kalman::{FilterEstimate, FilterNoise, FilterPrior, Gates, SwingModel, TargetFilter};
+use super::merge::merged_measurement;
+use super::reopening::{GateReopening, KeptOutFrame};
 use super::trim_alpha::AlphaSchedule;
 use super::{TargetEstimate, TargetTracker};
 use crate::frames::{Mat3, Vec3};
 use crate::scenario::{CovarianceAt, EstimatorSection, SizeBounds, SizeModel, TargetBank};
 use crate::sensing::transform::image_from_relative_position;
 use crate::sensing::{FrameRecord, scaled_position_jacobian, scaled_relative_position};
-use crate::vision::ImageMeasurement;
+use crate::vision::{BlobStatus, ImageMeasurement};
 
 /// With the span or airframe model, σ of a frame's maximal length when the span is not the
 /// silhouette's longest dimension or the view is unknown, as a multiple of that length: the
@@ -451,6 +451,33 @@ impl KalmanTracker {
         true
     }
 
+    /// Fuses a merged frame for its bearing alone ([`merged_measurement`]), once the filter
+    /// predicts the frame's pixels.
+    fn fuse_merged(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) {
+        let (Some(joined), Some(predicted)) = (record.measured, self.predicted_pixels(record, 1.0))
+        else {
+            return;
+        };
+        let (pixels, focal_px) = (&self.pixel_covariance_px2, self.focal_px);
+        let sigmas = BEARING_ONLY_LENGTH_SIGMAS;
+        let (r, covariance) = merged_measurement(
+            &joined,
+            &predicted,
+            pixels,
+            focal_px,
+            &record.ned_from_camera,
+            sigmas,
+        );
+        let position = record.follower_position_ned_ft;
+        self.fuse(
+            record.t_s,
+            &r,
+            &covariance,
+            &position,
+            follower_velocity_ned_fps,
+        );
+    }
+
     /// With `target_bank = "measured"`, fuses the frame's wing line as the target's
     /// acceleration across its velocity (`estimation::bank`), at the frame's capture, where
     /// the filter's view of the target puts the span at or above `span_aspect_min` (the line
@@ -543,6 +570,9 @@ impl TargetTracker for KalmanTracker {
     /// airframe's normalised length and the vision's short reading
     /// ([`Self::airframe_measurement`]). The filter starts on the uncorrected frame.
     fn fuse_frame(&mut self, record: &FrameRecord, follower_velocity_ned_fps: &Vec3) {
+        if record.status == BlobStatus::Merged {
+            return self.fuse_merged(record, follower_velocity_ned_fps);
+        }
         let (Some(r_star), Some(pixels)) = (record.r_measured, record.measured) else {
             return;
         };
@@ -678,102 +708,4 @@ impl TargetTracker for KalmanTracker {
 /// A gate of `estimator.innovation_gate` or `bearing_gate`: ∞ (none) for 0.
 fn gate_or_open(gate: f64) -> f64 {
     if gate > 0.0 { gate } else { f64::INFINITY }
-}
-
-/// When frames the gates keep out re-open them (docs/equations.md, The gate
-/// re-opened): a streak of them that agree with each other, lasting `after_s`
-/// (`estimator.gate_reopen_s`; ∞: never), on a frame whose |r*| is within `range_ratio` of
-/// the prediction's |r̂| (`estimator.gate_reopen_range_ratio`).
-#[derive(Debug, Clone, Copy)]
-struct GateReopening {
-    after_s: f64,
-    range_ratio: f64,
-    /// The frames kept out since the last fused one that agree with each other.
-    streak: Option<KeptOutStreak>,
-}
-
-/// A frame the gates kept out: its capture time, s, r*, covariance and innovation.
-struct KeptOutFrame<'a> {
-    t_s: f64,
-    r_star: &'a Vec3,
-    covariance: &'a Mat3,
-    innovation: &'a Innovation,
-}
-
-impl GateReopening {
-    /// Ends the streak: a frame was fused.
-    fn end_streak(&mut self) {
-        self.streak = None;
-    }
-
-    /// Adds `frame` to the streak (a frame without a finite innovation breaks it) and, when
-    /// the streak has lasted `after_s` and the frame's range is within `range_ratio` of
-    /// `predicted`'s, updates `predicted` on it with its kinematics widened: the innovation
-    /// of that update (None: the gate stays shut).
-    fn take(
-        &mut self,
-        predicted: &mut TargetFilter,
-        frame: &KeptOutFrame,
-        gate: f64,
-    ) -> Option<Innovation> {
-        let innovation = frame.innovation;
-        self.streak = innovation.normalised_sq.is_finite().then(|| {
-            KeptOutStreak::extended(self.streak, gate, frame.t_s, frame.r_star, frame.covariance)
-        });
-        let due = self
-            .streak
-            .is_some_and(|streak| frame.t_s - streak.since_s >= self.after_s);
-        if !due {
-            return None;
-        }
-        // A range far off the prediction's is not a drifted prediction but something else
-        // measured steadily (the target's blob merged with a road).
-        let range_off = predicted.range_off(frame.r_star);
-        if range_off > self.range_ratio.ln() || range_off.is_nan() {
-            return None;
-        }
-        // The prediction, not the frames, is what is wrong: widened until this frame's
-        // νᵀ S⁻¹ ν is about its 3 degrees of freedom (and its bearing's about its 2), it takes
-        // it.
-        let factor = (innovation.normalised_sq / 3.0).max(innovation.bearing_normalised_sq / 2.0);
-        predicted.widen_kinematics(factor);
-        Some(predicted.update(frame.r_star, frame.covariance))
-    }
-}
-
-/// Frames kept out by the gates since the last fused one, each within the gate of
-/// the one before (docs/equations.md, The gate re-opened). Fragments and blobs of the ground
-/// jump between frames; the whole target kept out by a lost prediction does not.
-#[derive(Debug, Clone, Copy)]
-struct KeptOutStreak {
-    /// Capture time of its first frame, s.
-    since_s: f64,
-    /// Its last frame's r*.
-    r_star: Vec3,
-    /// Its last frame's covariance.
-    covariance: Mat3,
-}
-
-impl KeptOutStreak {
-    /// `streak` with a frame the gate kept out added, when the frame agrees with its last one
-    /// ((r*ₖ - r*ₖ₋₁)ᵀ (Rₖ + Rₖ₋₁)⁻¹ (·) ≤ `gate`); else a streak the frame begins.
-    fn extended(
-        streak: Option<Self>,
-        gate: f64,
-        t_s: f64,
-        r_star: &Vec3,
-        covariance: &Mat3,
-    ) -> Self {
-        let agrees = |last: &Self| {
-            let step = r_star - last.r_star;
-            (covariance + last.covariance)
-                .try_inverse()
-                .is_some_and(|s_inv| (step.transpose() * s_inv * step)[(0, 0)] <= gate)
-        };
-        Self {
-            since_s: streak.filter(agrees).map_or(t_s, |last| last.since_s),
-            r_star: *r_star,
-            covariance: *covariance,
-        }
-    }
 }

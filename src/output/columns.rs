@@ -189,13 +189,15 @@ fn navigation(s: &Snapshot, f: fn(&FollowerPose) -> Vec3) -> Vec3 {
     s.navigation.as_ref().map_or(NAN3, f)
 }
 
-/// `meas_status` codes: 0 ok, 1 not found, 2 truncated (touches the border), 3 too small.
+/// `meas_status` codes: 0 ok, 1 not found, 2 truncated (touches the border), 3 too small,
+/// 4 merged (the tracked aircraft joined to another, measured for its bearing).
 pub fn status_code(status: BlobStatus) -> f64 {
     match status {
         BlobStatus::Ok => 0.0,
         BlobStatus::NotFound => 1.0,
         BlobStatus::Truncated => 2.0,
         BlobStatus::TooSmall => 3.0,
+        BlobStatus::Merged => 4.0,
     }
 }
 
@@ -229,7 +231,7 @@ pub static COLUMNS: &[Column] = &[
     three(["r_cmd_x", "r_cmd_y", "r_cmd_z"], "", Every, "the scaled command the guidance tracks", |s| s.guidance.r_command),
     one("frame_t_s", "s", Every, "the time of the camera frame the guidance holds (taken `camera.latency_frames` frames earlier; empty without a camera)", |s| s.frame.map_or(f64::NAN, |f| f.t_s)),
     three(["y_i_px", "z_i_px", "b_i_px"], "px", Every, "the held frame's measured centroid and maximal length (empty without a measurement)", |s| image(s.frame.and_then(|f| f.measured))),
-    one("meas_status", "", Every, "the held frame's status: 0 ok, 1 not found, 2 touching the border, 3 too small (empty without a camera)", |s| s.frame.map_or(f64::NAN, |f| status_code(f.status))),
+    one("meas_status", "", Every, "the held frame's status: 0 ok, 1 not found, 2 touching the border, 3 too small, 4 merged (the tracked aircraft joined to another, `camera.merges = \"bearing\"`) (empty without a camera)", |s| s.frame.map_or(f64::NAN, |f| status_code(f.status))),
     one("meas_trusted", "", Every, "whether the estimator took the held frame: 1 when it was ok and (under the Kalman filter) its innovation and bearing gates did not keep it out, 0 otherwise (empty without a camera)", |s| s.frame_trusted.map_or(f64::NAN, |t| f64::from(u8::from(t)))),
     one("centroid_vs_silhouette_px", "px", Every, "the held frame's measured centroid's distance from the true centroid of the target's silhouette (empty when not ok, or without a camera)", |s| s.frame.and_then(|f| f.centroid_vs_silhouette_px).unwrap_or(f64::NAN)),
     one("meas_background", "", Every, "what lay behind the target in the held frame, by the truth: 0 sky, 1 ground, 2 horizon, 3 cloud (empty without a world scene, `scene.kind = \"world\"`)", |s| s.frame.and_then(|f| f.background).map_or(f64::NAN, |b| f64::from(b as u8))),

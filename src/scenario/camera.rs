@@ -50,6 +50,20 @@ pub enum LengthExpectation {
     Estimated,
 }
 
+/// What a merge (`selection = "predicted"`: the tracked aircraft's blob joined to another's,
+/// told by the gate's square or `selection_merge_ratio`) measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MergeMeasurement {
+    /// Nothing: the frame is not measured and the estimator coasts until the blobs part.
+    Unmeasured,
+    /// The joined blob, status `merged`: the Kalman filter fuses its bearing alone, the
+    /// centroid's σ widened to half of how much longer it is than the predicted length
+    /// (docs/equations.md, A merge's bearing); it is not a measurement of the aircraft alone
+    /// (a lost frame, never trusted).
+    Bearing,
+}
+
 /// The point of the silhouette its bearing and elevation are measured to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -149,6 +163,15 @@ pub struct CameraSection {
     /// length is a fragment, and its size counts as this fraction's: fragments are told apart
     /// by their distance from the prediction alone (0: every size counts as it is).
     pub selection_fragment_fraction: f64,
+    /// `selection = "predicted"`: a blob whose box's longer side exceeds this ratio of the
+    /// expected maximal length is the tracked aircraft joined to another (a merge), never taken
+    /// for the aircraft alone; while it is the blob most like the prediction the frame measures
+    /// what `merges` says, as for a blob reaching beyond the gate (0: merges are told by the
+    /// gate's square alone).
+    pub selection_merge_ratio: f64,
+    /// `selection = "predicted"`: what a merge measures: `unmeasured` (default) or `bearing`
+    /// (see [`MergeMeasurement`]).
+    pub merges: MergeMeasurement,
     /// Where the expected maximal length comes from: `last_measured` (default) or
     /// `estimated` (see [`LengthExpectation`]).
     pub expected_length: LengthExpectation,
@@ -224,6 +247,8 @@ impl Default for CameraSection {
             selection_gate_deg: 3.0,
             selection_length_ratio: 1.5,
             selection_fragment_fraction: 0.0,
+            selection_merge_ratio: 0.0,
+            merges: MergeMeasurement::Unmeasured,
             expected_length: LengthExpectation::LastMeasured,
             min_pixel_count: 4,
             mask_coverage: 0.5,
@@ -349,6 +374,13 @@ impl CameraSection {
             "camera.selection_fragment_fraction",
             self.selection_fragment_fraction,
             "[0, 1)",
+        )?;
+        check::require(
+            self.selection_merge_ratio == 0.0
+                || (1.01..=100.0).contains(&self.selection_merge_ratio),
+            "camera.selection_merge_ratio",
+            self.selection_merge_ratio,
+            "0 (merges told by the gate alone) or [1.01, 100]",
         )
     }
 

@@ -214,6 +214,8 @@ mod tests {
                     length_px: 60.0,
                     length_ratio: 1.5,
                     fragment_fraction: 0.5,
+                    merge_ratio: 0.0,
+                    merges_measured: false,
                 },
                 3,
             ),
@@ -224,6 +226,8 @@ mod tests {
                 length_px: 20.0,
                 length_ratio: 1.5,
                 fragment_fraction: 0.5,
+                merge_ratio: 0.0,
+                merges_measured: false,
             }
         );
     }

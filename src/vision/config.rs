@@ -102,9 +102,13 @@ pub enum BlobSelection {
     /// maximal length, ρ `length_ratio` (either 0: sizes not compared, the nearest) and φ
     /// `fragment_fraction` (a blob shorter than φ of the expected length is a fragment, and
     /// fragments differ by their distance alone; 0: every size counts); none when no blob lies
-    /// inside the gate, or when a blob centred within the radius but reaching beyond the square
-    /// is more like the prediction than every blob inside (the target joined to something
-    /// else: it is there, unmeasured, and no lesser blob stands in for it).
+    /// inside the gate, or when a joined blob is more like the prediction than every blob
+    /// inside (the target joined to something else: it is there, unmeasured, and no lesser
+    /// blob stands in for it). A blob is joined when it is centred within the radius and
+    /// reaches beyond the square, or its box's longer side exceeds `merge_ratio` times the
+    /// expected length (longer than the target alone can be; 0: not judged by length). With
+    /// `merges_measured` a joined blob more like the prediction than every blob inside (or
+    /// alone in the gate) is measured instead, as `BlobStatus::Merged`.
     NearestWithin {
         /// Column of the point, px.
         u_px: f64,
@@ -120,6 +124,12 @@ pub enum BlobSelection {
         /// The fraction of `length_px` below which a blob's size counts as this fraction's
         /// (0: every size counts).
         fragment_fraction: f64,
+        /// The ratio of a blob's extent to `length_px` beyond which it is the target joined
+        /// to another (0: merges told by the gate's square alone).
+        merge_ratio: f64,
+        /// Whether a merge is measured (`BlobStatus::Merged`: its bearing holds the target,
+        /// its length does not) rather than measuring nothing.
+        merges_measured: bool,
     },
 }
 
@@ -141,6 +151,8 @@ impl BlobSelection {
                 length_px,
                 length_ratio,
                 fragment_fraction,
+                merge_ratio,
+                merges_measured,
             } => {
                 let (u_px, v_px) = at(u_px, v_px);
                 Self::NearestWithin {
@@ -150,6 +162,8 @@ impl BlobSelection {
                     length_px: length_px / scale,
                     length_ratio,
                     fragment_fraction,
+                    merge_ratio,
+                    merges_measured,
                 }
             }
         }

@@ -35,7 +35,7 @@ const TEXT_ORIGIN_PX: usize = 4;
 pub fn status_rgb(status: BlobStatus) -> [u8; 3] {
     match status {
         BlobStatus::Ok => OK_RGB,
-        BlobStatus::Truncated => TRUNCATED_RGB,
+        BlobStatus::Truncated | BlobStatus::Merged => TRUNCATED_RGB,
         BlobStatus::NotFound | BlobStatus::TooSmall => LOST_RGB,
     }
 }
@@ -49,7 +49,7 @@ pub fn status_line(measurement: &BlobMeasurement) -> String {
             measurement.status.label(),
             measurement.pixel_count
         ),
-        BlobStatus::Ok | BlobStatus::Truncated => format!(
+        BlobStatus::Ok | BlobStatus::Truncated | BlobStatus::Merged => format!(
             "{} b={:.1}px",
             measurement.status.label(),
             measurement.max_length_px

@@ -50,16 +50,21 @@ pub enum BlobStatus {
     /// Every blob is smaller than `min_pixel_count` (the largest is measured), or the one
     /// selected has no measurable length.
     TooSmall,
+    /// The tracked target joined to another blob (a merge, `camera.merges = "bearing"`): the
+    /// joined blob is measured; its centroid lies near the target's, its length is not the
+    /// target's.
+    Merged,
 }
 
 impl BlobStatus {
-    /// Short upper-case name for logs and overlays: OK, LOST, TRUNC, SMALL.
+    /// Short upper-case name for logs and overlays: OK, LOST, TRUNC, SMALL, MERGE.
     pub fn label(&self) -> &'static str {
         match self {
             BlobStatus::Ok => "OK",
             BlobStatus::NotFound => "LOST",
             BlobStatus::Truncated => "TRUNC",
             BlobStatus::TooSmall => "SMALL",
+            BlobStatus::Merged => "MERGE",
         }
     }
 }
@@ -288,8 +293,7 @@ impl VisionPipeline {
             self.config.link_radius_px,
         );
         let blobs = &self.labeller.blobs;
-        let Some((index, too_small)) = select_blob(blobs, self.config.min_pixel_count, selection)
-        else {
+        let Some((index, pick)) = select_blob(blobs, self.config.min_pixel_count, selection) else {
             self.keep_frame(&frame, None, selection);
             return Ok(BlobMeasurement::not_found(0, sigma));
         };
@@ -307,7 +311,7 @@ impl VisionPipeline {
                 corner_tolerance: noise.corner_tolerance(),
             },
         );
-        let measurement = blob_measurement(&summary, &geometry, too_small, blob_count, sigma);
+        let measurement = blob_measurement(&summary, &geometry, pick, blob_count, sigma);
         let target = (measurement.status == BlobStatus::Ok).then_some(index as u32 + 1);
         if let (Some(colour), Some(label)) = (&mut self.colour, target) {
             let labels = &self.labeller.labels;
@@ -321,20 +325,22 @@ impl VisionPipeline {
 }
 
 /// The measurement of the blob `summary` whose moments and outline are `geometry`
-/// (`too_small`: below `min_pixel_count`), among `blob_count` blobs, the background's noise
+/// (`pick`: as [`select_blob`] picked it), among `blob_count` blobs, the background's noise
 /// `sigma`.
 fn blob_measurement(
     summary: &BlobSummary,
     geometry: &BlobGeometry,
-    too_small: bool,
+    pick: Pick,
     blob_count: usize,
     sigma: f64,
 ) -> BlobMeasurement {
     // A blob without a measurable length (no edge points) gives no range.
-    let status = match (too_small || geometry.feret.is_none(), geometry.truncated) {
-        (true, _) => BlobStatus::TooSmall,
-        (false, true) => BlobStatus::Truncated,
-        (false, false) => BlobStatus::Ok,
+    let too_small = pick == Pick::TooSmall || geometry.feret.is_none();
+    let status = match (too_small, pick, geometry.truncated) {
+        (true, _, _) => BlobStatus::TooSmall,
+        (false, Pick::Joined, _) => BlobStatus::Merged,
+        (false, _, true) => BlobStatus::Truncated,
+        (false, _, false) => BlobStatus::Ok,
     };
     BlobMeasurement {
         status,
@@ -436,6 +442,8 @@ struct SelectionGate {
     length_px: f64,
     length_ratio: f64,
     fragment_fraction: f64,
+    merge_ratio: f64,
+    merges_measured: bool,
 }
 
 impl SelectionGate {
@@ -446,6 +454,8 @@ impl SelectionGate {
             length_px: 0.0,
             length_ratio: 0.0,
             fragment_fraction: 0.0,
+            merge_ratio: 0.0,
+            merges_measured: false,
         };
         match selection {
             BlobSelection::NearestTo { u_px, v_px } if u_px.is_finite() && v_px.is_finite() => {
@@ -458,12 +468,16 @@ impl SelectionGate {
                 length_px,
                 length_ratio,
                 fragment_fraction,
+                merge_ratio,
+                merges_measured,
             } => Self {
                 point: Some((u_px, v_px)),
                 radius_px,
                 length_px,
                 length_ratio,
                 fragment_fraction,
+                merge_ratio,
+                merges_measured,
             },
             _ => ungated(None),
         }
@@ -482,18 +496,29 @@ impl SelectionGate {
         if self.length_px <= 0.0 || self.length_ratio <= 1.0 || !self.radius_px.is_finite() {
             return self.distance(b);
         }
-        let extent = f64::from((b.bbox.max_u - b.bbox.min_u).max(b.bbox.max_v - b.bbox.min_v) + 1);
-        let size = (extent / self.length_px).max(self.fragment_fraction);
+        let size = (extent_px(b) / self.length_px).max(self.fragment_fraction);
         (self.distance(b) / self.radius_px).powi(2) + (size.ln() / self.length_ratio.ln()).powi(2)
     }
 
-    /// Inside the gate: the blob's centre within its radius, and the whole blob within its
-    /// square (a blob reaching beyond where the target can be is not the target alone).
+    /// Longer than the target alone can be: the box's longer side over `merge_ratio` times
+    /// the expected length.
+    fn too_long(&self, b: &BlobSummary) -> bool {
+        self.merge_ratio > 1.0
+            && self.length_px > 0.0
+            && extent_px(b) > self.merge_ratio * self.length_px
+    }
+
+    /// Inside the gate: the blob's centre within its radius, the whole blob within its
+    /// square, and no longer than the target can be (a blob reaching beyond where the target
+    /// can be, or longer than it, is not the target alone).
     fn inside(&self, b: &BlobSummary) -> bool {
         let r = self.radius_px;
         let Some((u_px, v_px)) = self.point.filter(|_| r.is_finite()) else {
             return true;
         };
+        if self.too_long(b) {
+            return false;
+        }
         let (u0, v0) = (f64::from(b.bbox.min_u), f64::from(b.bbox.min_v));
         let (u1, v1) = (f64::from(b.bbox.max_u) + 1.0, f64::from(b.bbox.max_v) + 1.0);
         self.distance(b) <= r
@@ -503,8 +528,8 @@ impl SelectionGate {
             && v1 <= v_px + r
     }
 
-    /// Centred in the gate but reaching beyond its square: the tracked aircraft joined to
-    /// another, or moved further than the gate allows.
+    /// Centred in the gate but reaching beyond its square or longer than the target: the
+    /// tracked aircraft joined to another, or moved further than the gate allows.
     fn reaching(&self, b: &BlobSummary) -> bool {
         !self.inside(b) && self.distance(b) <= self.radius_px
     }
@@ -512,15 +537,17 @@ impl SelectionGate {
 
 /// Index of the blob to measure and whether it is below `min_pixel_count` (then it is the
 /// largest blob, because no blob is big enough); `None` when there are no blobs, none inside
-/// a `NearestWithin` gate (its centre within the radius and its box within the gate's square),
-/// or a merge (a blob centred in the gate, reaching beyond its square, more like the
-/// prediction than every blob inside: the aircraft is there and unmeasured, not in a lesser
-/// blob). A non-finite `NearestTo` point falls back to `Largest`.
+/// a `NearestWithin` gate (its centre within the radius, its box within the gate's square and
+/// no longer than the merge ratio allows), or a merge (a blob centred in the gate, reaching
+/// beyond its square or longer than the target, more like the prediction than every blob
+/// inside: the aircraft is there, not in a lesser blob; the joined blob is picked when
+/// merges are measured, and then also when it is alone in the gate). A non-finite
+/// `NearestTo` point falls back to `Largest`.
 fn select_blob(
     blobs: &[BlobSummary],
     min_pixel_count: usize,
     selection: BlobSelection,
-) -> Option<(usize, bool)> {
+) -> Option<(usize, Pick)> {
     let gate = SelectionGate::of(selection);
     let largest = |eligible: &dyn Fn(&BlobSummary) -> bool| {
         blobs
@@ -545,15 +572,34 @@ fn select_blob(
             most_like(&|b| gate.inside(b)),
             most_like(&|b| gate.reaching(b)),
         ) {
-            (Some((_, best)), Some((_, beyond))) if beyond < best => return None,
+            (Some((_, best)), Some((j, beyond))) if beyond < best => {
+                return gate.merges_measured.then_some((j, Pick::Joined));
+            }
+            (None, Some((j, _))) if gate.merges_measured => return Some((j, Pick::Joined)),
             (best, _) => best.map(|(i, _)| i),
         },
         None => largest(&big_enough),
     };
     match chosen {
-        Some(i) => Some((i, false)),
-        None => largest(&|_| true).map(|i| (i, true)),
+        Some(i) => Some((i, Pick::Whole)),
+        None => largest(&|_| true).map(|i| (i, Pick::TooSmall)),
     }
+}
+
+/// What [`select_blob`] picked.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Pick {
+    /// A blob that may be the target alone.
+    Whole,
+    /// The largest blob, as none has `min_pixel_count` pixels.
+    TooSmall,
+    /// The target joined to another: a merge, measured for its bearing.
+    Joined,
+}
+
+/// The longer side of a blob's box, px.
+fn extent_px(b: &BlobSummary) -> f64 {
+    f64::from((b.bbox.max_u - b.bbox.min_u).max(b.bbox.max_v - b.bbox.min_v) + 1)
 }
 
 /// The box [u0, v0, u1, v1] (pixels, inclusive) of a `NearestWithin` selection's gate.

@@ -239,6 +239,8 @@ fn gate_takes_the_blob_like_the_prediction() {
         length_px,
         length_ratio,
         fragment_fraction: 0.0,
+        merge_ratio: 0.0,
+        merges_measured: false,
     };
     let gate = |u_px, radius_px, length_px| gate_with(u_px, radius_px, length_px, 1.5);
     let m = measure_scene(&scene, gate(74.0, 30.0, 20.0));
@@ -280,6 +282,8 @@ fn a_merged_blob_is_not_replaced_by_a_lesser_one() {
         length_px: 30.0,
         length_ratio: 1.5,
         fragment_fraction: 0.0,
+        merge_ratio: 0.0,
+        merges_measured: false,
     };
     let distant = |scene: &mut SyntheticScene| scene.add_disc(72.0, 86.0, 4.0, DARK);
     let mut merged = SyntheticScene::new(200, 140, Background::Uniform(SKY));
@@ -293,6 +297,56 @@ fn a_merged_blob_is_not_replaced_by_a_lesser_one() {
     parted.add_disc(110.0, 60.0, 12.0, DARK);
     distant(&mut parted);
     check_shape(&measure_scene(&parted, expected), &tracked, 0.05, 0.5);
+}
+
+/// A merge told by its length (`merge_ratio`): the tracked aircraft's 30 px blob joined to a
+/// teammate's is 48 px long and lies wholly inside a wide gate. Without the ratio it is
+/// measured as the target; at 1.3 times the expected length it is a merge, and neither it
+/// nor the distant aircraft inside the gate is measured, unless merges are measured: then the
+/// joined blob is, as `Merged`, with or without the distant one. Parted, the tracked one is
+/// measured `Ok` either way.
+#[test]
+fn a_blob_longer_than_the_target_is_a_merge() {
+    let gate_measuring = |merge_ratio, merges_measured| BlobSelection::NearestWithin {
+        u_px: 70.0,
+        v_px: 60.0,
+        radius_px: 60.0,
+        length_px: 30.0,
+        length_ratio: 1.5,
+        fragment_fraction: 0.0,
+        merge_ratio,
+        merges_measured,
+    };
+    let gate = |merge_ratio| gate_measuring(merge_ratio, false);
+    let distant = |scene: &mut SyntheticScene| scene.add_disc(72.0, 96.0, 4.0, DARK);
+    let mut merged = SyntheticScene::new(200, 140, Background::Uniform(SKY));
+    merged.add_disc(70.0, 60.0, 15.0, DARK);
+    merged.add_disc(92.0, 60.0, 10.0, DARK);
+    distant(&mut merged);
+    let m = measure_scene(&merged, gate(0.0));
+    assert_eq!(m.status, BlobStatus::Ok, "{m:?}");
+    assert!(m.max_length_px > 45.0, "{m:?}");
+    let m = measure_scene(&merged, gate(1.3));
+    assert_eq!(m.status, BlobStatus::NotFound, "{m:?}");
+    let m = measure_scene(&merged, gate_measuring(1.3, true));
+    assert_eq!(m.status, BlobStatus::Merged, "{m:?}");
+    assert!(m.max_length_px > 45.0 && m.centroid_u_px > 75.0, "{m:?}");
+    let mut alone = SyntheticScene::new(200, 140, Background::Uniform(SKY));
+    alone.add_disc(70.0, 60.0, 15.0, DARK);
+    alone.add_disc(92.0, 60.0, 10.0, DARK);
+    let m = measure_scene(&alone, gate_measuring(1.3, true));
+    assert_eq!(m.status, BlobStatus::Merged, "{m:?}");
+    let mut parted = SyntheticScene::new(200, 140, Background::Uniform(SKY));
+    let tracked = parted.add_disc(70.0, 60.0, 15.0, DARK);
+    parted.add_disc(115.0, 60.0, 10.0, DARK);
+    distant(&mut parted);
+    check_shape(&measure_scene(&parted, gate(1.3)), &tracked, 0.05, 0.5);
+    check_shape(
+        &measure_scene(&parted, gate_measuring(1.3, true)),
+        &tracked,
+        0.05,
+        0.5,
+    );
 }
 
 /// `NearestWithin` with a fragment fraction: when every blob in the gate is a fragment (under
@@ -311,6 +365,8 @@ fn among_fragments_the_nearest_is_taken() {
         length_px: 23.0,
         length_ratio: 6.0,
         fragment_fraction,
+        merge_ratio: 0.0,
+        merges_measured: false,
     };
     // Every size as it is: (ln(5/23) / ln 6)² + (1/40)² = 0.72 for the 4-5 px blob 1 px
     // away, (ln(8/23) / ln 6)² + (12/40)² = 0.44 for the 7-8 px one 12 px away.

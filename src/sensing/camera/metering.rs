@@ -8,7 +8,7 @@ use super::setup::SensorError;
 use crate::frames::{Mat3, Vec3};
 use crate::render::camera::CameraIntrinsics;
 use crate::scenario::{
-    BearingPoint, BlobChoice, CameraSection, LengthExpectation, SegmentationKind,
+    BearingPoint, BlobChoice, CameraSection, LengthExpectation, MergeMeasurement, SegmentationKind,
 };
 use crate::sensing::TargetExpectation;
 use crate::sensing::binning::{binned_selection, unbinned_measurement};
@@ -62,6 +62,10 @@ pub(super) struct Metering {
     length_ratio: f64,
     /// `camera.selection_fragment_fraction`.
     fragment_fraction: f64,
+    /// `camera.selection_merge_ratio`.
+    merge_ratio: f64,
+    /// `camera.merges`.
+    merges: MergeMeasurement,
 }
 
 impl Metering {
@@ -93,6 +97,8 @@ impl Metering {
             gate_rad: camera.selection_gate_deg.to_radians(),
             length_ratio: camera.selection_length_ratio,
             fragment_fraction: camera.selection_fragment_fraction,
+            merge_ratio: camera.selection_merge_ratio,
+            merges: camera.merges,
         })
     }
 
@@ -172,6 +178,8 @@ impl Metering {
                         length_px,
                         length_ratio: self.length_ratio,
                         fragment_fraction: self.fragment_fraction,
+                        merge_ratio: self.merge_ratio,
+                        merges_measured: self.merges == MergeMeasurement::Bearing,
                     }
                 }
                 None => BlobSelection::Largest,

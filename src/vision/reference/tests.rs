@@ -236,6 +236,8 @@ fn a_fragment_keeps_the_gate_out_of_the_memory() {
         length_px: 0.0,
         length_ratio: 0.0,
         fragment_fraction: 0.0,
+        merge_ratio: 0.0,
+        merges_measured: false,
     };
     let frames = [
         (frame(&now(), &intrinsics, None), BlobSelection::Largest),
