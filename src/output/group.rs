@@ -25,6 +25,8 @@ pub struct FollowerResult {
     pub status: RunStatus,
     /// Frames that did not measure anything.
     pub lost_frames: u64,
+    /// Frames measured as a merge, for their bearing alone, among the lost ones.
+    pub merged_frames: u64,
     /// Frames whose measurement was not of the tracked aircraft (by the truth): a track
     /// captured by another aircraft.
     pub false_lock_frames: u64,
@@ -224,6 +226,7 @@ fn follower_result(m: &GroupMember, summary: &Summary) -> FollowerResult {
         tracks: m.tracks.clone(),
         status: summary.status,
         lost_frames: summary.lost_frames,
+        merged_frames: summary.merged_frames,
         false_lock_frames: summary.track_check.off_target_frames,
         b_true_ft,
         b_hat_final_ft,

@@ -106,6 +106,9 @@ pub struct Summary {
     pub rms_error_last20s_ft: [f64; 3],
     /// Frames in which the target was not measured.
     pub lost_frames: u64,
+    /// Frames measured as a merge, the target joined to another aircraft, for its bearing
+    /// alone (`camera.merges = "bearing"`), among the lost ones.
+    pub merged_frames: u64,
     /// Each run of delivered frames that did not measure the target: its start, frames,
     /// length and whether the target was found again (camera runs; empty otherwise).
     pub loss_episodes: Vec<LossEpisode>,
@@ -187,6 +190,7 @@ pub static SUMMARY_KEYS: &[(&str, &str)] = &[
     ("min_range_ft", "smallest ‖R‖ over the run, ft"),
     ("rms_error_last20s_ft", "RMS of R - R_c per axis (n, e, d) over the last 20 s, ft"),
     ("lost_frames", "frames in which the target was not measured"),
+    ("merged_frames", "frames measured as a merge (the target joined to another aircraft), for its bearing alone, among the lost ones (`camera.merges = \"bearing\"`)"),
     ("loss_episodes", "each run of frames without the target: start, frames, length, found again (camera runs)"),
     ("noise_snr_db", "the SNR the noisy sensor realised, dB (noisy runs)"),
     ("notes", "what the set-up decided, e.g. a Riccati observer gain that fell back to the fixed one (also printed)"),
@@ -393,6 +397,7 @@ impl Summary {
             min_range_ft: sim.min_range_ft(),
             rms_error_last20s_ft,
             lost_frames: camera.map_or(0, |c| c.lost_frames()),
+            merged_frames: camera.map_or(0, |c| c.merged_frames()),
             loss_episodes: sim.loss_episodes(),
             noise_snr_db: sim.noisy_sensor().and_then(|n| n.realised_snr_db()),
             notes: sim.notes().to_vec(),

@@ -140,6 +140,8 @@ pub struct CameraSensor {
     /// The last frame delivered to the estimator (its index) and whether it was trusted.
     settled: Option<(u64, bool)>,
     lost_frames: u64,
+    /// Frames measured as a merge (`BlobStatus::Merged`), among the lost ones.
+    merged_frames: u64,
     timings: CameraTimings,
     adapter: String,
 }
@@ -201,6 +203,7 @@ impl CameraSensor {
             last: None,
             settled: None,
             lost_frames: 0,
+            merged_frames: 0,
             timings: CameraTimings::default(),
             adapter: gpu.description(),
         })
@@ -341,6 +344,9 @@ impl CameraSensor {
         if !ok {
             self.lost_frames += 1;
         }
+        if blob.status == BlobStatus::Merged {
+            self.merged_frames += 1;
+        }
         let record = FrameRecord {
             index: exposure.index,
             t_s: exposure.t_s,
@@ -416,6 +422,11 @@ impl CameraSensor {
     /// Frames whose status was not `Ok`.
     pub fn lost_frames(&self) -> u64 {
         self.lost_frames
+    }
+
+    /// Frames measured as a merge (`camera.merges = "bearing"`), among the lost ones.
+    pub fn merged_frames(&self) -> u64 {
+        self.merged_frames
     }
 
     /// Measurement errors against truth.
