@@ -458,15 +458,13 @@ impl KalmanTracker {
         else {
             return;
         };
-        let (pixels, focal_px) = (&self.pixel_covariance_px2, self.focal_px);
-        let sigmas = BEARING_ONLY_LENGTH_SIGMAS;
         let (r, covariance) = merged_measurement(
             &joined,
             &predicted,
-            pixels,
-            focal_px,
+            &self.pixel_covariance_px2,
+            self.focal_px,
             &record.ned_from_camera,
-            sigmas,
+            BEARING_ONLY_LENGTH_SIGMAS,
         );
         let position = record.follower_position_ned_ft;
         self.fuse(
