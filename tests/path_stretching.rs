@@ -29,22 +29,20 @@ fn behind_a_slow_target(half_width_ft: &str) -> RunReport {
     )
 }
 
-/// The least distance the target was ahead of the follower along its (northbound) track,
-/// and the largest |along-track error| (R - R_c, north), after 20 s, ft.
-fn along_track(report: &RunReport) -> (f64, f64) {
+/// The largest |along-track error| (R - R_c, north) after 20 s, ft.
+fn along_track_error_ft(report: &RunReport) -> f64 {
     let late = report.logged.iter().filter(|s| s.t_s >= 20.0);
-    late.fold((f64::INFINITY, 0.0f64), |(ahead, error), s| {
-        (
-            ahead.min(s.relative_ned_ft[0]),
-            error.max((s.relative_ned_ft[0] - s.command_ned_ft[0]).abs()),
-        )
-    })
+    late.map(|s| (s.relative_ned_ft[0] - s.command_ned_ft[0]).abs())
+        .fold(0.0, f64::max)
 }
 
 #[test]
 fn s_turns_by_geometry_hold_the_slot_behind_a_slower_target() {
     let stretched = behind_a_slow_target("10.0");
-    let (ahead_ft, error_ft) = along_track(&stretched);
+    let (ahead_ft, error_ft) = (
+        common::least_ahead_ft(&stretched, 20.0),
+        along_track_error_ft(&stretched),
+    );
     println!(
         "with S-turns: target at least {ahead_ft:.1} ft ahead, along-track error within ±{error_ft:.1} ft"
     );
@@ -52,7 +50,7 @@ fn s_turns_by_geometry_hold_the_slot_behind_a_slower_target() {
     assert!(error_ft < 30.0, "along-track error {error_ft:.1} ft");
 
     let straight = behind_a_slow_target("0.0");
-    let (ahead_ft, _) = along_track(&straight);
+    let ahead_ft = common::least_ahead_ft(&straight, 20.0);
     println!("without: the target at least {ahead_ft:.1} ft ahead");
     assert!(
         ahead_ft < 0.0,

@@ -58,6 +58,18 @@ pub fn rms(values: impl Iterator<Item = f64>) -> f64 {
     (sum / n.max(1) as f64).sqrt()
 }
 
+/// The least distance the target was ahead of the follower along a northbound track (R's
+/// north component) over the logged rows with t ≥ `from_s`, ft: negative once the follower
+/// has overtaken it.
+pub fn least_ahead_ft(report: &RunReport, from_s: f64) -> f64 {
+    report
+        .logged
+        .iter()
+        .filter(|s| s.t_s >= from_s)
+        .map(|s| s.relative_ned_ft[0])
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// RMS of R - R_c per axis over the logged rows with t ≥ `from_s`, ft.
 pub fn position_rms_since(report: &RunReport, from_s: f64) -> [f64; 3] {
     let rows: Vec<_> = report.logged.iter().filter(|s| s.t_s >= from_s).collect();
