@@ -127,6 +127,14 @@ fn a_trusted_frame_is_one_the_estimator_took() {
             .expect("trusted"),
     );
     assert!(trusted <= all, "{trusted} > {all}");
+    // The bar (1 px RMS of the silhouette's centroid over the frames against ground)
+    // holds on this run too: 0.97 px; the bound, 1.2 px, leaves room for the last bits a
+    // GPU's pixels differ by. formation_scene.toml's streams 1-10 over 140 s read 0.905 px
+    // pooled, 11-20 0.902 px (docs/findings.md, Trusted frames).
+    assert!(
+        trusted < 1.2,
+        "{trusted} px over the trusted frames against ground"
+    );
     // The telemetry's frames (`meas_background`, `centroid_vs_silhouette_px`) add up to the
     // summary's figure.
     let mut against_ground: BTreeMap<u64, f64> = BTreeMap::new();
