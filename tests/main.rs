@@ -85,6 +85,7 @@ mod seed_ch7_acceleration;
 mod seed_ch7_velocity;
 mod seed_ch7_velocity_camera;
 mod side_on_pass;
+mod speed_brake;
 mod speed_floor;
 mod study_apparent_size;
 mod study_case_statuses;
