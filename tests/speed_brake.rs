@@ -13,7 +13,7 @@
 use crate::common;
 
 use wingman::output::RunReport;
-use wingman::scenario::{Scenario, TargetMotion, Waypoint};
+use wingman::scenario::{TargetMotion, Waypoint};
 
 /// The run behind the braking target, the follower's brake `brake_c_drag`.
 fn behind_a_braking_target(brake_c_drag: f64) -> RunReport {
@@ -43,13 +43,12 @@ fn behind_a_braking_target(brake_c_drag: f64) -> RunReport {
 
 #[test]
 fn the_platoons_brake_stops_a_follower_behind_a_braking_leader() {
-    let platoon = Scenario::load(&common::repo_root().join("scenarios/platoon.toml"), &[])
-        .expect("platoon.toml loads");
+    let platoon = common::load("platoon", &[]);
     let brake = platoon.follower.speed_brake_c_drag;
     let held = common::least_ahead_ft(&behind_a_braking_target(brake), 25.0);
     println!("brake {brake}: the target at least {held:.1} ft ahead");
-    let half = common::least_ahead_ft(&behind_a_braking_target(0.06), 25.0);
-    println!("brake 0.06: the target at least {half:.1} ft ahead");
+    let former = common::least_ahead_ft(&behind_a_braking_target(0.06), 25.0);
+    println!("brake 0.06: the target at least {former:.1} ft ahead");
     assert!(held > 11.0, "the follower came within {held:.1} ft");
-    assert!(half < 11.0, "half the brake kept {half:.1} ft behind");
+    assert!(former < 11.0, "the former brake kept {former:.1} ft behind");
 }

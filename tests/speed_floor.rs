@@ -16,7 +16,7 @@
 use crate::common;
 
 use wingman::output::RunReport;
-use wingman::scenario::{AutopilotSection, Scenario};
+use wingman::scenario::AutopilotSection;
 
 /// formation.toml without S-turns or turbulence behind the 35.4 ft/s target in a 2 ft/s
 /// tailwind for 75 s, with the airspeed floor `floor_fps`.
@@ -38,8 +38,7 @@ fn behind_in_a_tailwind(floor_fps: f64) -> RunReport {
 
 #[test]
 fn the_platoons_floor_keeps_a_follower_behind_the_slowest_target_in_a_tailwind() {
-    let platoon = Scenario::load(&common::repo_root().join("scenarios/platoon.toml"), &[])
-        .expect("platoon.toml loads");
+    let platoon = common::load("platoon", &[]);
     let floor_fps = platoon.autopilot.min_airspeed_cmd_fps;
     let held = common::least_ahead_ft(&behind_in_a_tailwind(floor_fps), 30.0);
     println!("floor {floor_fps} ft/s: the target at least {held:.1} ft ahead");
