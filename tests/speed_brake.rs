@@ -3,7 +3,7 @@
 //! without S-turns or turbulence, its follower at its slot behind a target flying north at
 //! 60 ft/s, which at 30 s slows to 35 ft/s at up to 8 ft/s² (in the platoon's chase the
 //! leaders slowed at up to 6.5 ft/s², and their followers flew into them), with the
-//! platoon's 33 ft/s floor.
+//! platoon's airspeed floor (33 ft/s), both read from platoon.toml.
 //!
 //! Invariant: with the platoon's brake the follower stops behind the braking target at least
 //! a third of its 32 ft slot from it; with 0.06 (the platoon's brake before) it comes closer.
@@ -15,8 +15,9 @@ use crate::common;
 use wingman::output::RunReport;
 use wingman::scenario::{TargetMotion, Waypoint};
 
-/// The run behind the braking target, the follower's brake `brake_c_drag`.
-fn behind_a_braking_target(brake_c_drag: f64) -> RunReport {
+/// The run behind the braking target, the follower's brake `brake_c_drag` and airspeed floor
+/// `floor_fps`.
+fn behind_a_braking_target(brake_c_drag: f64, floor_fps: f64) -> RunReport {
     let mut scenario = common::load(
         "formation",
         &[
@@ -27,7 +28,7 @@ fn behind_a_braking_target(brake_c_drag: f64) -> RunReport {
             "follower.initial_velocity_fps=[60.0, 0.0, 0.0]",
             "atmosphere.turbulence=off",
             "autopilot.weave_period_s=0",
-            "autopilot.min_airspeed_cmd_fps=33",
+            &format!("autopilot.min_airspeed_cmd_fps={floor_fps}"),
             &format!("follower.speed_brake_c_drag={brake_c_drag}"),
         ],
     );
@@ -44,10 +45,13 @@ fn behind_a_braking_target(brake_c_drag: f64) -> RunReport {
 #[test]
 fn the_platoons_brake_stops_a_follower_behind_a_braking_leader() {
     let platoon = common::load("platoon", &[]);
-    let brake = platoon.follower.speed_brake_c_drag;
-    let held = common::least_ahead_ft(&behind_a_braking_target(brake), 25.0);
+    let (brake, floor_fps) = (
+        platoon.follower.speed_brake_c_drag,
+        platoon.autopilot.min_airspeed_cmd_fps,
+    );
+    let held = common::least_ahead_ft(&behind_a_braking_target(brake, floor_fps), 25.0);
     println!("brake {brake}: the target at least {held:.1} ft ahead");
-    let former = common::least_ahead_ft(&behind_a_braking_target(0.06), 25.0);
+    let former = common::least_ahead_ft(&behind_a_braking_target(0.06, floor_fps), 25.0);
     println!("brake 0.06: the target at least {former:.1} ft ahead");
     assert!(held > 11.0, "the follower came within {held:.1} ft");
     assert!(former < 11.0, "the former brake kept {former:.1} ft behind");
