@@ -35,6 +35,7 @@ mod formation_moderate_air;
 mod frame_captions;
 mod gate_reopen;
 mod gimbal_cue_search;
+mod gimbal_roll_axis;
 mod group_chain;
 mod group_crossing;
 mod group_scenario_errors;

@@ -188,6 +188,19 @@ fn a_merge_ratio_is_over_one() {
     );
 }
 
+/// A roll axis that levels the pan axis turns less than a quarter turn either way.
+#[test]
+fn a_roll_axis_range_is_within_a_quarter_turn() {
+    assert_rejected(
+        "[camera.gimbal]\nkind = \"roll_pan_tilt\"\nroll_limits_deg = [-100.0, 60.0]\n",
+        &[],
+        &[
+            "camera.gimbal.roll_limits_deg = [-100, 60]",
+            "-90 <= min <= 0 <= max <= 90",
+        ],
+    );
+}
+
 /// A gate on the bearing's normalised square is not negative (0: none), and the factor off
 /// the predicted range beyond which it weighs a frame is at least 1 (1: every frame).
 #[test]

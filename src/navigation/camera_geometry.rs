@@ -1,7 +1,8 @@
 //! What the follower gets wrong about its camera (`[navigation.camera] mode = "errors"`;
 //! docs/equations.md, The follower's own navigation and sensors): the mount is turned from its
 //! nominal orientation by a fixed misalignment the sensing transform does not know; each
-//! gimbal encoder reads its angle plus a fixed bias and white noise drawn every tick; each
+//! gimbal encoder reads its angle plus a fixed bias and white noise drawn every tick (a roll
+//! axis' encoder, where the gimbal has one, with the pan encoder's bias and noise); each
 //! frame is stamped at its exposure time plus white jitter.
 
 use crate::frames::{EulerAngles, Mat3};
@@ -16,25 +17,32 @@ pub struct CameraGeometryErrors {
     rng: ChaCha8Rng,
     /// The true camera axes from the nominal ones.
     true_from_nominal: Mat3,
-    /// Encoder biases [pan, tilt], rad.
-    encoder_bias_rad: [f64; 2],
+    /// Encoder biases [pan, tilt, roll], rad (the roll's 0 without a roll axis).
+    encoder_bias_rad: [f64; 3],
+    /// Whether the gimbal has a roll axis, whose encoder draws its noise too.
+    roll_axis: bool,
     encoder_noise_rad: f64,
     jitter_s: f64,
-    /// What the encoders read above the truth now [pan, tilt], rad.
-    encoder_error_rad: [f64; 2],
+    /// What the encoders read above the truth now [pan, tilt, roll], rad.
+    encoder_error_rad: [f64; 3],
 }
 
 impl CameraGeometryErrors {
-    /// The errors `section` states, the noise drawn from `seed`.
-    pub fn new(section: &CameraNavigationSection, seed: u64) -> Self {
+    /// The errors `section` states for a gimbal with a roll axis or without (`roll_axis`), the
+    /// noise drawn from `seed`.
+    pub fn new(section: &CameraNavigationSection, roll_axis: bool, seed: u64) -> Self {
         let [roll, pitch, yaw] = section.mount_misalignment_deg.map(f64::to_radians);
         let mut errors = Self {
             rng: ChaCha8Rng::seed_from_u64(seed),
             true_from_nominal: EulerAngles::new(roll, pitch, yaw).body_from_ned(),
-            encoder_bias_rad: section.gimbal_encoder_bias_deg.map(f64::to_radians),
+            encoder_bias_rad: {
+                let [pan, tilt] = section.gimbal_encoder_bias_deg.map(f64::to_radians);
+                [pan, tilt, if roll_axis { pan } else { 0.0 }]
+            },
+            roll_axis,
             encoder_noise_rad: section.gimbal_encoder_noise_deg.to_radians(),
             jitter_s: section.exposure_jitter_ms * 1e-3,
-            encoder_error_rad: [0.0; 2],
+            encoder_error_rad: [0.0; 3],
         };
         errors.advance();
         errors
@@ -42,10 +50,11 @@ impl CameraGeometryErrors {
 
     /// A new encoder reading (every tick).
     pub fn advance(&mut self) {
-        self.encoder_error_rad = self.encoder_bias_rad.map(|bias| {
+        let axes = if self.roll_axis { 3 } else { 2 };
+        for axis in 0..axes {
             let n: f64 = self.rng.sample(StandardNormal);
-            bias + self.encoder_noise_rad * n
-        });
+            self.encoder_error_rad[axis] = self.encoder_bias_rad[axis] + self.encoder_noise_rad * n;
+        }
     }
 
     /// The true mount L_CB from the nominal one the follower believes in.
@@ -53,8 +62,8 @@ impl CameraGeometryErrors {
         self.true_from_nominal * nominal
     }
 
-    /// What the encoders read above the true [pan, tilt] now, rad.
-    pub fn encoder_error_rad(&self) -> [f64; 2] {
+    /// What the encoders read above the true [pan, tilt, roll] now, rad.
+    pub fn encoder_error_rad(&self) -> [f64; 3] {
         self.encoder_error_rad
     }
 
@@ -78,7 +87,7 @@ mod tests {
             mount_misalignment_deg: [0.0, 0.0, 2.0],
             ..CameraNavigationSection::default()
         };
-        let errors = CameraGeometryErrors::new(&section, 1);
+        let errors = CameraGeometryErrors::new(&section, false, 1);
         let true_mount = errors.true_mount(&Mat3::identity());
         let ahead_in_body = true_mount.transpose() * Vec3::new(1.0, 0.0, 0.0);
         let bearing_deg = ahead_in_body.y.atan2(ahead_in_body.x).to_degrees();

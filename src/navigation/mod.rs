@@ -21,7 +21,7 @@ pub use camera_geometry::CameraGeometryErrors;
 pub use ins_gps::InsGps;
 
 use crate::frames::{EulerAngles, Vec3};
-use crate::scenario::{NavigationMode, Scenario, SensorErrors};
+use crate::scenario::{GimbalKind, NavigationMode, Scenario, SensorErrors};
 use crate::world::aircraft::AirData;
 
 /// Mixed into `[run] seed` for the INS/GPS's random stream ("ins_gps" in ASCII).
@@ -100,8 +100,10 @@ impl OwnSensors {
                 .then(|| InsGps::new(n, seed ^ INS_GPS_SEED_SALT, attitude)),
             air_data: (n.air_data.mode == SensorErrors::Errors)
                 .then(|| AirDataSensor::new(&n.air_data, seed ^ AIR_DATA_SEED_SALT)),
-            camera: (n.camera.mode == SensorErrors::Errors)
-                .then(|| CameraGeometryErrors::new(&n.camera, seed ^ CAMERA_GEOMETRY_SEED_SALT)),
+            camera: (n.camera.mode == SensorErrors::Errors).then(|| {
+                let roll_axis = scenario.camera.gimbal.kind == GimbalKind::RollPanTilt;
+                CameraGeometryErrors::new(&n.camera, roll_axis, seed ^ CAMERA_GEOMETRY_SEED_SALT)
+            }),
         }
     }
 

@@ -30,6 +30,8 @@ pub enum Runs {
     Filter,
     /// Runs with a gimballed camera.
     Gimbal,
+    /// Runs whose gimbal has a roll axis (`camera.gimbal.kind = "roll_pan_tilt"`).
+    GimbalRoll,
     /// Runs whose target is an aircraft (`target.model = "aircraft"`).
     TargetAircraft,
     /// Runs whose follower navigates with errors (`navigation.mode` other than `perfect`).
@@ -54,6 +56,7 @@ impl Runs {
             Self::Aircraft => s.aircraft.is_some(),
             Self::Filter => s.filter.is_present(),
             Self::Gimbal => s.gimbal.is_some(),
+            Self::GimbalRoll => s.gimbal.is_some_and(|g| g.roll_axis),
             Self::TargetAircraft => s.target_flight.is_some(),
             Self::Navigation => s.navigation.is_some(),
         }
@@ -68,6 +71,7 @@ impl Runs {
             Self::Aircraft => "6-DOF follower",
             Self::Filter => "Kalman filter",
             Self::Gimbal => "gimballed camera",
+            Self::GimbalRoll => "gimbal with a roll axis",
             Self::TargetAircraft => "aircraft target",
             Self::Navigation => "navigation with errors",
         }
@@ -202,8 +206,8 @@ pub fn status_code(status: BlobStatus) -> f64 {
 }
 
 use Runs::{
-    AccelerationBound, AccelerationCommand, Aircraft, Every, Filter, Gimbal, Navigation,
-    ScaledVelocity, TargetAircraft,
+    AccelerationBound, AccelerationCommand, Aircraft, Every, Filter, Gimbal, GimbalRoll,
+    Navigation, ScaledVelocity, TargetAircraft,
 };
 
 /// Every telemetry column, in the order a row holds them (a run writes those its runs have).
@@ -273,6 +277,8 @@ pub static COLUMNS: &[Column] = &[
     one("gimbal_tilt_rad", "rad", Gimbal, "gimbal tilt, as its encoder reads it", |s| gimbal(s, |g| g.angles.tilt_rad)),
     one("gimbal_pan_cmd_rad", "rad", Gimbal, "gimbal pan command", |s| gimbal(s, |g| g.command.pan_rad)),
     one("gimbal_tilt_cmd_rad", "rad", Gimbal, "gimbal tilt command", |s| gimbal(s, |g| g.command.tilt_rad)),
+    one("gimbal_roll_rad", "rad", GimbalRoll, "gimbal roll, as its encoder reads it", |s| gimbal(s, |g| g.angles.roll_rad)),
+    one("gimbal_roll_cmd_rad", "rad", GimbalRoll, "gimbal roll command (minus the navigated bank, within the limits)", |s| gimbal(s, |g| g.command.roll_rad)),
     three(["nav_n_ft", "nav_e_ft", "nav_d_ft"], "ft", Navigation, "the follower's position as its INS/GPS knows it (NED; fol_n_ft... are the truth)", |s| navigation(s, |n| n.position_ned_ft)),
     three(["nav_vn_fps", "nav_ve_fps", "nav_vd_fps"], "ft/s", Navigation, "the follower's velocity as its INS/GPS knows it (NED; the track velocity)", |s| navigation(s, |n| n.velocity_ned_fps)),
     three(["nav_phi_rad", "nav_theta_rad", "nav_psi_rad"], "rad", Navigation, "the follower's attitude φ, θ, ψ as its INS/GPS knows it", |s| navigation(s, |n| attitude(&n.attitude))),

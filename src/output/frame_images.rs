@@ -129,13 +129,19 @@ pub struct Overlay<'a> {
     pub captions: Vec<String>,
 }
 
-/// The overlay's line for a gimbal, in degrees: `GIMBAL PAN 23.4 TILT -5.1 CMD 24.0 -5.0`.
+/// The overlay's line for a gimbal, in degrees: `GIMBAL PAN 23.4 TILT -5.1 CMD 24.0 -5.0`,
+/// with `ROLL -30.2` after the tilt where it has a roll axis.
 pub fn gimbal_captions(reading: Option<GimbalReading>) -> Vec<String> {
     reading
         .map(|g| {
             let deg = |a: &GimbalAngles| (a.pan_rad.to_degrees(), a.tilt_rad.to_degrees());
             let ((pan, tilt), (pan_c, tilt_c)) = (deg(&g.angles), deg(&g.command));
-            format!("GIMBAL PAN {pan:.1} TILT {tilt:.1} CMD {pan_c:.1} {tilt_c:.1}")
+            let roll = if g.roll_axis {
+                format!(" ROLL {:.1}", g.angles.roll_rad.to_degrees())
+            } else {
+                String::new()
+            };
+            format!("GIMBAL PAN {pan:.1} TILT {tilt:.1}{roll} CMD {pan_c:.1} {tilt_c:.1}")
         })
         .into_iter()
         .collect()
@@ -216,4 +222,32 @@ pub fn render_frame_at(
     };
     write_frame(path, &copy, Some(&overlay))?;
     Ok(*record)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The overlay's gimbal line gives the roll only where the gimbal has a roll axis.
+    #[test]
+    fn the_gimbal_caption_gives_the_roll_of_a_roll_axis() {
+        let angles = GimbalAngles {
+            pan_rad: 0.5,
+            tilt_rad: -0.25,
+            roll_rad: -0.5,
+        };
+        let reading = |roll_axis| GimbalReading {
+            angles,
+            command: angles,
+            roll_axis,
+        };
+        assert_eq!(
+            gimbal_captions(Some(reading(true))),
+            ["GIMBAL PAN 28.6 TILT -14.3 ROLL -28.6 CMD 28.6 -14.3"]
+        );
+        assert_eq!(
+            gimbal_captions(Some(reading(false))),
+            ["GIMBAL PAN 28.6 TILT -14.3 CMD 28.6 -14.3"]
+        );
+    }
 }

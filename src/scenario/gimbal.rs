@@ -1,4 +1,4 @@
-//! `[camera.gimbal]`: the camera's pan/tilt gimbal (docs/equations.md, Gimballed camera;
+//! `[camera.gimbal]`: the camera's pan/tilt (or roll/pan/tilt) gimbal (docs/equations.md, Gimballed camera;
 //! `sensing::gimbal`).
 
 use super::check::{self, Check};
@@ -12,6 +12,10 @@ pub enum GimbalKind {
     None,
     /// Pan about body z, then tilt about the panned y.
     PanTilt,
+    /// A roll axis about body x that levels the pan axis against the follower's bank, then
+    /// pan and tilt as `pan_tilt`: the line of sight to a target below the follower stays
+    /// away from the pan axis while the follower rolls (see `roll_limits_deg`).
+    RollPanTilt,
 }
 
 /// Where the gimbal points before the camera has seen the target.
@@ -34,7 +38,7 @@ pub enum GimbalCue {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct GimbalSection {
-    /// None (the camera is fixed) or a pan/tilt gimbal.
+    /// None (the camera is fixed), a pan/tilt gimbal, or one with a roll axis under its pan.
     pub kind: GimbalKind,
     /// Pan range [min, max], deg, positive right.
     pub pan_limits_deg: [f64; 2],
@@ -51,6 +55,15 @@ pub struct GimbalSection {
     /// at most this far off the image centre. Choice: 10°, inside the half field of view of
     /// any camera wider than 20°.
     pub keyhole_deg: f64,
+    /// With `kind = "roll_pan_tilt"`, the roll axis' range [min, max], deg, positive right
+    /// wing down, within ±90°. The roll axis turns the pan axis by minus the follower's bank
+    /// (as its navigation knows it), so that the pan turns about the vertical of the
+    /// follower's pitch plane. A pan/tilt camera's pan axis is the body's z: in a bank of 30°
+    /// a target 60° below the horizon lies 0-30° from it, inside the keyhole, and a roll
+    /// reversal at 60-90 °/s swings the exact pan by 90° and more in a fraction of a second
+    /// (docs/findings.md, A roll axis for the camera). Choice: ±60°, twice the follower's bank
+    /// limit, for the gusts' bank on top of it.
+    pub roll_limits_deg: [f64; 2],
     /// Largest rate of each axis, deg/s.
     pub rate_limit_dps: f64,
     /// Time constant of each axis' servo, s.
@@ -80,6 +93,7 @@ impl Default for GimbalSection {
             kind: GimbalKind::None,
             pan_limits_deg: [-170.0, 170.0],
             tilt_limits_deg: [-90.0, 30.0],
+            roll_limits_deg: [-60.0, 60.0],
             rate_limit_dps: 120.0,
             time_constant_s: 0.05,
             search_after_s: 0.5,
@@ -99,6 +113,7 @@ impl GimbalSection {
         for (key, [min, max], outer) in [
             ("camera.gimbal.pan_limits_deg", self.pan_limits_deg, 180.0),
             ("camera.gimbal.tilt_limits_deg", self.tilt_limits_deg, 180.0),
+            ("camera.gimbal.roll_limits_deg", self.roll_limits_deg, 90.0),
         ] {
             check::require(
                 min.is_finite()

@@ -113,7 +113,7 @@ pub(super) fn gimbal_of(scenario: &Scenario, target: &dyn TargetModel) -> Option
             Some(target.position_ned_ft(0.0) - Vec3::from(scenario.follower.initial_position_ft))
         }
     };
-    (scenario.sensor.mode == SensorMode::Camera && section.kind == GimbalKind::PanTilt)
+    (scenario.sensor.mode == SensorMode::Camera && section.kind != GimbalKind::None)
         .then(|| Gimbal::new(section, cue_ned))
 }
 

@@ -402,6 +402,7 @@ impl Simulation {
                 self.layout.split(&self.state).gimbal,
             )),
             command: self.gimbal_command(gimbal, self.time_s(), &self.state),
+            roll_axis: gimbal.has_roll_axis(),
         })
     }
 

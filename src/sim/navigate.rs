@@ -20,7 +20,7 @@ pub(super) fn encoder_reading<'a>(own: &OwnSensors, gimbal_x: &'a [f64]) -> Cow<
     match own.camera() {
         Some(camera) if !gimbal_x.is_empty() => {
             let error = camera.encoder_error_rad();
-            Cow::Owned(vec![gimbal_x[0] + error[0], gimbal_x[1] + error[1]])
+            Cow::Owned(gimbal_x.iter().zip(error).map(|(x, e)| x + e).collect())
         }
         _ => Cow::Borrowed(gimbal_x),
     }

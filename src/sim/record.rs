@@ -77,6 +77,8 @@ pub struct GimbalReading {
     pub angles: GimbalAngles,
     /// The pointing law's command.
     pub command: GimbalAngles,
+    /// Whether the gimbal has a roll axis.
+    pub roll_axis: bool,
 }
 
 /// Wall time spent in each stage of the continuous loop, summed over the run.
