@@ -36,6 +36,7 @@ mod frame_captions;
 mod gate_reopen;
 mod gimbal_cue_search;
 mod gimbal_roll_axis;
+mod gimbal_tilt_up;
 mod group_chain;
 mod group_crossing;
 mod group_scenario_errors;
