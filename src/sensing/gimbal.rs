@@ -204,7 +204,8 @@ impl Gimbal {
         }
     }
 
-    /// The angles that point along `direction_body` nearest the present angles `now`. The
+    /// The angles that point along `direction_rolled` (in the roll axis' axes, the body's
+    /// without one) nearest the present angles `now`, the roll held. The
     /// pan is taken nearest the present one: a target crossing behind the camera's pan range
     /// holds the pan at the limit on its side instead of swinging the long way round. With a
     /// tilt range beyond ±90° the camera can also look along the direction over the pole,
