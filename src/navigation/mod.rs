@@ -21,7 +21,7 @@ pub use camera_geometry::CameraGeometryErrors;
 pub use ins_gps::InsGps;
 
 use crate::frames::{EulerAngles, Vec3};
-use crate::scenario::{GimbalKind, NavigationMode, Scenario, SensorErrors};
+use crate::scenario::{NavigationMode, Scenario, SensorErrors};
 use crate::world::aircraft::AirData;
 
 /// Mixed into `[run] seed` for the INS/GPS's random stream ("ins_gps" in ASCII).
@@ -101,7 +101,7 @@ impl OwnSensors {
             air_data: (n.air_data.mode == SensorErrors::Errors)
                 .then(|| AirDataSensor::new(&n.air_data, seed ^ AIR_DATA_SEED_SALT)),
             camera: (n.camera.mode == SensorErrors::Errors).then(|| {
-                let roll_axis = scenario.camera.gimbal.kind == GimbalKind::RollPanTilt;
+                let roll_axis = scenario.camera.gimbal.kind.has_roll_axis();
                 CameraGeometryErrors::new(&n.camera, roll_axis, seed ^ CAMERA_GEOMETRY_SEED_SALT)
             }),
         }

@@ -1,5 +1,5 @@
-//! `[camera.gimbal]`: the camera's pan/tilt (or roll/pan/tilt) gimbal (docs/equations.md, Gimballed camera;
-//! `sensing::gimbal`).
+//! `[camera.gimbal]`: the camera's pan/tilt (or roll/pan/tilt) gimbal (docs/equations.md,
+//! Gimballed camera; `sensing::gimbal`).
 
 use super::check::{self, Check};
 use serde::{Deserialize, Serialize};
@@ -16,6 +16,13 @@ pub enum GimbalKind {
     /// pan and tilt as `pan_tilt`: the line of sight to a target below the follower stays
     /// away from the pan axis while the follower rolls (see `roll_limits_deg`).
     RollPanTilt,
+}
+
+impl GimbalKind {
+    /// Whether the gimbal has a roll axis under its pan.
+    pub fn has_roll_axis(self) -> bool {
+        self == Self::RollPanTilt
+    }
 }
 
 /// Where the gimbal points before the camera has seen the target.
