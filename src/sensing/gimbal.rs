@@ -472,22 +472,22 @@ mod tests {
         assert!((centred.tilt_rad + std::f64::consts::FRAC_PI_4).abs() < 1e-12);
     }
 
-    /// The largest angle between the camera's axis and a line of sight fixed in NED, 55°
-    /// below the horizon abeam on the right, while the follower rolls from 40° left wing down
-    /// to 30° right at 90 °/s (a weave's reversal), the servos integrated at 1 ms, deg.
-    fn largest_pointing_error_in_a_roll_reversal_deg(section: &GimbalSection) -> f64 {
-        let elevation = -55f64.to_radians();
-        let los = Vec3::new(0.0, elevation.cos(), -elevation.sin());
-        let g = Gimbal::new(section, Some(los));
-        let (roll_rate_rps, dt_s) = (90f64.to_radians(), 1e-3);
-        let bank_at =
-            |t_s: f64| (-40f64.to_radians() + roll_rate_rps * t_s).min(30f64.to_radians());
-        let mut x = g.initial_state(&EulerAngles::new(bank_at(0.0), 0.0, 0.0).body_from_ned());
+    /// The largest angle between the camera's axis and the line of sight `los_at(t)` (NED)
+    /// after the first 0.05 s, the follower's attitude `body_from_ned_at(t)`, the servos
+    /// integrated at 1 ms over 2 s, deg.
+    fn largest_pointing_error_deg(
+        section: &GimbalSection,
+        los_at: impl Fn(f64) -> Vec3,
+        body_from_ned_at: impl Fn(f64) -> Mat3,
+    ) -> f64 {
+        let g = Gimbal::new(section, Some(los_at(0.0)));
+        let dt_s = 1e-3;
+        let mut x = g.initial_state(&body_from_ned_at(0.0));
         let mut dx = [0.0; GIMBAL_STATE_LEN];
         let mut largest_deg: f64 = 0.0;
         for k in 0..2000 {
             let t_s = k as f64 * dt_s;
-            let body_from_ned = EulerAngles::new(bank_at(t_s), 0.0, 0.0).body_from_ned();
+            let (los, body_from_ned) = (los_at(t_s), body_from_ned_at(t_s));
             let command = g.command(&x, Some(los), &body_from_ned, 0.0, t_s);
             let axis = (GimbalAngles::of(&x).camera_from_body() * body_from_ned).transpose()
                 * Vec3::new(1.0, 0.0, 0.0);
@@ -499,6 +499,22 @@ mod tests {
             g.normalize(&mut x);
         }
         largest_deg
+    }
+
+    /// The largest pointing error while a line of sight fixed in NED, 55° below the horizon
+    /// abeam on the right, is held as the follower rolls from 40° left wing down to 30° right
+    /// at 90 °/s (a weave's reversal), deg.
+    fn largest_pointing_error_in_a_roll_reversal_deg(section: &GimbalSection) -> f64 {
+        let elevation = -55f64.to_radians();
+        let los = Vec3::new(0.0, elevation.cos(), -elevation.sin());
+        let roll_rate_rps = 90f64.to_radians();
+        let bank_at =
+            |t_s: f64| (-40f64.to_radians() + roll_rate_rps * t_s).min(30f64.to_radians());
+        largest_pointing_error_deg(
+            section,
+            |_| los,
+            |t_s| EulerAngles::new(bank_at(t_s), 0.0, 0.0).body_from_ned(),
+        )
     }
 
     /// In a roll reversal a line of sight below the follower passes through the pan axis (the
@@ -545,5 +561,28 @@ mod tests {
             camera_y_down.z.abs() < 1e-9,
             "the image's horizontal is level: {camera_y_down}"
         );
+    }
+
+    /// A target passing the level follower 12 ft abeam at 35 ft/s (an S-turn leg crossing its
+    /// track at the floor speed), from 35 ft ahead to 35 ft behind: the line of sight turns
+    /// at up to 35 / 12 rad/s = 167 °/s. The 8 ft target then spans 2 atan(4 / 12) = 37° of
+    /// the 60° image, so it touches the image's border once the camera is 30° - 18.4° = 11.6°
+    /// off it. At 120 °/s (the default) the pan falls 18.2° behind; at 300 °/s it lags 8.2°,
+    /// about the servo's 167 °/s × τ = 8.4° alone.
+    #[test]
+    fn a_close_pass_is_followed_by_a_servo_faster_than_the_line_of_sight() {
+        let (miss_ft, speed_fps) = (12.0, 35.0);
+        let los_at = |t_s: f64| Vec3::new(35.0 - speed_fps * t_s, miss_ft, 0.0).normalize();
+        let error_at_rate_deg = |rate_limit_dps: f64| {
+            let section = GimbalSection {
+                rate_limit_dps,
+                ..GimbalSection::default()
+            };
+            largest_pointing_error_deg(&section, los_at, |_| Mat3::identity())
+        };
+        let (slow_deg, fast_deg) = (error_at_rate_deg(120.0), error_at_rate_deg(300.0));
+        println!("largest pointing error: {slow_deg:.1}° at 120 °/s, {fast_deg:.1}° at 300 °/s");
+        assert!(slow_deg > 11.6, "120 °/s: {slow_deg:.1}°");
+        assert!(fast_deg < 11.6, "300 °/s: {fast_deg:.1}°");
     }
 }
