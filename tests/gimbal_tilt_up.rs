@@ -7,16 +7,16 @@
 //! the run stops as lost. Without turbulence or pixel noise the run does not depend on
 //! `run.seed` (streams 1-3 give identical telemetry).
 
-use crate::common::{load, repo_root, run_in};
-use wingman::output::summary::RunStatus;
+use crate::common::{self, repo_root};
+use wingman::output::summary::{RunStatus, Summary};
 use wingman::scenario::Scenario;
 
-fn target_above(tilt_limits_deg: [f64; 2]) -> wingman::output::summary::Summary {
+fn target_above(tilt_limits_deg: [f64; 2]) -> Summary {
     let tilt = format!(
         "camera.gimbal.tilt_limits_deg=[{}, {}]",
         tilt_limits_deg[0], tilt_limits_deg[1]
     );
-    let scenario = load(
+    common::run(
         "formation",
         &[
             "run.duration_s=8",
@@ -28,9 +28,8 @@ fn target_above(tilt_limits_deg: [f64; 2]) -> wingman::output::summary::Summary 
             "camera.gimbal.cue=\"target\"",
             &tilt,
         ],
-    );
-    let dir = tempfile::tempdir().expect("temp dir");
-    run_in(&scenario, "formation", dir.path()).summary
+    )
+    .summary
 }
 
 #[test]
