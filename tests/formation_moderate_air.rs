@@ -16,9 +16,12 @@
 //!   frame is lost and the worst RMS axis has a median of 3.1 ft; stream 28's is 5.51 ft,
 //!   over the 5 (one of the four of 60 that miss it), so it is held under 6.5 ft.
 //! - stream 37: in the slowest turn the target stands 15-22° from the pan's axis, where the
-//!   pan turns fastest for the line of sight (the keyhole). formation.toml's servos slew at
-//!   300 °/s and lose 6 frames at 101 s; at the [camera.gimbal] default of 120 °/s the camera
-//!   falls behind and 46 are lost (docs/findings.md, The gimbal's slew rate).
+//!   pan turns fastest for the line of sight (the keyhole). At 101 s the pan command jumps
+//!   from the pan's 170° stop to -80°, and the pan swings 226° the long way round: 0.75 s
+//!   (23 frames) at formation.toml's 300 °/s, 1.9 s (56 frames) at the [camera.gimbal]
+//!   default of 120 °/s. The camera loses 6 frames of the fast swing and 46 of the slow one
+//!   (docs/findings.md, The gimbal's slew rate). The bars sit near half of each swing: at
+//!   most 12 frames at 300 °/s, at least 30 at 120 °/s.
 
 use crate::common;
 
