@@ -216,7 +216,7 @@ pub struct GimbalSummary {
     pub pan_range_deg: [f64; 2],
     /// Lowest and highest tilt, deg.
     pub tilt_range_deg: [f64; 2],
-    /// Logged rows with an axis within 0.1° of a limit.
+    /// Logged rows with an axis within 0.1° of a limit (a pan without stops has none).
     pub rows_at_limit: u64,
     /// Logged rows.
     pub rows: u64,
@@ -244,7 +244,7 @@ impl GimbalSummary {
         let rows_at_limit = readings
             .iter()
             .filter(|g| {
-                near(g.angles.pan_rad, section.pan_limits_deg)
+                (!section.pan_is_continuous() && near(g.angles.pan_rad, section.pan_limits_deg))
                     || near(g.angles.tilt_rad, section.tilt_limits_deg)
             })
             .count() as u64;

@@ -47,7 +47,11 @@ pub enum GimbalCue {
 pub struct GimbalSection {
     /// None (the camera is fixed), a pan/tilt gimbal, or one with a roll axis under its pan.
     pub kind: GimbalKind,
-    /// Pan range [min, max], deg, positive right.
+    /// Pan range [min, max], deg, positive right. A range of a full turn, [-180, 180], has
+    /// no stop: the pan turns on a slip ring, the short way to any bearing (commercial
+    /// payload gimbals range from ±160° to continuous pan). With stops, a line of sight
+    /// crossing behind the camera holds the pan at the stop on its side, and one crossing the
+    /// pan axis can send it the long way round.
     pub pan_limits_deg: [f64; 2],
     /// Tilt range [min, max], deg, positive up, within ±180°. Beyond -90° (+90°) the camera
     /// tilts through nadir (zenith), and the pointing law takes whichever angle pair that
@@ -115,6 +119,11 @@ impl Default for GimbalSection {
 }
 
 impl GimbalSection {
+    /// Whether the pan's range is a full turn: no stop, a slip ring.
+    pub fn pan_is_continuous(&self) -> bool {
+        self.pan_limits_deg == [-180.0, 180.0]
+    }
+
     /// Checks every value.
     pub fn validate(&self) -> Check {
         for (key, [min, max], outer) in [

@@ -95,7 +95,8 @@ impl GimbalAngles {
 /// law.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Gimbal {
-    pan_limits_rad: [f64; 2],
+    /// None for a pan without stops (a slip ring).
+    pan_limits_rad: Option<[f64; 2]>,
     tilt_limits_rad: [f64; 2],
     /// [0, 0] without a roll axis.
     roll_limits_rad: [f64; 2],
@@ -119,7 +120,7 @@ impl Gimbal {
     pub fn new(section: &GimbalSection, cue_ned: Option<Vec3>) -> Self {
         let radians = |deg: [f64; 2]| deg.map(f64::to_radians);
         Self {
-            pan_limits_rad: radians(section.pan_limits_deg),
+            pan_limits_rad: (!section.pan_is_continuous()).then(|| radians(section.pan_limits_deg)),
             tilt_limits_rad: radians(section.tilt_limits_deg),
             roll_limits_rad: if section.kind.has_roll_axis() {
                 radians(section.roll_limits_deg)
@@ -259,8 +260,13 @@ impl Gimbal {
     /// The servos' rates toward `command`: (θ_c - θ)/τ within ±rate, zero at a limit.
     pub fn derivative(&self, x: &[f64], command: &GimbalAngles, dx: &mut [f64]) {
         let now = GimbalAngles::of(x);
+        let unlimited = [f64::NEG_INFINITY, f64::INFINITY];
         for (i, (angle, commanded, [min, max])) in [
-            (now.pan_rad, command.pan_rad, self.pan_limits_rad),
+            (
+                now.pan_rad,
+                command.pan_rad,
+                self.pan_limits_rad.unwrap_or(unlimited),
+            ),
             (now.tilt_rad, command.tilt_rad, self.tilt_limits_rad),
             (now.roll_rad, command.roll_rad, self.roll_limits_rad),
         ]
@@ -274,18 +280,23 @@ impl Gimbal {
         }
     }
 
-    /// Holds the angles inside their limits after a step.
+    /// Holds the angles inside their limits after a step; a pan without stops is wrapped
+    /// into (-180°, 180°].
     pub fn normalize(&self, x: &mut [f64]) {
-        let clamped = self.clamped(&GimbalAngles::of(x));
+        let mut clamped = self.clamped(&GimbalAngles::of(x));
+        if self.pan_limits_rad.is_none() && clamped[0].abs() > PI {
+            clamped[0] = wrap_angle_rad(clamped[0]);
+        }
         x.copy_from_slice(&clamped);
     }
 
     fn clamped(&self, a: &GimbalAngles) -> [f64; GIMBAL_STATE_LEN] {
-        let [pan_min, pan_max] = self.pan_limits_rad;
         let [tilt_min, tilt_max] = self.tilt_limits_rad;
         let [roll_min, roll_max] = self.roll_limits_rad;
         [
-            a.pan_rad.clamp(pan_min, pan_max),
+            self.pan_limits_rad.map_or(a.pan_rad, |[pan_min, pan_max]| {
+                a.pan_rad.clamp(pan_min, pan_max)
+            }),
             a.tilt_rad.clamp(tilt_min, tilt_max),
             a.roll_rad.clamp(roll_min, roll_max),
         ]
@@ -561,6 +572,33 @@ mod tests {
             camera_y_down.z.abs() < 1e-9,
             "the image's horizontal is level: {camera_y_down}"
         );
+    }
+
+    /// A line of sight crossing behind a level follower, its bearing from 160° through 180°
+    /// to -160° at 20 °/s: a pan with stops at ±170° holds at its stop on the near side while
+    /// the bearing goes on, 30° off at the end (the image's half-width: the target leaves a
+    /// 60° image). A pan without stops (a range of a full turn) follows it the short way
+    /// through 180°, lagging 20 °/s × τ = 1°, and its angle is kept in (-180°, 180°].
+    #[test]
+    fn a_pan_without_stops_follows_a_line_of_sight_round_behind() {
+        let bearing_at = |t_s: f64| (160.0 + 20.0 * t_s).to_radians();
+        let los_at = |t_s: f64| Vec3::new(bearing_at(t_s).cos(), bearing_at(t_s).sin(), 0.0);
+        let with_limits = |pan_limits_deg| GimbalSection {
+            kind: GimbalKind::PanTilt,
+            pan_limits_deg,
+            ..GimbalSection::default()
+        };
+        let stopped = with_limits([-170.0, 170.0]);
+        let continuous = with_limits([-180.0, 180.0]);
+        assert!(!stopped.pan_is_continuous() && continuous.pan_is_continuous());
+        let stopped_deg = largest_pointing_error_deg(&stopped, los_at, |_| Mat3::identity());
+        let continuous_deg = largest_pointing_error_deg(&continuous, los_at, |_| Mat3::identity());
+        assert!(stopped_deg > 29.0, "stops at ±170°: {stopped_deg:.1}°");
+        assert!(continuous_deg < 1.5, "no stops: {continuous_deg:.1}°");
+        let g = Gimbal::new(&continuous, None);
+        let mut x = [3.2, 0.0, 0.0];
+        g.normalize(&mut x);
+        assert!((x[0] - (3.2 - std::f64::consts::TAU)).abs() < 1e-12);
     }
 
     /// A target passing the level follower 12 ft abeam at 35 ft/s (an S-turn leg crossing its
