@@ -21,7 +21,15 @@
 //!   (23 frames) at formation.toml's 300 °/s, 1.9 s (56 frames) at the [camera.gimbal]
 //!   default of 120 °/s. The camera loses 6 frames of the fast swing and 46 of the slow one
 //!   (docs/findings.md, The gimbal's slew rate). The bars sit near half of each swing: at
-//!   most 12 frames at 300 °/s, at least 30 at 120 °/s.
+//!   most 12 frames at 300 °/s, at least 30 at 120 °/s. formation.toml's pan has no stop
+//!   now, so both runs set the stops at ±170° back: the test is of the servos' rate.
+//! - stream 86: at 99.4 s, banked 35-40°, the line of sight's bearing in body axes passes
+//!   behind the camera (the pan command from -170° through 180° to 143°). The pan held at its
+//!   -170° stop leaves the target off the image's centre while the tilt makes up for it, up
+//!   to its 90° limit at 101.5 s; the target leaves the image at 102.6 s and 55 frames are
+//!   lost. A pan without stops (formation.toml's) turns through 180° and loses none
+//!   (docs/findings.md, A pan without stops). Bars: at most 5 frames without stops, at least
+//!   25 with them.
 
 use crate::common;
 
@@ -29,6 +37,9 @@ use crate::common::worst_axis_ft;
 use std::ops::Range;
 use wingman::output::RunReport;
 use wingman::output::summary::RunStatus;
+
+/// The [camera.gimbal] default's pan stops, which formation.toml's slip ring does without.
+const PAN_STOPS: &str = "camera.gimbal.pan_limits_deg=[-170,170]";
 
 /// formation.toml in moderate turbulence on `seed`, with `overrides`.
 fn moderate(seed: u32, overrides: &[&str]) -> RunReport {
@@ -110,11 +121,24 @@ fn a_target_in_the_same_air_is_not_overtaken_in_a_tailwind_gust() {
 
 #[test]
 fn servos_at_300_dps_follow_the_pan_near_its_axis() {
-    let through_the_turn = "run.duration_s=104";
-    let shipped = moderate(37, &[through_the_turn]);
-    let slow = moderate(37, &[through_the_turn, "camera.gimbal.rate_limit_dps=120"]);
+    let through_the_turn = ["run.duration_s=104", PAN_STOPS];
+    let shipped = moderate(37, &through_the_turn);
+    let mut slow = through_the_turn.to_vec();
+    slow.push("camera.gimbal.rate_limit_dps=120");
+    let slow = moderate(37, &slow);
     let (fast_lost, slow_lost) = (shipped.summary.lost_frames, slow.summary.lost_frames);
     println!("stream 37 to 104 s: {fast_lost} frames lost at 300 °/s, {slow_lost} at 120 °/s");
     assert!(fast_lost <= 12, "{:?}", shipped.summary.loss_episodes);
     assert!(slow_lost >= 30, "{:?}", slow.summary.loss_episodes);
+}
+
+#[test]
+fn a_pan_without_stops_turns_through_the_back() {
+    let through_the_turn = "run.duration_s=108";
+    let shipped = moderate(86, &[through_the_turn]);
+    let stopped = moderate(86, &[through_the_turn, PAN_STOPS]);
+    let (slip_ring_lost, stops_lost) = (shipped.summary.lost_frames, stopped.summary.lost_frames);
+    println!("stream 86 to 108 s: {slip_ring_lost} frames lost without stops, {stops_lost} with");
+    assert!(slip_ring_lost <= 5, "{:?}", shipped.summary.loss_episodes);
+    assert!(stops_lost >= 25, "{:?}", stopped.summary.loss_episodes);
 }
