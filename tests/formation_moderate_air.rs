@@ -9,7 +9,9 @@
 //!   the seed's clamp on the raw command alone the reference overshoots to a bank the lift
 //!   does not carry at 33-35 ft/s, the follower sinks 70 ft below the target and loses it.
 //! - stream 28, with the energy loop: a tailwind gust of 15-22 ft/s in the slowest turn
-//!   carries the follower past a target fixed over the ground (hundreds of frames lost); a
+//!   carries the follower past a target fixed over the ground (24 frames lost, and 33 ft RMS
+//!   along the track over the last 20 s; with the pan's stops the target went behind the
+//!   camera and hundreds of frames were lost); a
 //!   target in the same air (`target.path = "in_air_mass"`, `target.gusts = "shared"`, the
 //!   filter's gust states set from the air's statistics) is carried too, and none is lost
 //!   (docs/findings.md, The target in the air mass). Over streams 1-60 in that world no
@@ -100,11 +102,13 @@ fn a_target_in_the_same_air_is_not_overtaken_in_a_tailwind_gust() {
         "autopilot.weave_deficit_fps=2",
     ];
     let over_ground = moderate(28, &energy);
+    let s = &over_ground.summary;
     assert!(
-        over_ground.summary.lost_frames > 100,
+        s.lost_frames >= 10,
         "over the ground: {} lost",
-        over_ground.summary.lost_frames
+        s.lost_frames
     );
+    assert!(worst_axis_ft(s) > 15.0, "{:?}", s.rms_error_last20s_ft);
     let mut in_air = energy.to_vec();
     in_air.extend([
         "target.path=in_air_mass",
