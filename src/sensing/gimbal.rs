@@ -212,7 +212,8 @@ impl Gimbal {
     /// The angles that point along `direction_rolled` (in the roll axis' axes, the body's
     /// without one) nearest the present angles `now`, the roll held. The
     /// pan is taken nearest the present one: a target crossing behind the camera's pan range
-    /// holds the pan at the limit on its side instead of swinging the long way round. With a
+    /// holds the pan at the limit on its side instead of swinging the long way round (a pan
+    /// without stops turns through the back). With a
     /// tilt range beyond ±90° the camera can also look along the direction over the pole,
     /// (ψ + π, ±180° - θ): the pair the servos reach sooner is taken, and within the keyhole
     /// cone about the pole the pan holds while the tilt points the camera as near the
@@ -284,6 +285,7 @@ impl Gimbal {
     /// into (-180°, 180°].
     pub fn normalize(&self, x: &mut [f64]) {
         let mut clamped = self.clamped(&GimbalAngles::of(x));
+        // Only beyond ±180°: the wrap's arithmetic would move an angle inside by its last bits.
         if self.pan_limits_rad.is_none() && clamped[0].abs() > PI {
             clamped[0] = wrap_angle_rad(clamped[0]);
         }
