@@ -244,7 +244,9 @@ impl GimbalSummary {
         let rows_at_limit = readings
             .iter()
             .filter(|g| {
-                (!section.pan_is_continuous() && near(g.angles.pan_rad, section.pan_limits_deg))
+                section
+                    .pan_stops_deg()
+                    .is_some_and(|stops| near(g.angles.pan_rad, stops))
                     || near(g.angles.tilt_rad, section.tilt_limits_deg)
             })
             .count() as u64;

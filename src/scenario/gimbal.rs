@@ -119,9 +119,9 @@ impl Default for GimbalSection {
 }
 
 impl GimbalSection {
-    /// Whether the pan's range is a full turn: no stop, a slip ring.
-    pub fn pan_is_continuous(&self) -> bool {
-        self.pan_limits_deg == [-180.0, 180.0]
+    /// The pan's stops [min, max], deg: None for a range of a full turn (a slip ring).
+    pub fn pan_stops_deg(&self) -> Option<[f64; 2]> {
+        (self.pan_limits_deg != [-180.0, 180.0]).then_some(self.pan_limits_deg)
     }
 
     /// Checks every value.

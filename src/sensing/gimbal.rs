@@ -120,7 +120,7 @@ impl Gimbal {
     pub fn new(section: &GimbalSection, cue_ned: Option<Vec3>) -> Self {
         let radians = |deg: [f64; 2]| deg.map(f64::to_radians);
         Self {
-            pan_limits_rad: (!section.pan_is_continuous()).then(|| radians(section.pan_limits_deg)),
+            pan_limits_rad: section.pan_stops_deg().map(radians),
             tilt_limits_rad: radians(section.tilt_limits_deg),
             roll_limits_rad: if section.kind.has_roll_axis() {
                 radians(section.roll_limits_deg)
@@ -261,13 +261,8 @@ impl Gimbal {
     /// The servos' rates toward `command`: (θ_c - θ)/τ within ±rate, zero at a limit.
     pub fn derivative(&self, x: &[f64], command: &GimbalAngles, dx: &mut [f64]) {
         let now = GimbalAngles::of(x);
-        let unlimited = [f64::NEG_INFINITY, f64::INFINITY];
         for (i, (angle, commanded, [min, max])) in [
-            (
-                now.pan_rad,
-                command.pan_rad,
-                self.pan_limits_rad.unwrap_or(unlimited),
-            ),
+            (now.pan_rad, command.pan_rad, self.pan_range_rad()),
             (now.tilt_rad, command.tilt_rad, self.tilt_limits_rad),
             (now.roll_rad, command.roll_rad, self.roll_limits_rad),
         ]
@@ -292,13 +287,18 @@ impl Gimbal {
         x.copy_from_slice(&clamped);
     }
 
+    /// The pan's range, rad: its stops, or unbounded without them.
+    fn pan_range_rad(&self) -> [f64; 2] {
+        self.pan_limits_rad
+            .unwrap_or([f64::NEG_INFINITY, f64::INFINITY])
+    }
+
     fn clamped(&self, a: &GimbalAngles) -> [f64; GIMBAL_STATE_LEN] {
+        let [pan_min, pan_max] = self.pan_range_rad();
         let [tilt_min, tilt_max] = self.tilt_limits_rad;
         let [roll_min, roll_max] = self.roll_limits_rad;
         [
-            self.pan_limits_rad.map_or(a.pan_rad, |[pan_min, pan_max]| {
-                a.pan_rad.clamp(pan_min, pan_max)
-            }),
+            a.pan_rad.clamp(pan_min, pan_max),
             a.tilt_rad.clamp(tilt_min, tilt_max),
             a.roll_rad.clamp(roll_min, roll_max),
         ]
@@ -592,7 +592,8 @@ mod tests {
         };
         let stopped = with_limits([-170.0, 170.0]);
         let continuous = with_limits([-180.0, 180.0]);
-        assert!(!stopped.pan_is_continuous() && continuous.pan_is_continuous());
+        assert_eq!(stopped.pan_stops_deg(), Some([-170.0, 170.0]));
+        assert_eq!(continuous.pan_stops_deg(), None);
         let stopped_deg = largest_pointing_error_deg(&stopped, los_at, |_| Mat3::identity());
         let continuous_deg = largest_pointing_error_deg(&continuous, los_at, |_| Mat3::identity());
         assert!(stopped_deg > 29.0, "stops at ±170°: {stopped_deg:.1}°");
