@@ -320,6 +320,11 @@ fn aircraft_follower_values_are_checked() {
         &["autopilot.weave_lead_ft = 0", "[0.1, 100]"],
     );
     assert_rejected(
+        "[autopilot]\nweave_outside_turn_dps = 120.0\n",
+        &[],
+        &["autopilot.weave_outside_turn_dps = 120", "[0, 90]"],
+    );
+    assert_rejected(
         "[acceleration]\nshortfall_time_constant_s = 0.0\n",
         &[],
         &["acceleration.shortfall_time_constant_s = 0", "[0.01, 1000]"],

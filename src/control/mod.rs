@@ -37,4 +37,4 @@ pub use rbf::{RBF_CENTRES, RBF_INPUTS, RbfBasis, RbfInput};
 pub use reference::VelocityReference;
 pub use signals::{AutopilotInput, AutopilotOutput, Saturation, SlotAxis};
 pub use state::{AUTOPILOT_STATE_LEN, AutopilotState, autopilot_state_names};
-pub use velocity_command::{slot_weave_side, weave_side};
+pub use velocity_command::{WeaveGeometry, slot_weave_side, weave_side};

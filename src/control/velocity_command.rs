@@ -18,7 +18,8 @@
 //!   S-turns: χ_c ± acos(‖V_h‖ / (V_min cos γ_c)), the side alternating every half period,
 //!   which keeps the commanded speed along the course; `weave_half_width_ft` alternates the
 //!   side by geometry instead ([`slot_weave_side`]), reversing when the follower is that far
-//!   off the slot's line (both loops; the clock's S-turns are the Chapter 7 loop's only).
+//!   off the slot's line (both loops; the clock's S-turns are the Chapter 7 loop's only),
+//!   and in a turn of the target's from `weave_outside_turn_dps` keeping to its outside.
 //!   A side of 0 flies no S-turn: the follower sends it while its slot lies beside the target
 //!   ([`crate::follower::SlotLine::behind_the_target`]).
 //!   By geometry, `weave_deficit_fps` leaves a command up to that much slower than the
@@ -72,15 +73,35 @@ pub fn weave_side(flown_s: f64, weave_period_s: f64) -> f64 {
 
 /// The S-turn leg flown by geometry: the side (+1 right, -1 left of the commanded course) is
 /// kept until the follower is `half_width_ft` to that side of the slot's line
-/// (`cross_track_ft`, positive right of the target's estimated track), then reversed.
-pub fn slot_weave_side(side: f64, cross_track_ft: f64, half_width_ft: f64) -> f64 {
-    if side > 0.0 && cross_track_ft > half_width_ft {
+/// (`cross_track_ft`, positive right of the target's estimated track), then reversed; while
+/// the target turns at `outside_turn_rps` or faster (`turn_rate_rps`, positive to the right)
+/// it is the outside of the turn, without reversal (0: never).
+pub fn slot_weave_side(
+    side: f64,
+    cross_track_ft: f64,
+    turn_rate_rps: f64,
+    geometry: &WeaveGeometry,
+) -> f64 {
+    let h = geometry.half_width_ft;
+    if geometry.outside_turn_rps > 0.0 && turn_rate_rps.abs() >= geometry.outside_turn_rps {
+        -turn_rate_rps.signum()
+    } else if side > 0.0 && cross_track_ft > h {
         -1.0
-    } else if side < 0.0 && cross_track_ft < -half_width_ft {
+    } else if side < 0.0 && cross_track_ft < -h {
         1.0
     } else {
         side
     }
+}
+
+/// Where the S-turns by geometry reverse (`autopilot.weave_half_width_ft`) and from which
+/// turn rate of the target their legs keep to its outside (`weave_outside_turn_dps`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WeaveGeometry {
+    /// Half width about the slot's line, ft (0: no S-turns by geometry).
+    pub half_width_ft: f64,
+    /// Turn rate from which the legs keep to the outside, rad/s (0: never).
+    pub outside_turn_rps: f64,
 }
 
 /// The speed deficit along the slot's line a leg leaves to the slot's along-track error,
@@ -269,7 +290,7 @@ impl ControlLaw {
 
 #[cfg(test)]
 mod tests {
-    use super::{accepted_deficit_fps, slot_weave_side};
+    use super::{WeaveGeometry, accepted_deficit_fps, slot_weave_side};
 
     /// The deficit left to the along-track error: all of it at or behind the slot, half of
     /// it half the budget ahead, none from the budget on.
@@ -282,12 +303,34 @@ mod tests {
         assert_eq!(accepted_deficit_fps(2.0, 5.0, 9.0), 0.0);
     }
 
+    const GEOMETRY: WeaveGeometry = WeaveGeometry {
+        half_width_ft: 10.0,
+        outside_turn_rps: 0.03,
+    };
+
     #[test]
     fn the_slot_weave_reverses_beyond_its_half_width() {
-        assert_eq!(slot_weave_side(1.0, 9.0, 10.0), 1.0);
-        assert_eq!(slot_weave_side(1.0, 11.0, 10.0), -1.0);
-        assert_eq!(slot_weave_side(-1.0, 11.0, 10.0), -1.0);
-        assert_eq!(slot_weave_side(-1.0, -9.0, 10.0), -1.0);
-        assert_eq!(slot_weave_side(-1.0, -11.0, 10.0), 1.0);
+        let side = |side, cross_ft| slot_weave_side(side, cross_ft, 0.0, &GEOMETRY);
+        assert_eq!(side(1.0, 9.0), 1.0);
+        assert_eq!(side(1.0, 11.0), -1.0);
+        assert_eq!(side(-1.0, 11.0), -1.0);
+        assert_eq!(side(-1.0, -9.0), -1.0);
+        assert_eq!(side(-1.0, -11.0), 1.0);
+    }
+
+    /// In a turn from the threshold on, the leg is the outside one (left of a right turn),
+    /// however far out the follower is; below it, and with the rule off, it reverses as on
+    /// a straight track.
+    #[test]
+    fn in_a_turn_the_legs_keep_to_its_outside() {
+        let off = WeaveGeometry {
+            outside_turn_rps: 0.0,
+            ..GEOMETRY
+        };
+        assert_eq!(slot_weave_side(1.0, 0.0, 0.05, &GEOMETRY), -1.0);
+        assert_eq!(slot_weave_side(-1.0, -60.0, 0.05, &GEOMETRY), -1.0);
+        assert_eq!(slot_weave_side(-1.0, 60.0, -0.03, &GEOMETRY), 1.0);
+        assert_eq!(slot_weave_side(1.0, 0.0, 0.029, &GEOMETRY), 1.0);
+        assert_eq!(slot_weave_side(-1.0, -60.0, 0.05, &off), 1.0);
     }
 }

@@ -33,6 +33,21 @@ pub enum TargetMotionEstimate {
     FilteredAccelerationBound(Vec3),
 }
 
+impl TargetEstimate {
+    /// The target's turn rate over the ground, ω = (d̂ × â)·z / ‖d̂_h‖², rad/s, positive to
+    /// the right (d̂ and â in the same unit of b, so b̂ cancels); 0 while it does not move
+    /// horizontally.
+    pub fn turn_rate_rps(&self) -> f64 {
+        let (d, a) = (&self.d_per_s, &self.a_per_s2);
+        let speed_squared = d.x * d.x + d.y * d.y;
+        if speed_squared > 0.0 {
+            (d.x * a.y - d.y * a.x) / speed_squared
+        } else {
+            0.0
+        }
+    }
+}
+
 impl TargetMotionEstimate {
     /// The estimate's vector, in its own unit.
     pub fn vector(&self) -> Vec3 {

@@ -15,8 +15,8 @@
 
 use super::FollowerConfig;
 use crate::control::{
-    AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, SlotAxis, slot_weave_side,
-    weave_side,
+    AUTOPILOT_STATE_LEN, Autopilot, AutopilotInput, AutopilotOutput, SlotAxis, WeaveGeometry,
+    slot_weave_side, weave_side,
 };
 use crate::frames::{EulerAngles, Vec3};
 use crate::guidance::signals::{CommandKind, FollowerCommand, FollowerFeedback};
@@ -76,6 +76,8 @@ pub struct SlotLine {
     pub slot_offset_ft: f64,
     /// How far the follower is ahead of its slot along the track, (R_c - R̂)·u, ft.
     pub ahead_of_slot_ft: f64,
+    /// The target's estimated turn rate, rad/s, positive to the right.
+    pub turn_rate_rps: f64,
 }
 
 impl SlotLine {
@@ -117,8 +119,8 @@ pub struct AircraftFollower {
     flown_s: f64,
     /// S-turn period, s (0: none).
     weave_period_s: f64,
-    /// Half width of the S-turns by geometry, ft (0: none; then the clock's).
-    weave_half_width_ft: f64,
+    /// The S-turns by geometry (half width 0: none; then the clock's).
+    weave_geometry: WeaveGeometry,
     /// The side of the S-turn by geometry, +1 right or -1 left ([`slot_weave_side`]).
     slot_weave_side: f64,
     /// The slot's line held for the step (`None`: unknown).
@@ -171,7 +173,10 @@ impl AircraftFollower {
                 integrates_acceleration,
                 flown_s: 0.0,
                 weave_period_s: config.autopilot.weave_period_s,
-                weave_half_width_ft: config.autopilot.weave_half_width_ft,
+                weave_geometry: WeaveGeometry {
+                    half_width_ft: config.autopilot.weave_half_width_ft,
+                    outside_turn_rps: config.autopilot.weave_outside_turn_dps.to_radians(),
+                },
                 slot_weave_side: 1.0,
                 slot_line: None,
                 own_state_errors: None,
@@ -229,7 +234,7 @@ impl AircraftFollower {
 
     /// Whether the S-turns alternate by geometry (`weave_half_width_ft` > 0).
     pub fn weaves_by_geometry(&self) -> bool {
-        self.weave_half_width_ft > 0.0
+        self.weave_geometry.half_width_ft > 0.0
     }
 
     /// Whether the follower flies S-turns (by the clock or by geometry): the simulation then
@@ -240,14 +245,16 @@ impl AircraftFollower {
 
     /// Before a step: the slot's line (`None` without an estimate: the side holds and the
     /// legs are placed about the command's course); the follower's offset from it reverses
-    /// the S-turn by geometry beyond its half width, and a slot beside the target
+    /// the S-turn by geometry beyond its half width, the target's turn keeps it to the
+    /// outside ([`slot_weave_side`]), and a slot beside the target
     /// ([`SlotLine::behind_the_target`]) stops the S-turns.
     pub fn hold_slot_line(&mut self, line: Option<SlotLine>) {
         if let Some(l) = line.filter(|_| self.weaves_by_geometry()) {
             self.slot_weave_side = slot_weave_side(
                 self.slot_weave_side,
                 l.cross_track_ft,
-                self.weave_half_width_ft,
+                l.turn_rate_rps,
+                &self.weave_geometry,
             );
         }
         self.slot_line = line;
@@ -357,6 +364,7 @@ mod tests {
             slot_lead_ft: lead_ft,
             slot_offset_ft: offset_ft,
             ahead_of_slot_ft: 0.0,
+            turn_rate_rps: 0.0,
         }
     }
 

@@ -192,6 +192,16 @@ pub struct AutopilotSection {
     /// formation.toml's energy loop, where 7 ft lost 1-4 frames on two streams and no budget
     /// 4-15 frames on two (docs/findings.md, Path stretching with a lead budget).
     pub weave_lead_ft: f64,
+    /// S-turns by geometry in a turn: from this turn rate of the target, °/s (from the
+    /// estimate, ω = (d̂ × â)·z / ‖d̂_h‖²), every leg is flown to the outside of its turn and
+    /// none back across the slot's line (0: the legs alternate as on a straight track). A
+    /// leg's swing reaches the turn radius at the floor, R = V_min² / (g tan φ_max), 66 ft at
+    /// 35 ft/s and 30°, and on the inside of a turn of rate ω shortens the follower's path by
+    /// ω R ft/s: in a tailwind at the target's slowest that carried followers ahead of the
+    /// target and back across its track within 8 ft of it (docs/findings.md, Legs outside
+    /// the turn). Choice: 1.72 °/s (0.03 rad/s), where ω R is 2 ft/s, the deficit the slot
+    /// accepts in the energy-control measurements (`weave_deficit_fps`).
+    pub weave_outside_turn_dps: f64,
     /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
     /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below
     /// the target profile's slowest 35.4 ft/s.
@@ -274,6 +284,7 @@ impl Default for AutopilotSection {
             weave_half_width_ft: 0.0,
             weave_deficit_fps: 0.0,
             weave_lead_ft: 5.0,
+            weave_outside_turn_dps: 1.72,
             min_airspeed_cmd_fps: 35.0,
             max_airspeed_cmd_fps: 65.0,
             min_control_airspeed_fps: 15.0,
@@ -320,6 +331,12 @@ impl AutopilotSection {
             20.0,
         )?;
         check::in_closed("autopilot.weave_lead_ft", self.weave_lead_ft, 0.1, 100.0)?;
+        check::in_closed(
+            "autopilot.weave_outside_turn_dps",
+            self.weave_outside_turn_dps,
+            0.0,
+            90.0,
+        )?;
         // The deficit is left along the slot's line, which only S-turns by geometry fly by.
         check::require(
             self.weave_deficit_fps == 0.0 || self.weave_half_width_ft > 0.0,

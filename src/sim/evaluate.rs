@@ -124,6 +124,7 @@ impl Simulation {
                 ahead_of_slot_ft: slot_error_ft.dot(&along),
                 slot_lead_ft,
                 slot_offset_ft,
+                turn_rate_rps: e.turn_rate_rps(),
             }
         })
     }
