@@ -9,13 +9,13 @@
 //!   the seed's clamp on the raw command alone the reference overshoots to a bank the lift
 //!   does not carry at 33-35 ft/s, the follower sinks 70 ft below the target and loses it.
 //! - stream 28, with the energy loop: a tailwind gust of 15-22 ft/s in the slowest turn
-//!   carries the follower past a target fixed over the ground (24 frames lost, and 33 ft RMS
-//!   along the track over the last 20 s; with the pan's stops the target went behind the
-//!   camera and hundreds of frames were lost); a
+//!   carries the follower past a target fixed over the ground (4 frames lost, and 32 ft RMS
+//!   along the track over the last 20 s; 24 frames with legs that alternate in the turn,
+//!   hundreds with the pan's stops); a
 //!   target in the same air (`target.path = "in_air_mass"`, `target.gusts = "shared"`, the
 //!   filter's gust states set from the air's statistics) is carried too, and none is lost
 //!   (docs/findings.md, The target in the air mass). Over streams 1-60 in that world no
-//!   frame is lost and the worst RMS axis has a median of 3.1 ft; stream 28's is 5.51 ft,
+//!   frame is lost and the worst RMS axis has a median of 3.1 ft; stream 28's is 5.12 ft,
 //!   over the 5 (one of the four of 60 that miss it), so it is held under 6.5 ft.
 //! - stream 37: in the slowest turn the target stands 15-22° from the pan's axis, where the
 //!   pan turns fastest for the line of sight (the keyhole). At 101 s the pan command jumps
@@ -104,7 +104,7 @@ fn a_target_in_the_same_air_is_not_overtaken_in_a_tailwind_gust() {
     let over_ground = moderate(28, &energy);
     let s = &over_ground.summary;
     assert!(
-        s.lost_frames >= 10,
+        s.lost_frames >= 2,
         "over the ground: {} lost",
         s.lost_frames
     );
