@@ -75,19 +75,19 @@ pub fn weave_side(flown_s: f64, weave_period_s: f64) -> f64 {
 /// kept until the follower is `half_width_ft` to that side of the slot's line
 /// (`cross_track_ft`, positive right of the target's estimated track), then reversed; while
 /// the target turns at `outside_turn_rps` or faster (`turn_rate_rps`, positive to the right)
-/// it is the outside of the turn, without reversal (0: never).
+/// the side is the turn's outside, whatever the offset (`outside_turn_rps` 0: never).
 pub fn slot_weave_side(
     side: f64,
     cross_track_ft: f64,
     turn_rate_rps: f64,
     geometry: &WeaveGeometry,
 ) -> f64 {
-    let h = geometry.half_width_ft;
+    let half_width_ft = geometry.half_width_ft;
     if geometry.outside_turn_rps > 0.0 && turn_rate_rps.abs() >= geometry.outside_turn_rps {
         -turn_rate_rps.signum()
-    } else if side > 0.0 && cross_track_ft > h {
+    } else if side > 0.0 && cross_track_ft > half_width_ft {
         -1.0
-    } else if side < 0.0 && cross_track_ft < -h {
+    } else if side < 0.0 && cross_track_ft < -half_width_ft {
         1.0
     } else {
         side

@@ -194,7 +194,7 @@ pub struct AutopilotSection {
     pub weave_lead_ft: f64,
     /// S-turns by geometry in a turn: from this turn rate of the target, °/s (from the
     /// estimate, ω = (d̂ × â)·z / ‖d̂_h‖²), every leg is flown to the outside of its turn and
-    /// none back across the slot's line (0: the legs alternate as on a straight track). A
+    /// is not reversed at the half width (0: the legs alternate as on a straight track). A
     /// leg's swing reaches the turn radius at the floor, R = V_min² / (g tan φ_max), 66 ft at
     /// 35 ft/s and 30°, and on the inside of a turn of rate ω shortens the follower's path by
     /// ω R ft/s: in a tailwind at the target's slowest that carried followers ahead of the
