@@ -169,7 +169,7 @@ fn through_the_slowest_turn_in_a_tailwind(outside_turn_dps: &str) -> (f64, u64) 
 }
 
 /// Invariant: in the target's turn the legs keep to its outside, where the turn lengthens
-/// the follower's path, and none comes back across the track ahead of the target. Stream 4
+/// the follower's path, and the follower keeps clear of the target. Stream 4
 /// in the wind to the west (the target at its slowest, 35 ft/s over the ground, turning
 /// left at 6 °/s, the follower at its 35 ft/s floor with 15 ft/s behind it): alternating
 /// legs swing 65 ft to the inside, come 18 ft ahead of the target and pass 7.6 ft from it,

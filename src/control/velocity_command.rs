@@ -19,7 +19,8 @@
 //!   which keeps the commanded speed along the course; `weave_half_width_ft` alternates the
 //!   side by geometry instead ([`slot_weave_side`]), reversing when the follower is that far
 //!   off the slot's line (both loops; the clock's S-turns are the Chapter 7 loop's only),
-//!   and in a turn of the target's from `weave_outside_turn_dps` keeping to its outside.
+//!   and, while the target turns at `weave_outside_turn_dps` or faster, keeps every leg to
+//!   the outside of that turn.
 //!   A side of 0 flies no S-turn: the follower sends it while its slot lies beside the target
 //!   ([`crate::follower::SlotLine::behind_the_target`]).
 //!   By geometry, `weave_deficit_fps` leaves a command up to that much slower than the

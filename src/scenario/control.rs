@@ -193,14 +193,16 @@ pub struct AutopilotSection {
     /// 4-15 frames on two (docs/findings.md, Path stretching with a lead budget).
     pub weave_lead_ft: f64,
     /// S-turns by geometry in a turn: from this turn rate of the target, °/s (from the
-    /// estimate, ω = (d̂ × â)·z / ‖d̂_h‖²), every leg is flown to the outside of its turn and
-    /// is not reversed at the half width (0: the legs alternate as on a straight track). A
-    /// leg's swing reaches the turn radius at the floor, R = V_min² / (g tan φ_max), 66 ft at
-    /// 35 ft/s and 30°, and on the inside of a turn of rate ω shortens the follower's path by
-    /// ω R ft/s: in a tailwind at the target's slowest that carried followers ahead of the
-    /// target and back across its track within 8 ft of it (docs/findings.md, Legs outside
-    /// the turn). Choice: 1.72 °/s (0.03 rad/s), where ω R is 2 ft/s, the deficit the slot
-    /// accepts in the energy-control measurements (`weave_deficit_fps`).
+    /// estimate, ω = (d̂ × â)·z / ‖d̂_h‖²), every leg is flown to the outside of the target's
+    /// turn and is not reversed at the half width (0: the legs alternate as on a straight
+    /// track). A leg's swing reaches the turn radius at the floor, R = V_min² / (g tan φ_max),
+    /// 66 ft at 35 ft/s and 30°, and on the inside of a turn of rate ω lowers the speed the
+    /// follower needs along the track by up to ω R: in a tailwind at the target's slowest,
+    /// such inside legs carried followers ahead of the target and back across its track
+    /// within 8 ft of it (docs/findings.md, Legs outside the turn). Choice: 1.72 °/s (0.03
+    /// rad/s), where ω R is 2 ft/s, the deficit the slot accepts in the energy-control
+    /// measurements (`weave_deficit_fps`), for the default floor and bank limit; it is not
+    /// recomputed when those keys change.
     pub weave_outside_turn_dps: f64,
     /// Lowest airspeed command, ft/s: 1.25 times the stall speed of the seed follower
     /// (C_L,max ≈ 1.9 at the stall blend's 27° gives V_s ≈ 28 ft/s at sea level), just below
