@@ -174,8 +174,10 @@ fn through_the_slowest_turn_in_a_tailwind(outside_turn_dps: &str) -> (f64, u64) 
 /// left at 6 °/s, the follower at its 35 ft/s floor with 15 ft/s behind it): alternating
 /// legs swing 65 ft to the inside, come 18 ft ahead of the target and pass 7.6 ft from it,
 /// losing 24 frames; outside the turn the follower keeps 28.9 ft off and loses none
-/// (measured; over streams 1-10 the nearest approach after 30 s has a median of 27.8 ft
-/// against 13.7, docs/findings.md, Legs outside the turn).
+/// (measured). Over streams 1-10 the nearest approach in the same 90-108 s has a median of
+/// 27.8 ft and a least of 24.5 ft outside the turn, 13.8 and 7.3 ft alternating: the 14 ft
+/// bar is below every stream's nearest approach outside the turn and above half of them
+/// alternating (docs/findings.md, Legs outside the turn).
 #[test]
 fn in_a_tailwind_turn_the_legs_keep_outside_it() {
     let (outside_ft, outside_lost) = through_the_slowest_turn_in_a_tailwind("1.72");
