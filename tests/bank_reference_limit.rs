@@ -12,27 +12,31 @@
 //! command clamp: with the 0.06 brake 19 against 17 and 33 against 28; with 0.18, 20 against
 //! 15 and 35 against 27, but seed 28 then leaves the slot by 106 ft with the reference held
 //! (docs/findings.md, The speed brake's size, and the bank reference, in moderate air).
+//! The run flies the Chapter 7 loop formation.toml flew then (`common::FORMATION_CHAPTER7_LOOP`):
+//! on its energy loop, whose S-turns by geometry reverse at a half width, not on a clock,
+//! stream 17 holds every axis under 2.1 ft with either limit (measured), so it would test
+//! nothing there.
 
-use crate::common::{run, worst_axis_ft};
+use crate::common::{FORMATION_CHAPTER7_LOOP, run, worst_axis_ft};
 use wingman::output::RunReport;
 use wingman::output::summary::RunStatus;
 
-/// formation.toml with the target aircraft on the seed's profile and the study's estimator,
-/// stream 17, with the bank limit acting where `limit` says.
+/// formation.toml on the Chapter 7 loop with the target aircraft on the seed's profile and
+/// the study's estimator, stream 17, with the bank limit acting where `limit` says.
 fn slowest_turn(limit: &str) -> RunReport {
-    run(
-        "formation",
-        &[
-            "output.frames_every=0",
-            "run.seed=17",
-            "target.model=\"aircraft\"",
-            "estimator.target_gust_sigma_fps=0.8",
-            "estimator.target_gust_time_s=1.5",
-            "estimator.target_bank=\"measured\"",
-            "estimator.jerk_psd=0.1",
-            &format!("autopilot.bank_limit=\"{limit}\""),
-        ],
-    )
+    let bank_limit = format!("autopilot.bank_limit=\"{limit}\"");
+    let mut overrides = FORMATION_CHAPTER7_LOOP.to_vec();
+    overrides.extend([
+        "output.frames_every=0",
+        "run.seed=17",
+        "target.model=\"aircraft\"",
+        "estimator.target_gust_sigma_fps=0.8",
+        "estimator.target_gust_time_s=1.5",
+        "estimator.target_bank=\"measured\"",
+        "estimator.jerk_psd=0.1",
+        &bank_limit,
+    ]);
+    run("formation", &overrides)
 }
 
 /// The largest |φ_c| of the bank reference over the run, deg.

@@ -1,32 +1,34 @@
 //! S-turns by geometry (`autopilot.weave_half_width_ft`; docs/findings.md, An energy outer
-//! loop): formation.toml with the energy outer loop behind a target flying straight north at
-//! 30 ft/s, below the follower's slowest airspeed command (35 ft/s), in light turbulence.
+//! loop): formation.toml (the energy outer loop, S-turns by geometry) behind a target flying
+//! straight north at 30 ft/s, below the follower's slowest airspeed command (35 ft/s), in
+//! light turbulence.
 //!
 //! Invariant: with the S-turns placed about the slot's line and reversing 10 ft off it, the
 //! follower never overtakes the target (the target at least 5 ft ahead of it along the track
 //! at every logged instant after 20 s) and the along-track error stays within ±30 ft;
-//! without them the same follower overtakes. (Measured over streams 1-4: the target at least
-//! 6.4-32 ft ahead, along-track error within 24-27 ft; docs/findings.md, An energy outer
-//! loop.)
+//! without them the same follower overtakes. (Measured over streams 1-10 with
+//! formation.toml's S-turns, 2 ft/s accepted within 5 ft of lead: the target at least
+//! 0.5-31.7 ft ahead, median 15.9 (stream 1: 14.3), the along-track error within 20.6-31.6
+//! ft. Stream 2 is the exception to both bars: a leg's swing brings the follower level with
+//! the target's position along the track, 0.5 ft behind it, and it loses 18 frames; with
+//! every deficit stretched it comes as near, 0.4 ft, and loses 5. A 30 ft/s target asks for
+//! 5 ft/s below the floor, more than twice the profile's slowest turn does; docs/findings.md,
+//! An energy outer loop.)
 
 use crate::common;
 
 use wingman::output::RunReport;
 
-/// formation.toml with the energy loop behind the 30 ft/s target for 60 s, with S-turns of
-/// half width `half_width_ft` (0: none).
-fn behind_a_slow_target(half_width_ft: &str) -> RunReport {
-    common::run(
-        "formation",
-        &[
-            "output.frames_every=0",
-            "run.duration_s=60",
-            "target.motion=straight",
-            "target.straight_velocity_fps=[30.0, 0.0, 0.0]",
-            "autopilot.outer_loop=energy",
-            &format!("autopilot.weave_half_width_ft={half_width_ft}"),
-        ],
-    )
+/// formation.toml behind the 30 ft/s target for 60 s, with `overrides`.
+fn behind_a_slow_target(overrides: &[&str]) -> RunReport {
+    let mut all = vec![
+        "output.frames_every=0",
+        "run.duration_s=60",
+        "target.motion=straight",
+        "target.straight_velocity_fps=[30.0, 0.0, 0.0]",
+    ];
+    all.extend_from_slice(overrides);
+    common::run("formation", &all)
 }
 
 /// The largest |along-track error| (R - R_c, north) after 20 s, ft.
@@ -38,7 +40,7 @@ fn along_track_error_ft(report: &RunReport) -> f64 {
 
 #[test]
 fn s_turns_by_geometry_hold_the_slot_behind_a_slower_target() {
-    let stretched = behind_a_slow_target("10.0");
+    let stretched = behind_a_slow_target(&[]);
     let (ahead_ft, error_ft) = (
         common::least_ahead_ft(&stretched, 20.0),
         along_track_error_ft(&stretched),
@@ -49,7 +51,10 @@ fn s_turns_by_geometry_hold_the_slot_behind_a_slower_target() {
     assert!(ahead_ft > 5.0, "the follower came within {ahead_ft:.1} ft");
     assert!(error_ft < 30.0, "along-track error {error_ft:.1} ft");
 
-    let straight = behind_a_slow_target("0.0");
+    let straight = behind_a_slow_target(&[
+        "autopilot.weave_half_width_ft=0",
+        "autopilot.weave_deficit_fps=0",
+    ]);
     let ahead_ft = common::least_ahead_ft(&straight, 20.0);
     println!("without: the target at least {ahead_ft:.1} ft ahead");
     assert!(
@@ -105,19 +110,16 @@ fn a_follower_beside_its_target_keeps_clear_of_it() {
     assert_eq!(report.summary.lost_frames, 0);
 }
 
-/// formation.toml with the energy loop and 10 ft S-turns by geometry in light air, stream
-/// 27, the speed deficit a leg leaves to the along-track error `deficit_fps` (lead budget
-/// 5 ft): its largest |R - R_c| after 30 s, ft.
+/// formation.toml (the energy loop, 10 ft S-turns by geometry) in light air, stream 27, the
+/// speed deficit a leg leaves to the along-track error `deficit_fps` (lead budget 5 ft): its
+/// largest |R - R_c| after 30 s, ft.
 fn largest_slot_error_ft(deficit_fps: &str) -> f64 {
     let report = common::run(
         "formation",
         &[
             "output.frames_every=0",
             "run.seed=27",
-            "autopilot.outer_loop=energy",
-            "autopilot.weave_half_width_ft=10.0",
             &format!("autopilot.weave_deficit_fps={deficit_fps}"),
-            "autopilot.weave_lead_ft=5.0",
         ],
     );
     assert_eq!(report.summary.lost_frames, 0);
@@ -143,8 +145,8 @@ fn a_lead_budget_keeps_a_short_deficit_off_the_legs() {
     assert!(stretched > 15.0, "without: {stretched:.1} ft");
 }
 
-/// formation.toml with the energy loop and S-turns by geometry (half width 10 ft, 2 ft/s
-/// accepted within 5 ft of lead) in a 15 ft/s wind to the west, stream 4, to 108 s, the
+/// formation.toml (the energy loop, S-turns by geometry of half width 10 ft, 2 ft/s accepted
+/// within 5 ft of lead) in a 15 ft/s wind to the west, stream 4, to 108 s, the
 /// legs kept outside the target's turn from `outside_turn_dps` (0: never): the nearest
 /// approach to the target after 90 s, ft, and the frames lost.
 fn through_the_slowest_turn_in_a_tailwind(outside_turn_dps: &str) -> (f64, u64) {
@@ -155,10 +157,6 @@ fn through_the_slowest_turn_in_a_tailwind(outside_turn_dps: &str) -> (f64, u64) 
             "run.duration_s=108",
             "run.seed=4",
             "atmosphere.wind_ned_fps=[0.0, -15.0, 0.0]",
-            "autopilot.outer_loop=energy",
-            "autopilot.weave_half_width_ft=10.0",
-            "autopilot.weave_deficit_fps=2.0",
-            "autopilot.weave_lead_ft=5.0",
             &format!("autopilot.weave_outside_turn_dps={outside_turn_dps}"),
         ],
     );

@@ -1,7 +1,7 @@
 //! The platoon's speed brake (scenarios/platoon.toml, `follower.speed_brake_c_drag`;
 //! docs/findings.md, Group tracking, The brake behind a braking leader): formation.toml
-//! without S-turns or turbulence, its follower at its slot behind a target flying north at
-//! 60 ft/s, which at 30 s slows to 35 ft/s at up to 8 ft/s² (in the platoon's chase the
+//! on the platoon's loop (the Chapter 7 loop without S-turns) without turbulence, its
+//! follower at its slot behind a target flying north at 60 ft/s, which at 30 s slows to 35 ft/s at up to 8 ft/s² (in the platoon's chase the
 //! leaders slowed at up to 6.5 ft/s², and their followers flew into them), with the
 //! platoon's airspeed floor (33 ft/s), both read from platoon.toml.
 //!
@@ -28,19 +28,26 @@ const RUN_S: f64 = 55.0;
 /// The run behind the braking target, the follower's brake `brake_c_drag` and airspeed floor
 /// `floor_fps`.
 fn behind_a_braking_target(brake_c_drag: f64, floor_fps: f64) -> RunReport {
+    let (duration, velocity) = (
+        format!("run.duration_s={RUN_S}"),
+        format!("follower.initial_velocity_fps=[{FAST_FPS}, 0.0, 0.0]"),
+    );
+    let (floor, brake) = (
+        format!("autopilot.min_airspeed_cmd_fps={floor_fps}"),
+        format!("follower.speed_brake_c_drag={brake_c_drag}"),
+    );
     let mut scenario = common::load(
         "formation",
-        &[
+        &common::platoon_link_overrides(&[
             "output.frames_every=0",
-            &format!("run.duration_s={RUN_S}"),
+            &duration,
             "target.initial_position_ft=[32.0, 8.0, 0.0]",
             "target.accel_max_fps2=8.0",
-            &format!("follower.initial_velocity_fps=[{FAST_FPS}, 0.0, 0.0]"),
+            &velocity,
             "atmosphere.turbulence=off",
-            "autopilot.weave_period_s=0",
-            &format!("autopilot.min_airspeed_cmd_fps={floor_fps}"),
-            &format!("follower.speed_brake_c_drag={brake_c_drag}"),
-        ],
+            &floor,
+            &brake,
+        ]),
     );
     let waypoint = |north_ft: f64, speed_fps: f64| Waypoint {
         position_ft: [north_ft, 8.0, 0.0],

@@ -1,8 +1,9 @@
 //! The platoon's airspeed floor (scenarios/platoon.toml, `autopilot.min_airspeed_cmd_fps`;
-//! docs/findings.md, Group tracking, The speed floor in the slow turn): formation.toml without
-//! S-turns behind a target flying straight north at 35.4 ft/s, the seed profile's slowest,
-//! in a steady 2 ft/s tailwind without turbulence (the geometry alone: a gust's tailwind adds
-//! to the steady one, and the platoon's 60 streams measure that).
+//! docs/findings.md, Group tracking, The speed floor in the slow turn): formation.toml on the
+//! platoon's loop (the Chapter 7 loop without S-turns) behind a target flying straight north
+//! at 35.4 ft/s, the seed profile's slowest, in a steady 2 ft/s tailwind without turbulence
+//! (the geometry alone: a gust's tailwind adds to the steady one, and the platoon's 60
+//! streams measure that).
 //!
 //! Invariant: with the platoon's floor, 35 ft/s over the ground, the follower holds its
 //! 32 ft slot behind the target (at least 27 ft behind it along the track at every logged
@@ -18,21 +19,22 @@ use crate::common;
 use wingman::output::RunReport;
 use wingman::scenario::AutopilotSection;
 
-/// formation.toml without S-turns or turbulence behind the 35.4 ft/s target in a 2 ft/s
-/// tailwind for 75 s, with the airspeed floor `floor_fps`.
+/// formation.toml on the platoon's loop (the Chapter 7 loop without S-turns), without
+/// turbulence, behind the 35.4 ft/s target in a 2 ft/s tailwind for 75 s, with the airspeed
+/// floor `floor_fps`.
 fn behind_in_a_tailwind(floor_fps: f64) -> RunReport {
+    let floor = format!("autopilot.min_airspeed_cmd_fps={floor_fps}");
     common::run(
         "formation",
-        &[
+        &common::platoon_link_overrides(&[
             "output.frames_every=0",
             "run.duration_s=75",
             "target.motion=straight",
             "target.straight_velocity_fps=[35.4, 0.0, 0.0]",
             "atmosphere.wind_ned_fps=[2.0, 0.0, 0.0]",
             "atmosphere.turbulence=off",
-            "autopilot.weave_period_s=0",
-            &format!("autopilot.min_airspeed_cmd_fps={floor_fps}"),
-        ],
+            &floor,
+        ]),
     )
 }
 

@@ -28,6 +28,29 @@ pub fn assert_held_on_the_slot(s: &wingman::output::summary::Summary) {
     assert!(worst_axis_ft(s) < 3.0, "{:?}", s.rms_error_last20s_ft);
 }
 
+/// The Chapter 7 outer loop formation.toml flew until it took the energy loop: the seed's
+/// (7.1)-(7.3) with its climb and descent flags and 6 s S-turns on a clock. Tests of a
+/// mechanism measured on that loop, on streams chosen under it, fly it with these overrides,
+/// which reproduce that scenario's telemetry to the byte.
+pub const FORMATION_CHAPTER7_LOOP: [&str; 7] = [
+    "autopilot.outer_loop=\"chapter7\"",
+    "autopilot.weave_half_width_ft=0",
+    "autopilot.weave_deficit_fps=0",
+    "autopilot.weave_period_s=6",
+    "autopilot.climb_waits_for_speed=true",
+    "autopilot.descent_waits_for_speed=true",
+    "autopilot.limited_descent_keeps_horizontal_speed=true",
+];
+
+/// formation.toml's follower as platoon.toml's links fly it: the Chapter 7 loop of
+/// `FORMATION_CHAPTER7_LOOP` without S-turns, followed by `overrides`.
+pub fn platoon_link_overrides<'a>(overrides: &[&'a str]) -> Vec<&'a str> {
+    let mut all = FORMATION_CHAPTER7_LOOP.to_vec();
+    all.push("autopilot.weave_period_s=0");
+    all.extend_from_slice(overrides);
+    all
+}
+
 /// The repository root (where `scenarios/` lives).
 pub fn repo_root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
