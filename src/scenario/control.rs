@@ -153,15 +153,16 @@ pub struct AutopilotSection {
     /// air speed, V_c = ‖V_h‖ / cos γ_c (true), instead of its norm ‖V_F‖ (7.1) (false, the
     /// seed's). With the norm, a descent the airframe cannot fly (a sustained updraft holding
     /// it high) turns the commanded vertical speed into horizontal speed, and the follower
-    /// overtakes the target (the reason is in formation.toml). Climbs keep the norm: a
+    /// overtakes the target (docs/formation.md, On the Chapter 7 loop). Climbs keep the norm: a
     /// follower held low needs the speed (T ∝ V²; docs/findings.md, Flight-path limits).
     pub limited_descent_keeps_horizontal_speed: bool,
     /// The steepest descent keeps the deceleration the airspeed law asks for (true): above
     /// the commanded speed at idle the descent waits until the speed is there. With false (the
     /// limits of steady speed) a follower held high by an updraft and then let down dives at
-    /// the speed it has and overtakes the target (see formation.toml). The deceleration is the one the airspeed law asks for toward the command's
-    /// norm, also when `limited_descent_keeps_horizontal_speed` flies less, so with both the
-    /// excess speed goes only a little sooner (tests/control_flight.rs).
+    /// the speed it has and overtakes the target (docs/formation.md, On the Chapter 7 loop).
+    /// The deceleration is the one the airspeed law asks for toward the command's norm, also
+    /// when `limited_descent_keeps_horizontal_speed` flies less, so with both the excess speed
+    /// goes only a little sooner (tests/control_flight.rs).
     pub descent_waits_for_speed: bool,
     /// S-turns, s per pair of legs (0: none, the seed's). When the commanded horizontal air
     /// speed is below the slowest the aircraft flies, it flies that speed off the commanded
