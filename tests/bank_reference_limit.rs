@@ -5,19 +5,19 @@
 //! its clock's S-turns with the seed's 30° clamp on the raw command, which the roll
 //! prefilter's reversals overshot to 46°; at 34 ft/s that turn needs more lift than α_max
 //! gives, the follower sank 80-85 ft below its slot and was back on it only inside the last
-//! 20 s (RMS [5.6, 16.9, 24.6] ft with the 0.06 speed brake formation.toml had then, [2.7,
-//! 6.9, 9.8] ft with its 0.18 now).
+//! 20 s (RMS [5.6, 16.9, 24.6] ft with the 0.06 speed brake formation.toml had then, [2.6,
+//! 7.3, 10.8] ft with its 0.18 now).
 //! With the reference held inside 30° the run holds every axis under 3 ft. Measured over
 //! run.seed 1-20 and 1-40, runs with every axis under 3 ft, the reference held against the
 //! command clamp: with the 0.06 brake 19 against 17 and 33 against 28; with 0.18, 20 against
 //! 15 and 35 against 27, but seed 28 then leaves the slot by 106 ft with the reference held
 //! (docs/findings.md, The speed brake's size, and the bank reference, in moderate air).
-//! The run flies the Chapter 7 loop formation.toml flew then (`common::FORMATION_CHAPTER7_LOOP`):
+//! The run flies the Chapter 7 loop formation.toml flew then (`common::formation_chapter7_overrides`):
 //! on its energy loop, whose S-turns by geometry reverse at a half width, not on a clock,
 //! stream 17 holds every axis under 2.1 ft with either limit (measured), so it would test
 //! nothing there.
 
-use crate::common::{FORMATION_CHAPTER7_LOOP, run, worst_axis_ft};
+use crate::common::{formation_chapter7_overrides, run, worst_axis_ft};
 use wingman::output::RunReport;
 use wingman::output::summary::RunStatus;
 
@@ -25,8 +25,7 @@ use wingman::output::summary::RunStatus;
 /// the study's estimator, stream 17, with the bank limit acting where `limit` says.
 fn slowest_turn(limit: &str) -> RunReport {
     let bank_limit = format!("autopilot.bank_limit=\"{limit}\"");
-    let mut overrides = FORMATION_CHAPTER7_LOOP.to_vec();
-    overrides.extend([
+    let overrides = formation_chapter7_overrides(&[
         "output.frames_every=0",
         "run.seed=17",
         "target.model=\"aircraft\"",

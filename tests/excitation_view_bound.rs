@@ -9,7 +9,7 @@
 //!   streams 1-10 (60 s) the worst axis reads a median 2.5 ft bounded (at most 4.1, stream 2)
 //!   against 5.7 unbounded (at least 4.5), no frame lost either way (docs/findings.md, The
 //!   excitation and the field of view). These runs fly the Chapter 7 loop formation.toml
-//!   flew then (`common::FORMATION_CHAPTER7_LOOP`): its energy loop flies less of the
+//!   flew then (`common::formation_chapter7_overrides`): its energy loop flies less of the
 //!   unbounded swing (stream 3: 3.6 ft on the worst axis, measured), short of a clear bar.
 //! - The relative law formation.toml flies (a = k_σ σ_b / b̂ in feet; stream 5, the energy
 //!   loop): the swing follows the relative uncertainty alone: the largest |R*_c - R_c| after
@@ -21,7 +21,6 @@
 //!   under 2.6 ft on streams 1-5.)
 
 use crate::common;
-use crate::common::FORMATION_CHAPTER7_LOOP;
 
 use wingman::output::RunReport;
 use wingman::output::summary::RunStatus;
@@ -49,7 +48,7 @@ fn run_20ft(seed: u64, duration_s: f64, extra: &[&str]) -> RunReport {
 
 #[test]
 fn a_large_target_is_kept_in_view_by_the_bound() {
-    let scaled_on_chapter7 = [&FORMATION_CHAPTER7_LOOP[..], &SCALED_LAW[..]].concat();
+    let scaled_on_chapter7 = common::formation_chapter7_overrides(&SCALED_LAW);
     let bounded = run_20ft(3, 60.0, &scaled_on_chapter7).summary;
     assert_eq!(
         bounded.status,

@@ -10,7 +10,7 @@
 //! flying the profile through the air mass (`target.path = "in_air_mass"`) it asks for the
 //! profile's own speeds and the slot holds (docs/findings.md, The target in the air mass).
 //! The over-ground run flies the Chapter 7 loop formation.toml flew until its energy loop
-//! (`common::FORMATION_CHAPTER7_LOOP`; over 3 ft on an axis, measured 10.8 ft; over streams
+//! (`common::formation_chapter7_overrides`; over 3 ft on an axis, measured 10.8 ft; over streams
 //! 1-5 2 of 5 under 3 ft, worst axis up to 13.8 ft). The energy loop's S-turns by geometry
 //! take up most of the surplus over the ground: 4 of streams 1-5 under 3 ft, stream 1 3.49 ft
 //! along the track, too near the bar to test. In the air mass, on the energy loop, 5 of 5
@@ -44,7 +44,7 @@ fn a_crosswind_from_the_west_is_flown_with_the_airspeed_it_needs() {
 #[test]
 fn a_crosswind_from_the_east_is_held_behind_a_target_in_the_air_mass() {
     let from_the_east = ["atmosphere.wind_ned_fps=[0.0, -15.0, 0.0]", "run.seed=1"];
-    let over_ground = run_in_wind(&[&from_the_east[..], &common::FORMATION_CHAPTER7_LOOP].concat());
+    let over_ground = run_in_wind(&common::formation_chapter7_overrides(&from_the_east));
     assert!(
         common::worst_axis_ft(&over_ground) > 3.0,
         "over the ground: {:?}",

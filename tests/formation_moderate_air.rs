@@ -1,7 +1,7 @@
 //! formation.toml in moderate turbulence, the keys that keep it (docs/findings.md, The
 //! speed brake's size, and the bank reference, in moderate air). Streams 29, 21, 37 and 86
 //! were found on the Chapter 7 loop formation.toml flew until it took the energy loop, and
-//! their tests fly that loop (`common::FORMATION_CHAPTER7_LOOP`): on the energy loop none of
+//! their tests fly that loop (`common::formation_chapter7_overrides`): on the energy loop none of
 //! the four shows its mechanism (measured: stream 29 with the 0.06 brake, 21 with the
 //! command clamp and 37 at 120 °/s with the stops lose no frame; 86 with the stops loses 6
 //! at 107 s, after the pass the test is about), so they would test nothing there.
@@ -62,9 +62,7 @@ fn moderate(seed: u32, overrides: &[&str]) -> RunReport {
 
 /// formation.toml on the Chapter 7 loop in moderate turbulence on `seed`, with `overrides`.
 fn moderate_chapter7(seed: u32, overrides: &[&str]) -> RunReport {
-    let mut all = common::FORMATION_CHAPTER7_LOOP.to_vec();
-    all.extend_from_slice(overrides);
-    moderate(seed, &all)
+    moderate(seed, &common::formation_chapter7_overrides(overrides))
 }
 
 /// The first lost frame's time, s (`None`: no frame lost).

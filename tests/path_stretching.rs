@@ -79,17 +79,6 @@ fn beside_the_target(seed: u64) -> RunReport {
     )
 }
 
-/// The least distance between follower and target over the logged rows with t ≥ `from_s`,
-/// ft.
-fn nearest_approach_ft(report: &RunReport, from_s: f64) -> f64 {
-    report
-        .logged
-        .iter()
-        .filter(|s| s.t_s >= from_s)
-        .map(|s| s.relative_ned_ft.norm())
-        .fold(f64::INFINITY, f64::min)
-}
-
 /// Invariant: a follower whose slot lies beside the target flies no S-turns (a leg across
 /// the slot's line carries it under the target: the clock's S-turns brought it within
 /// 9-14 ft of the target on streams 3-5 and lost the target on stream 2; docs/findings.md,
@@ -98,7 +87,7 @@ fn nearest_approach_ft(report: &RunReport, from_s: f64) -> f64 {
 #[test]
 fn a_follower_beside_its_target_keeps_clear_of_it() {
     let report = beside_the_target(3);
-    let nearest_ft = nearest_approach_ft(&report, 30.0);
+    let nearest_ft = common::nearest_approach_ft(&report, 30.0);
     println!(
         "nearest {nearest_ft:.1} ft after 30 s, {} frames lost",
         report.summary.lost_frames
@@ -161,7 +150,7 @@ fn through_the_slowest_turn_in_a_tailwind(outside_turn_dps: &str) -> (f64, u64) 
         ],
     );
     (
-        nearest_approach_ft(&report, 90.0),
+        common::nearest_approach_ft(&report, 90.0),
         report.summary.lost_frames,
     )
 }

@@ -9,6 +9,7 @@ use wingman::output::{RunReport, run_to_directory};
 use wingman::scenario::Scenario;
 use wingman::sensing::FrameRecord;
 use wingman::sensing::transform::scaled_relative_position;
+use wingman::sim::Snapshot;
 use wingman::study::{Progress, SweepOptions};
 use wingman::vision::{BlobStatus, ImageMeasurement};
 
@@ -28,27 +29,37 @@ pub fn assert_held_on_the_slot(s: &wingman::output::summary::Summary) {
     assert!(worst_axis_ft(s) < 3.0, "{:?}", s.rms_error_last20s_ft);
 }
 
-/// The Chapter 7 outer loop formation.toml flew until it took the energy loop: the seed's
-/// (7.1)-(7.3) with its climb and descent flags and 6 s S-turns on a clock. Tests of a
-/// mechanism measured on that loop, on streams chosen under it, fly it with these overrides,
-/// which reproduce that scenario's telemetry to the byte.
-pub const FORMATION_CHAPTER7_LOOP: [&str; 7] = [
+/// The Chapter 7 outer loop formation.toml flew until it took the energy loop, but its
+/// S-turns: the seed's (7.1)-(7.3) with its climb and descent flags, no S-turns by geometry.
+const CHAPTER7_FLAGS: [&str; 6] = [
     "autopilot.outer_loop=\"chapter7\"",
     "autopilot.weave_half_width_ft=0",
     "autopilot.weave_deficit_fps=0",
-    "autopilot.weave_period_s=6",
     "autopilot.climb_waits_for_speed=true",
     "autopilot.descent_waits_for_speed=true",
     "autopilot.limited_descent_keeps_horizontal_speed=true",
 ];
 
-/// formation.toml's follower as platoon.toml's links fly it: the Chapter 7 loop of
-/// `FORMATION_CHAPTER7_LOOP` without S-turns, followed by `overrides`.
-pub fn platoon_link_overrides<'a>(overrides: &[&'a str]) -> Vec<&'a str> {
-    let mut all = FORMATION_CHAPTER7_LOOP.to_vec();
-    all.push("autopilot.weave_period_s=0");
+/// `CHAPTER7_FLAGS` with the clock's S-turns `weave_period`, followed by `overrides`.
+fn chapter7_loop<'a>(weave_period: &'a str, overrides: &[&'a str]) -> Vec<&'a str> {
+    let mut all = CHAPTER7_FLAGS.to_vec();
+    all.push(weave_period);
     all.extend_from_slice(overrides);
     all
+}
+
+/// formation.toml on the Chapter 7 loop it flew until it took the energy loop (its flags and
+/// 6 s S-turns on a clock), followed by `overrides`. Tests of a mechanism measured on that
+/// loop, on streams chosen under it, fly it: these overrides reproduce that scenario's
+/// telemetry to the byte.
+pub fn formation_chapter7_overrides<'a>(overrides: &[&'a str]) -> Vec<&'a str> {
+    chapter7_loop("autopilot.weave_period_s=6", overrides)
+}
+
+/// formation.toml's follower as platoon.toml's links fly it: the Chapter 7 loop without
+/// S-turns, followed by `overrides`.
+pub fn platoon_link_overrides<'a>(overrides: &[&'a str]) -> Vec<&'a str> {
+    chapter7_loop("autopilot.weave_period_s=0", overrides)
 }
 
 /// The repository root (where `scenarios/` lives).
@@ -85,11 +96,22 @@ pub fn rms(values: impl Iterator<Item = f64>) -> f64 {
 /// north component) over the logged rows with t ≥ `from_s`, ft: negative once the follower
 /// has overtaken it.
 pub fn least_ahead_ft(report: &RunReport, from_s: f64) -> f64 {
+    least_since(report, from_s, |s| s.relative_ned_ft[0])
+}
+
+/// The least distance between follower and target over the logged rows with t ≥ `from_s`,
+/// ft.
+pub fn nearest_approach_ft(report: &RunReport, from_s: f64) -> f64 {
+    least_since(report, from_s, |s| s.relative_ned_ft.norm())
+}
+
+/// The least of `value` over the logged rows with t ≥ `from_s`.
+fn least_since(report: &RunReport, from_s: f64, value: impl Fn(&Snapshot) -> f64) -> f64 {
     report
         .logged
         .iter()
         .filter(|s| s.t_s >= from_s)
-        .map(|s| s.relative_ned_ft[0])
+        .map(value)
         .fold(f64::INFINITY, f64::min)
 }
 
