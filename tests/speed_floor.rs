@@ -9,7 +9,7 @@
 //! 32 ft slot behind the target (at least 27 ft behind it along the track at every logged
 //! instant after 30 s); with the default floor, 37 ft/s over the ground, it overtakes the
 //! target. (Measured: the platoon's 33 ft/s keeps the target at least 31.9 ft ahead; 35 ft/s
-//! ends 13.3 ft past it. Without turbulence or pixel noise the run is the same on every
+//! ends 19.3 ft past it. Without turbulence or pixel noise the run is the same on every
 //! `run.seed`: streams 1 and 2 give these figures to the last digit. With light turbulence
 //! and a 3 ft/s tailwind the gusts decide instead: over streams 1-10 the least distance after
 //! 30 s is a median 0.1 ft (worst -95.9) with 33 ft/s, -42.8 ft (worst -105.7) with 35.)
