@@ -2,7 +2,7 @@
 //! follower looks its navigation up at the stamp, so only the relative motion over the error
 //! (a few ft/s times milliseconds) reaches the estimator. formation.toml with 5 ms of stamp
 //! jitter (and no other camera-geometry error) ends with b̂ within 0.2% of the same run
-//! without jitter (measured: 7.9287 against 7.9354 ft on run.seed 1); when the stamp moved
+//! without jitter (measured: 7.9306 against 7.9354 ft on run.seed 1); when the stamp moved
 //! the time alone, the 0.25 ft per frame of own-motion error read b̂ 8.022 ft, 1.1% high.
 
 use crate::common::run;
