@@ -12,10 +12,10 @@
 //! command clamp: with the 0.06 brake 19 against 17 and 33 against 28; with 0.18, 20 against
 //! 15 and 35 against 27, but seed 28 then leaves the slot by 106 ft with the reference held
 //! (docs/findings.md, The speed brake's size, and the bank reference, in moderate air).
-//! The run flies the Chapter 7 loop formation.toml flew then (`common::formation_chapter7_overrides`):
-//! on its energy loop, whose S-turns by geometry reverse at a half width, not on a clock,
-//! stream 17 holds every axis under 2.1 ft with either limit (measured), so it would test
-//! nothing there.
+//! The run flies the Chapter 7 loop formation.toml flew then
+//! (`common::formation_chapter7_overrides`): on its energy loop, whose S-turns by geometry
+//! reverse at a half width, not on a clock, stream 17 holds every axis under 2.1 ft with
+//! either limit (measured), so it would test nothing there.
 
 use crate::common::{formation_chapter7_overrides, run, worst_axis_ft};
 use wingman::output::RunReport;

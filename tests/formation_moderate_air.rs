@@ -70,7 +70,7 @@ fn first_loss_s(report: &RunReport) -> Option<f64> {
     report.summary.loss_episodes.first().map(|e| e.start_s)
 }
 
-/// The shipped run keeps the target and the slot (every axis under 5 ft RMS, no frame lost).
+/// The run keeps the target and the slot (every axis under 5 ft RMS, no frame lost).
 fn assert_kept(report: &RunReport) {
     let s = &report.summary;
     assert_eq!(s.status, RunStatus::Completed, "{:?}", s.message);
@@ -81,15 +81,15 @@ fn assert_kept(report: &RunReport) {
 /// On `seed`, the scenario on the Chapter 7 loop keeps the target and the slot, and with
 /// `without` (the key set back) the target is first lost within `lost_within_s`.
 fn assert_the_key_keeps_the_target(seed: u32, without: &str, lost_within_s: Range<f64>) {
-    let shipped = moderate_chapter7(seed, &[]);
+    let with_key = moderate_chapter7(seed, &[]);
     let reverted = moderate_chapter7(seed, &[without]);
     println!(
-        "stream {seed}: lost {} shipped, {} with {without} (first at {:?} s)",
-        shipped.summary.lost_frames,
+        "stream {seed}: lost {} with the key, {} with {without} (first at {:?} s)",
+        with_key.summary.lost_frames,
         reverted.summary.lost_frames,
         first_loss_s(&reverted)
     );
-    assert_kept(&shipped);
+    assert_kept(&with_key);
     let lost_at_s = first_loss_s(&reverted).expect("the target is lost without the key");
     assert!(lost_within_s.contains(&lost_at_s), "lost at {lost_at_s} s");
 }
@@ -145,10 +145,10 @@ fn servos_at_300_dps_follow_the_pan_near_its_axis() {
 #[test]
 fn a_pan_without_stops_turns_through_the_back() {
     let through_the_turn = "run.duration_s=108";
-    let shipped = moderate_chapter7(86, &[through_the_turn]);
+    let slip_ring = moderate_chapter7(86, &[through_the_turn]);
     let stopped = moderate_chapter7(86, &[through_the_turn, PAN_STOPS]);
-    let (slip_ring_lost, stops_lost) = (shipped.summary.lost_frames, stopped.summary.lost_frames);
+    let (slip_ring_lost, stops_lost) = (slip_ring.summary.lost_frames, stopped.summary.lost_frames);
     println!("stream 86 to 108 s: {slip_ring_lost} frames lost without stops, {stops_lost} with");
-    assert!(slip_ring_lost <= 5, "{:?}", shipped.summary.loss_episodes);
+    assert!(slip_ring_lost <= 5, "{:?}", slip_ring.summary.loss_episodes);
     assert!(stops_lost >= 25, "{:?}", stopped.summary.loss_episodes);
 }

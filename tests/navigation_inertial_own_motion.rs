@@ -4,8 +4,8 @@
 //! fixes' noise and slow-error steps enter as errors in the regressor and dilute β̂), and
 //! 7.81-8.36 ft with `estimator.own_motion = "inertial"` (measured on run.seed 1-8 and 11-13
 //! on the energy loop, median 7.95 ft; 7.85-8.35 and 7.92 on the Chapter 7 loop). The test
-//! flies two of them against a 6% bound (stream 11 reads 8.36 ft, 4.5% high; 12 7.95). Under perfect navigation the
-//! choice changes nothing.
+//! flies two of them against a 6% bound (stream 11 reads 8.36 ft, 4.5% high; 12 7.95).
+//! Under perfect navigation the choice changes nothing.
 
 use crate::common::run;
 

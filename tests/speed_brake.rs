@@ -1,9 +1,10 @@
 //! The platoon's speed brake (scenarios/platoon.toml, `follower.speed_brake_c_drag`;
 //! docs/findings.md, Group tracking, The brake behind a braking leader): formation.toml
 //! on the platoon's loop (the Chapter 7 loop without S-turns) without turbulence, its
-//! follower at its slot behind a target flying north at 60 ft/s, which at 30 s slows to 35 ft/s at up to 8 ft/s² (in the platoon's chase the
-//! leaders slowed at up to 6.5 ft/s², and their followers flew into them), with the
-//! platoon's airspeed floor (33 ft/s), both read from platoon.toml.
+//! follower at its slot behind a target flying north at 60 ft/s, which at 30 s slows to
+//! 35 ft/s at up to 8 ft/s² (in the platoon's chase the leaders slowed at up to 6.5 ft/s²,
+//! and their followers flew into them), with the platoon's airspeed floor (33 ft/s), both
+//! read from platoon.toml.
 //!
 //! Invariant: with the platoon's brake the follower stops behind the braking target at least
 //! a third of its 32 ft slot from it; with 0.06 (the platoon's brake before) it comes closer.
@@ -28,14 +29,10 @@ const RUN_S: f64 = 55.0;
 /// The run behind the braking target, the follower's brake `brake_c_drag` and airspeed floor
 /// `floor_fps`.
 fn behind_a_braking_target(brake_c_drag: f64, floor_fps: f64) -> RunReport {
-    let (duration, velocity) = (
-        format!("run.duration_s={RUN_S}"),
-        format!("follower.initial_velocity_fps=[{FAST_FPS}, 0.0, 0.0]"),
-    );
-    let (floor, brake) = (
-        format!("autopilot.min_airspeed_cmd_fps={floor_fps}"),
-        format!("follower.speed_brake_c_drag={brake_c_drag}"),
-    );
+    let duration = format!("run.duration_s={RUN_S}");
+    let velocity = format!("follower.initial_velocity_fps=[{FAST_FPS}, 0.0, 0.0]");
+    let floor = format!("autopilot.min_airspeed_cmd_fps={floor_fps}");
+    let brake = format!("follower.speed_brake_c_drag={brake_c_drag}");
     let mut scenario = common::load(
         "formation",
         &common::platoon_link_overrides(&[
