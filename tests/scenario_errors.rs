@@ -243,6 +243,37 @@ fn a_leader_swing_is_in_range() {
     );
 }
 
+/// The size from the excitation needs the Kalman filter, a camera and an excitation, and
+/// its settings are in range.
+#[test]
+fn the_size_from_the_excitation_needs_the_filter_a_camera_and_a_swing() {
+    let wants = [
+        "estimator.size_from = \"excitation\"",
+        "estimator.kind = \"kalman\"",
+    ];
+    for rest in [
+        "",
+        "kind = \"kalman\"\n",
+        "kind = \"kalman\"\n[sensor]\nmode = \"camera\"\n[excitation]\nmode = \"off\"\n",
+    ] {
+        assert_rejected(
+            &format!("[estimator]\nsize_from = \"excitation\"\n{rest}"),
+            &[],
+            &wants,
+        );
+    }
+    assert_rejected(
+        "[estimator]\nkind = \"kalman\"\ninstrument_min_blocks = 1\n",
+        &[],
+        &["estimator.instrument_min_blocks = 1", "[2, 1000]"],
+    );
+    assert_rejected(
+        "[estimator]\nkind = \"kalman\"\ninstrument_q = 0\n",
+        &[],
+        &["estimator.instrument_q = 0", "[0.5, 100]"],
+    );
+}
+
 /// An excitation that follows the Kalman filter's σ_b needs the filter: the error names the
 /// mode as the scenario spells it.
 #[test]

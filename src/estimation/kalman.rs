@@ -296,14 +296,40 @@ impl TargetFilter {
         let Some((low, high)) = self.beta_bounds_per_ft else {
             return;
         };
-        let (beta, variance) = (self.x[BETA], self.p[(BETA, BETA)]);
+        let beta = self.x[BETA];
         let bound = beta.clamp(low, high);
-        if bound == beta || variance <= 0.0 {
+        if bound != beta {
+            self.move_size_to(bound);
+        }
+    }
+
+    /// Moves β̂ to `beta_per_ft`, every state with it by its covariance with β: x̂ ← x̂ - P e_β
+    /// (β̂ - β) / P_ββ. P is kept.
+    fn move_size_to(&mut self, beta_per_ft: f64) {
+        let variance = self.p[(BETA, BETA)];
+        if variance <= 0.0 {
             return;
         }
         let column: State = self.p.column(BETA).into_owned();
-        self.x -= column * ((beta - bound) / variance);
-        self.x[BETA] = bound;
+        self.x -= column * ((self.x[BETA] - beta_per_ft) / variance);
+        self.x[BETA] = beta_per_ft;
+    }
+
+    /// Takes the size from another reading of it (docs/equations.md, The size from the
+    /// excitation as an instrument): β̂ moved to `beta_per_ft` as [`Self::move_size_to`]
+    /// moves it, and β's row and column of P scaled so that its σ is `sigma_per_ft`, its
+    /// correlations with the other states kept.
+    pub fn take_size(&mut self, beta_per_ft: f64, sigma_per_ft: f64) {
+        self.move_size_to(beta_per_ft);
+        let variance = self.p[(BETA, BETA)];
+        if variance <= 0.0 {
+            return;
+        }
+        let scale = sigma_per_ft / variance.sqrt();
+        let mut column = self.p.column_mut(BETA);
+        column *= scale;
+        let mut row = self.p.row_mut(BETA);
+        row *= scale;
     }
 
     /// The posterior's estimate.

@@ -11,6 +11,7 @@ pub mod airframe;
 pub mod aspect;
 pub mod bank;
 pub mod hold;
+pub mod instrument;
 pub mod kalman;
 pub mod merge;
 mod reopening;
@@ -164,6 +165,11 @@ pub trait TargetTracker: std::fmt::Debug + Send {
     /// What the airframe size model predicted for the frames it corrected at or after `t_s`
     /// (none with the other size models).
     fn predicted_views_since(&self, t_s: f64) -> Vec<PredictedView>;
+
+    /// Takes b̂ = `size_ft` with σ `sigma_ft` from another reading of the size
+    /// (`estimator.size_from`), every state moved with it by its covariance with the size;
+    /// nothing before the filter starts.
+    fn take_size(&mut self, size_ft: f64, sigma_ft: f64);
 }
 
 /// What a run's filter says at one instant, for the outputs.
@@ -326,6 +332,14 @@ impl Estimator {
         match self {
             Self::Adaptive { hold, .. } => hold.last_measured().map(|f| f.t_s),
             Self::OnFilter(tracker) => tracker.last_measured_s(),
+        }
+    }
+
+    /// The filter takes b̂ = `size_ft` with σ `sigma_ft` from another reading of the size
+    /// (see [`TargetTracker::take_size`]).
+    pub fn take_size(&mut self, size_ft: f64, sigma_ft: f64) {
+        if let Some(tracker) = self.filter_mut() {
+            tracker.take_size(size_ft, sigma_ft);
         }
     }
 

@@ -693,6 +693,13 @@ impl TargetTracker for KalmanTracker {
         self.innovations.last().map(|(_, nis)| *nis)
     }
 
+    /// β̂ = 1 / `size_ft` with σ_β = `sigma_ft` / b̂².
+    fn take_size(&mut self, size_ft: f64, sigma_ft: f64) {
+        if let Some(filter) = self.filter.as_mut() {
+            filter.take_size(1.0 / size_ft, sigma_ft / (size_ft * size_ft));
+        }
+    }
+
     /// The airframe model's predicted views since `t_s`.
     fn predicted_views_since(&self, t_s: f64) -> Vec<PredictedView> {
         self.views

@@ -81,6 +81,22 @@ pub enum SizeBounds {
     Filter,
 }
 
+/// Where the size the filter holds comes from (docs/equations.md, The size from the
+/// excitation as an instrument).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SizeFrom {
+    /// The seed's: the filter infers it from the follower's own motion against the image's,
+    /// the tracked aircraft's motion taken as independent of the follower's.
+    Filter,
+    /// The follower's own excitation used as an instrument (`estimation::instrument`): once
+    /// that reading's σ / b̂ is below `instrument_take_fraction`, the filter takes its size
+    /// and σ at every frame, and until then the excitation follows that σ (the larger of it
+    /// and the filter's). Needs the Kalman filter and an excitation at a period the tracked
+    /// aircraft does not swing at.
+    Excitation,
+}
+
 /// Whether the filter reads the target's turn from its bank (docs/equations.md, The target's
 /// bank from its wing line).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -276,6 +292,29 @@ pub struct EstimatorSection {
     /// target in the approach on half the streams (docs/findings.md, The covariance at the
     /// prediction).
     pub covariance_at: CovarianceAt,
+    /// `filter` (default, the seed's) or `excitation`: where the filter's size comes from
+    /// (docs/equations.md, The size from the excitation as an instrument).
+    pub size_from: SizeFrom,
+    /// With `size_from = "excitation"`, Q of the band-pass about the excitation's frequency
+    /// that the follower's position and the image's r pass before they are correlated with
+    /// the excitation. Choice: 3, a band of a third of the frequency, which takes out the
+    /// formation's turns (tens of seconds) and the frame-to-frame jitter and settles within
+    /// a few periods.
+    pub instrument_q: f64,
+    /// With `size_from = "excitation"`, the length of the blocks over which the reading's σ
+    /// is taken from the spread of the leader's part, in excitation periods. Choice: 3: the
+    /// band-passed leader motion stays correlated over about a period, so shorter blocks
+    /// read σ low (two periods read it 1.4 times low in `estimation::instrument`'s test).
+    pub instrument_block_periods: f64,
+    /// With `size_from = "excitation"`, the fewest whole blocks before the reading counts.
+    /// Choice: 4, the fewest whose spread gives σ within about a third.
+    pub instrument_min_blocks: u32,
+    /// With `size_from = "excitation"`, how long after the first frame the sums start, s.
+    /// Choice: 10 s, a few of the band-pass's settling times at a 3-5 s period.
+    pub instrument_settle_s: f64,
+    /// With `size_from = "excitation"`, the σ / b̂ of the reading below which the filter
+    /// takes it. Choice: 0.05, the size's bar in the group runs.
+    pub instrument_take_fraction: f64,
     /// `inferred` (default) or `measured`: whether each frame's wing line is fused as the
     /// target's acceleration across its velocity (Kalman filter only; frames whose span the
     /// filter's view puts below `span_aspect_min` are not).
@@ -327,6 +366,12 @@ impl Default for EstimatorSection {
             gate_reopen_range_ratio: 2.0,
             covariance_at: CovarianceAt::Measurement,
             target_bank: TargetBank::Inferred,
+            size_from: SizeFrom::Filter,
+            instrument_q: 3.0,
+            instrument_block_periods: 3.0,
+            instrument_min_blocks: 4,
+            instrument_settle_s: 10.0,
+            instrument_take_fraction: 0.05,
             bank_end_sigma_px: 0.5,
             bank_accel_sigma_fps2: 1.0,
         }
@@ -401,10 +446,14 @@ impl EstimatorSection {
                 1e3,
             ),
         ];
-        for (key, value, min, max) in scalars.into_iter().chain(self.gate_scalars()) {
+        let all = (scalars.into_iter())
+            .chain(self.gate_scalars())
+            .chain(self.instrument_scalars());
+        for (key, value, min, max) in all {
             check::in_closed(&format!("estimator.{key}"), value, min, max)?;
         }
         self.validate_swing()?;
+        self.validate_instrument()?;
         for (i, sigma) in self.pixel_sigma_px.iter().enumerate() {
             check::in_closed(&format!("estimator.pixel_sigma_px[{i}]"), *sigma, 1e-3, 1e3)?;
         }
@@ -438,6 +487,37 @@ impl EstimatorSection {
             period.max(0.1),
             1e4,
         )
+    }
+
+    /// The instrument's least number of blocks: a spread needs two.
+    fn validate_instrument(&self) -> Check {
+        let blocks = self.instrument_min_blocks;
+        check::require(
+            (2..=1000).contains(&blocks),
+            "estimator.instrument_min_blocks",
+            blocks,
+            "[2, 1000] (a spread needs two blocks)",
+        )
+    }
+
+    /// (key, value, allowed [min, max]) of the instrument's scalars.
+    fn instrument_scalars(&self) -> [(&'static str, f64, f64, f64); 4] {
+        [
+            ("instrument_q", self.instrument_q, 0.5, 100.0),
+            (
+                "instrument_block_periods",
+                self.instrument_block_periods,
+                1.0,
+                1e3,
+            ),
+            ("instrument_settle_s", self.instrument_settle_s, 0.0, 1e4),
+            (
+                "instrument_take_fraction",
+                self.instrument_take_fraction,
+                0.0,
+                1.0,
+            ),
+        ]
     }
 
     /// (key, value, allowed [min, max]) of the validation gates' scalars.

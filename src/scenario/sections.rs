@@ -719,6 +719,15 @@ impl Scenario {
         self.excitation.validate()?;
         self.validate_leader_swing()?;
         check::require(
+            self.estimator.size_from == super::SizeFrom::Filter
+                || (self.estimator.kind == super::EstimatorKind::Kalman
+                    && self.excitation.mode != ExcitationMode::Off
+                    && self.sensor.mode == super::SensorMode::Camera),
+            "estimator.size_from",
+            "\"excitation\"",
+            "\"filter\" without estimator.kind = \"kalman\", a camera and an excitation",
+        )?;
+        check::require(
             !self.excitation.mode.follows_the_filter()
                 || self.estimator.kind == super::EstimatorKind::Kalman
                 || self.estimator.log_kalman,

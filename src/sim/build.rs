@@ -4,6 +4,7 @@
 
 use super::SimError;
 use crate::estimation::airframe::{AirframeShape, AirframeTable};
+use crate::estimation::instrument::{ExcitationInstrument, InstrumentSettings};
 use crate::estimation::trim_alpha::AlphaSchedule;
 use crate::estimation::{AirframeModel, Estimator, KalmanTracker, MeasurementHold, TargetTracker};
 use crate::follower::aircraft::DRYDEN_SEED_SALT;
@@ -16,7 +17,7 @@ use crate::guidance::signals::CommandKind;
 use crate::scenario::check::InvalidValue;
 use crate::scenario::{
     AirframeAlpha, EstimatorKind, GimbalCue, GimbalKind, GuidanceLawKind, Scenario, SensorMode,
-    SizeModel, TargetGusts, TargetModelKind, TargetMotion, TargetPath,
+    SizeFrom, SizeModel, TargetGusts, TargetModelKind, TargetMotion, TargetPath,
 };
 use crate::sensing::camera::load_target_mesh;
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
@@ -30,6 +31,25 @@ use crate::world::trajectory::{
     RANDOM_TRACK_SEED_SALT, TrackError, random_track, read_track, waypoint_track,
 };
 use std::path::Path;
+
+/// With `estimator.size_from = "excitation"`, the instrument that reads the size from the
+/// follower's own excitation (`estimation::instrument`), one sample per camera frame.
+pub(super) fn excitation_instrument(scenario: &Scenario) -> Option<ExcitationInstrument> {
+    let (e, x) = (&scenario.estimator, &scenario.excitation);
+    if e.size_from != SizeFrom::Excitation {
+        return None;
+    }
+    let direction = Vec3::from(x.direction);
+    Some(ExcitationInstrument::new(InstrumentSettings {
+        omega_rps: 2.0 * std::f64::consts::PI / x.period_s,
+        direction_ned: direction / direction.norm(),
+        q: e.instrument_q,
+        sample_s: 1.0 / scenario.camera.rate_hz,
+        settle_s: e.instrument_settle_s,
+        block_s: e.instrument_block_periods * x.period_s,
+        min_blocks: e.instrument_min_blocks as usize,
+    }))
+}
 
 /// The bound the field of view puts on the excitation with a camera
 /// (`excitation.fov_fraction`; [`ViewBound`]): the commanded range and the tangent of the

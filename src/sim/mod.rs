@@ -29,12 +29,13 @@ pub use record::{GimbalReading, Snapshot, StageTimes};
 pub use run::{RunEnd, RunTick};
 
 use build::{
-    capture_geometry, estimation_stage, excitation_view_bound, first_r, follower_of, gimbal_of,
-    mounted_camera, target_of,
+    capture_geometry, estimation_stage, excitation_instrument, excitation_view_bound, first_r,
+    follower_of, gimbal_of, mounted_camera, target_of,
 };
 use evaluate::Evaluation;
 use navigate::{OwnSensing, encoder_reading};
 
+use crate::estimation::instrument::ExcitationInstrument;
 use crate::estimation::{Estimator, GuidanceMeasurement, LawEstimates, TargetMotionEstimate};
 use crate::follower::AircraftSetupError;
 use crate::follower::{FlightEnvelope, Follower};
@@ -134,6 +135,8 @@ pub struct Simulation {
     /// The camera's pan/tilt gimbal, when it rides one.
     gimbal: Option<Gimbal>,
     estimator: Estimator,
+    /// With `estimator.size_from = "excitation"`, the size read from the excitation.
+    instrument: Option<ExcitationInstrument>,
     /// The runs of frames that did not measure the target.
     losses: LossLog,
     /// The runs of frames whose measurement was not of the target, by the truth (false
@@ -239,6 +242,7 @@ impl Simulation {
             own,
             gimbal,
             estimator,
+            instrument: excitation_instrument(scenario),
             losses: LossLog::default(),
             false_locks: LossLog::default(),
             layout,
@@ -534,11 +538,7 @@ impl Simulation {
         if let (Some(envelope), Some(aircraft)) = (self.envelope.as_mut(), actuation.aircraft()) {
             envelope.record(t_end_s, aircraft);
         }
-        let size_ft = self
-            .estimator
-            .filter()
-            .and_then(|t| t.posterior())
-            .map(|e| (e.b_hat_ft, e.b_sigma_reducible_ft));
+        let size_ft = self.size_uncertainty_ft();
         self.excitation
             .record_errors(t_end_s, &out.excitation_errors, size_ft);
         let g = &self.scenario.guidance;
@@ -555,6 +555,23 @@ impl Simulation {
 }
 
 impl Simulation {
+    /// The filter's (b̂, σ_b), ft, that the excitation follows: with the instrument, σ_b is no
+    /// smaller than the instrument's (b̂ itself before it reads one), so the follower swings
+    /// until the reading that does not take the leader's motion as independent of its own is
+    /// sure of the size.
+    fn size_uncertainty_ft(&self) -> Option<(f64, f64)> {
+        let estimate = self.estimator.filter()?.posterior()?;
+        let (size_ft, sigma_ft) = (estimate.b_hat_ft, estimate.b_sigma_reducible_ft);
+        let instrument_sigma_ft = self
+            .instrument
+            .as_ref()
+            .map(|i| i.estimate().map_or(size_ft, |reading| reading.sigma_ft));
+        Some((
+            size_ft,
+            instrument_sigma_ft.map_or(sigma_ft, |s| s.max(sigma_ft)),
+        ))
+    }
+
     /// What element `i` of the state vector is, named by its stage ("autopilot: RBF weight
     /// 3 of the pitch channel").
     fn state_name(&self, i: usize) -> String {

@@ -4,7 +4,7 @@
 use super::{SimError, Simulation};
 use crate::estimation::GuidanceMeasurement;
 use crate::frames::Vec3;
-use crate::sensing::CaptureGeometry;
+use crate::sensing::{CaptureGeometry, FrameRecord};
 use std::time::Instant;
 
 impl Simulation {
@@ -34,6 +34,7 @@ impl Simulation {
                 }
                 let stamped = self.stamped(&record, &velocity);
                 let delivery = self.estimator.deliver(&stamped, &velocity);
+                self.feed_instrument(&stamped, delivery.trusted);
                 if let Some(camera) = self.sensor.camera_mut() {
                     camera.settle(record.index, delivery.trusted);
                 }
@@ -55,6 +56,32 @@ impl Simulation {
         times.estimator += started.elapsed();
         self.stage_times.set(times);
         Ok(())
+    }
+
+    /// With `estimator.size_from = "excitation"`, the frame goes to the instrument (the
+    /// filter's r̂ at its capture when the filter took it, nothing otherwise), and the filter
+    /// takes the instrument's size once its σ / b̂ is below `instrument_take_fraction` and
+    /// b̂ is within the guidance's bounds.
+    fn feed_instrument(&mut self, record: &FrameRecord, trusted: bool) {
+        let Some(instrument) = self.instrument.as_mut() else {
+            return;
+        };
+        let posterior = (self.estimator.filter())
+            .and_then(|t| t.posterior())
+            .filter(|_| trusted);
+        let measured = posterior
+            .as_ref()
+            .map(|e| (&e.r, &record.follower_position_ned_ft));
+        instrument.add_frame(record.t_s, self.excitation.amplitude(), measured);
+        let Some(reading) = instrument.estimate() else {
+            return;
+        };
+        let (e, g) = (&self.scenario.estimator, &self.scenario.guidance);
+        if reading.sigma_ft < e.instrument_take_fraction * reading.size_ft
+            && (g.b_min_ft..=g.b_max_ft).contains(&reading.size_ft)
+        {
+            self.estimator.take_size(reading.size_ft, reading.sigma_ft);
+        }
     }
 
     /// A continuous sensor's sample for the Kalman filter, when this tick draws one.

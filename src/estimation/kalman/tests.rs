@@ -524,3 +524,25 @@ fn the_size_bounds_keep_the_filter_on_the_leaders_velocity() {
         flown_fps(&free_end)
     );
 }
+
+/// Taking a size from another reading (docs/equations.md, The size from the excitation as an
+/// instrument) sets β̂ and σ_β to it and moves the other states with β: the velocity in feet,
+/// b̂ d̂, stays the target's 50 ft/s that the image and the follower's own motion give,
+/// whatever size is taken.
+#[test]
+fn a_taken_size_moves_the_states_with_it() {
+    let weave = |t: f64| Vec3::new(0.0, 0.0, 6.0 * (2.0 * std::f64::consts::PI * t / 6.0).cos());
+    let (identified, _) = fly(weave, 0.02, 1.0 / 30.0, 0.0);
+    for size_ft in [6.0, 10.0] {
+        let mut filter = identified.clone();
+        filter.take_size(1.0 / size_ft, 0.002);
+        let est = filter.posterior();
+        assert!((est.beta_per_ft - 1.0 / size_ft).abs() < 1e-12, "{est:?}");
+        assert!((est.beta_sigma_per_ft - 0.002).abs() < 1e-12, "{est:?}");
+        let north_fps = est.d_per_s.x / est.beta_per_ft;
+        assert!(
+            (north_fps - 50.0).abs() < 1.0,
+            "{size_ft} ft: {north_fps} ft/s"
+        );
+    }
+}

@@ -1,0 +1,195 @@
+//! The size read from the follower's own excitation used as an instrument
+//! (docs/equations.md, The size from the excitation as an instrument).
+//!
+//! The image gives r = R/b and the navigation the follower's own position p_F in feet, so
+//! along the excitation's direction E, p_F = p_L − b r, p_L the tracked aircraft's unknown
+//! position. Both sides are band-passed about the excitation's frequency ω and correlated
+//! with the excitation's own phasor ζ(t) = a(t) e^{iωt}, which the follower commands and which
+//! the tracked aircraft, flying ahead and looking ahead, cannot answer:
+//!
+//!   C_F = Σ ζ* E·p_F',  C_r = Σ ζ* E·r',  b̂ = −Re(C_F C_r*) / |C_r|²
+//!
+//! The leader's part, C_L = C_F + b C_r, averages out whatever the leader does, its copy of
+//! its own leader included, instead of biasing b̂ as the filter's own-motion regression does
+//! when the follower's motion is its response to the leader's (docs/findings.md, What sets a
+//! link's size error). Its σ is read from the spread of C_L over blocks of a few periods.
+
+use crate::frames::Vec3;
+
+/// The instrument's settings (`[estimator]` `instrument_*`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InstrumentSettings {
+    /// ω, the excitation's angular frequency, rad/s.
+    pub omega_rps: f64,
+    /// E, the excitation's unit direction, NED.
+    pub direction_ned: Vec3,
+    /// The band-pass's quality factor Q.
+    pub q: f64,
+    /// The interval between samples, s (the camera's frame period).
+    pub sample_s: f64,
+    /// How long after the first sample the sums start (the band-pass settles), s.
+    pub settle_s: f64,
+    /// The length of a block the σ is read over, s.
+    pub block_s: f64,
+    /// The fewest whole blocks before there is an estimate.
+    pub min_blocks: usize,
+}
+
+/// The instrument's reading: b̂ and its σ, ft.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InstrumentSize {
+    /// b̂, ft.
+    pub size_ft: f64,
+    /// σ of b̂, ft.
+    pub sigma_ft: f64,
+}
+
+/// A complex number, (re, im).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Complex(f64, f64);
+
+impl Complex {
+    fn add_scaled(&mut self, z: Complex, x: f64) {
+        self.0 += z.0 * x;
+        self.1 += z.1 * x;
+    }
+
+    /// Re(self · other*).
+    fn dot(self, other: Complex) -> f64 {
+        self.0 * other.0 + self.1 * other.1
+    }
+
+    fn norm_sq(self) -> f64 {
+        self.dot(self)
+    }
+}
+
+/// A causal second-order band-pass of unit gain at its centre (the bilinear transform of
+/// (ω/Q) s / (s² + (ω/Q) s + ω²)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct BandPass {
+    b0: f64,
+    a1: f64,
+    a2: f64,
+    x: [f64; 2],
+    y: [f64; 2],
+}
+
+impl BandPass {
+    fn new(omega_rps: f64, q: f64, sample_s: f64) -> Self {
+        let w = omega_rps * sample_s;
+        let alpha = w.sin() / (2.0 * q);
+        let a0 = 1.0 + alpha;
+        Self {
+            b0: alpha / a0,
+            a1: -2.0 * w.cos() / a0,
+            a2: (1.0 - alpha) / a0,
+            x: [0.0; 2],
+            y: [0.0; 2],
+        }
+    }
+
+    fn step(&mut self, input: f64) -> f64 {
+        let output = self.b0 * (input - self.x[1]) - self.a1 * self.y[0] - self.a2 * self.y[1];
+        self.x = [input, self.x[0]];
+        self.y = [output, self.y[0]];
+        output
+    }
+}
+
+/// The running sums of the instrument.
+#[derive(Debug, Clone)]
+pub struct ExcitationInstrument {
+    settings: InstrumentSettings,
+    own: BandPass,
+    image: BandPass,
+    /// The latest inputs (E·p_F ft, E·r), held through a frame without a measurement.
+    last: Option<(f64, f64)>,
+    first_s: Option<f64>,
+    /// (C_F, C_r) over the whole blocks so far, and each block's.
+    total: (Complex, Complex),
+    blocks: Vec<(Complex, Complex)>,
+    /// The block being summed and when it began, s.
+    current: (Complex, Complex),
+    current_start_s: Option<f64>,
+}
+
+impl ExcitationInstrument {
+    /// An instrument with nothing summed.
+    pub fn new(settings: InstrumentSettings) -> Self {
+        let band = BandPass::new(settings.omega_rps, settings.q, settings.sample_s);
+        Self {
+            settings,
+            own: band,
+            image: band,
+            last: None,
+            first_s: None,
+            total: Default::default(),
+            blocks: Vec::new(),
+            current: Default::default(),
+            current_start_s: None,
+        }
+    }
+
+    /// One frame taken at `t_s`, the excitation's amplitude then `amplitude` (any units: it
+    /// weighs the frame): the frame's r (scaled, NED) and the follower's position then
+    /// (ft, NED), or `None` when the frame measured nothing the instrument can use (the
+    /// previous inputs are held).
+    pub fn add_frame(&mut self, t_s: f64, amplitude: f64, measured: Option<(&Vec3, &Vec3)>) {
+        let direction = self.settings.direction_ned;
+        let inputs = measured.map(|(r, p)| (direction.dot(p), direction.dot(r)));
+        let Some((own, image)) = inputs.or(self.last) else {
+            return;
+        };
+        self.last = Some((own, image));
+        let (own, image) = (self.own.step(own), self.image.step(image));
+        let first_s = *self.first_s.get_or_insert(t_s);
+        if t_s < first_s + self.settings.settle_s {
+            return;
+        }
+        let (s, c) = (self.settings.omega_rps * t_s).sin_cos();
+        let phasor = Complex(amplitude * s, amplitude * c);
+        let start_s = *self.current_start_s.get_or_insert(t_s);
+        self.current.0.add_scaled(phasor, own);
+        self.current.1.add_scaled(phasor, image);
+        if t_s - start_s >= self.settings.block_s - 0.5 * self.settings.sample_s {
+            self.close_block();
+        }
+    }
+
+    fn close_block(&mut self) {
+        let (own, image) = self.current;
+        self.total.0.add_scaled(own, 1.0);
+        self.total.1.add_scaled(image, 1.0);
+        self.blocks.push(self.current);
+        self.current = Default::default();
+        self.current_start_s = None;
+    }
+
+    /// b̂ = −Re(C_F C_r*) / |C_r|² and its σ, √(Σ_j |C_F,j + b̂ C_r,j|² / 2) / |C_r| over the
+    /// whole blocks; `None` before `min_blocks` of them or while the image has not answered
+    /// the excitation.
+    pub fn estimate(&self) -> Option<InstrumentSize> {
+        if self.blocks.len() < self.settings.min_blocks.max(1) {
+            return None;
+        }
+        let (own, image) = self.total;
+        let image_sq = image.norm_sq();
+        if image_sq <= 0.0 {
+            return None;
+        }
+        let size_ft = -own.dot(image) / image_sq;
+        let leader_sq: f64 = self
+            .blocks
+            .iter()
+            .map(|(own_j, image_j)| {
+                Complex(own_j.0 + size_ft * image_j.0, own_j.1 + size_ft * image_j.1).norm_sq()
+            })
+            .sum();
+        let sigma_ft = (0.5 * leader_sq / image_sq).sqrt();
+        (size_ft > 0.0).then_some(InstrumentSize { size_ft, sigma_ft })
+    }
+}
+
+#[cfg(test)]
+mod tests;

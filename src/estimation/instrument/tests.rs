@@ -1,0 +1,113 @@
+use super::*;
+
+const SIZE_FT: f64 = 9.0;
+const PERIOD_S: f64 = 4.6;
+const FRAME_S: f64 = 1.0 / 30.0;
+
+/// A reproducible white sequence, uniform in [-1, 1] (xorshift).
+struct White(u64);
+
+impl White {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
+
+fn settings() -> InstrumentSettings {
+    InstrumentSettings {
+        omega_rps: 2.0 * std::f64::consts::PI / PERIOD_S,
+        direction_ned: Vec3::new(0.0, 1.0, 0.0),
+        q: 3.0,
+        sample_s: FRAME_S,
+        settle_s: 10.0,
+        block_s: 3.0 * PERIOD_S,
+        min_blocks: 4,
+    }
+}
+
+/// A link behind a leader that wanders across its track (a first-order response to white
+/// noise, 1.3 ft RMS correlated over half a second, on a 20 ft swing of 25 s) and copies it
+/// 1.2 s late, as a follower does, besides
+/// answering its own excitation of `swing_ft` 1.1 s late. Returns the instrument after
+/// 140 s and the least-squares size of the follower's motion against the image's
+/// (−Σ p_F r / Σ r², both with their 10 s mean taken out): what a filter that takes the
+/// leader's motion as independent of its own reads.
+fn fly(swing_ft: f64, seed: u64) -> (ExcitationInstrument, f64) {
+    let mut white = White(seed);
+    let mut instrument = ExcitationInstrument::new(settings());
+    let omega = settings().omega_rps;
+    let lag_frames = (1.2 / FRAME_S) as usize;
+    let mut leader = vec![0.0; lag_frames + 1];
+    let (mut wander, mut series) = (0.0, Vec::new());
+    for k in 0..(140.0 / FRAME_S) as usize {
+        let t_s = k as f64 * FRAME_S;
+        wander += (-wander / 1.5 + 8.0 * white.next()) * FRAME_S * 3.0;
+        let leader_ft = 20.0 * (t_s / 25.0).sin() + wander;
+        leader.push(leader_ft);
+        let copy_ft = leader[leader.len() - 1 - lag_frames];
+        let own_ft = copy_ft - swing_ft * (omega * (t_s - 1.1)).sin();
+        let r = Vec3::new(0.0, (leader_ft - own_ft) / SIZE_FT, 0.0);
+        let p = Vec3::new(0.0, own_ft, 0.0);
+        instrument.add_frame(t_s, swing_ft, Some((&r, &p)));
+        series.push((own_ft, r.y));
+    }
+    (instrument, least_squares_size(&series))
+}
+
+fn least_squares_size(series: &[(f64, f64)]) -> f64 {
+    let half = (5.0 / FRAME_S) as usize;
+    let (mut num, mut den) = (0.0, 0.0);
+    for k in half..series.len() - half {
+        let window = &series[k - half..=k + half];
+        let n = window.len() as f64;
+        let own = series[k].0 - window.iter().map(|s| s.0).sum::<f64>() / n;
+        let image = series[k].1 - window.iter().map(|s| s.1).sum::<f64>() / n;
+        num -= own * image;
+        den += image * image;
+    }
+    num / den
+}
+
+/// The instrument reads the size of a leader whose motion the follower copies late, where
+/// the regression of its own motion on the image's, which takes the leader's motion as
+/// independent of its own, is far off; its σ covers its error.
+#[test]
+fn the_instrument_reads_the_size_a_copied_leader_hides() {
+    for seed in [1, 2, 3] {
+        let (instrument, regression_ft) = fly(5.0, 0x9e37_79b9_7f4a_7c15 ^ seed);
+        let size = instrument.estimate().expect("an estimate after 140 s");
+        let error = size.size_ft / SIZE_FT - 1.0;
+        assert!(error.abs() < 0.05, "seed {seed}: {size:?}");
+        assert!(
+            error.abs() < 3.0 * size.sigma_ft / SIZE_FT && size.sigma_ft < 0.05 * SIZE_FT,
+            "seed {seed}: {size:?}"
+        );
+        assert!(
+            (regression_ft / SIZE_FT - 1.0).abs() > 0.1,
+            "seed {seed}: the regression reads {regression_ft} ft"
+        );
+    }
+}
+
+/// A larger swing tells the size more precisely, in proportion.
+#[test]
+fn the_sigma_falls_with_the_swing() {
+    let sigma = |swing_ft| fly(swing_ft, 7).0.estimate().expect("an estimate").sigma_ft;
+    let ratio = sigma(1.5) / sigma(6.0);
+    assert!((3.0..5.0).contains(&ratio), "{ratio}");
+}
+
+/// Without an excitation, or before its first blocks, there is nothing to read.
+#[test]
+fn no_swing_and_no_blocks_give_no_estimate() {
+    assert_eq!(fly(0.0, 3).0.estimate(), None);
+    let mut instrument = ExcitationInstrument::new(settings());
+    let (r, p) = (Vec3::new(3.0, 1.0, 0.0), Vec3::zeros());
+    for k in 0..(40.0 / FRAME_S) as usize {
+        instrument.add_frame(k as f64 * FRAME_S, 1.0, Some((&r, &p)));
+    }
+    assert_eq!(instrument.estimate(), None, "2 blocks of 13.8 s after 10 s");
+}
