@@ -11,6 +11,8 @@
 
 use crate::common::repo_root;
 use wingman::output::group::{GroupSummary, load_checked, run_group_to_directory};
+use wingman::scenario::SizeFrom;
+use wingman::scenario::group::GroupScenario;
 use wingman::vision::{BlobSelection, BlobSummary, VisionConfig, VisionPipeline};
 
 /// `scenarios/platoon.toml` with `sets` run into a temporary folder: the folder and the
@@ -228,20 +230,28 @@ fn followers_in_one_air_mass_share_their_gusts() {
     }
 }
 
+/// `scenarios/platoon.toml` as shipped.
+fn shipped_platoon() -> GroupScenario {
+    let path = repo_root().join("scenarios/platoon.toml");
+    load_checked(&path, &[]).expect("valid").expect("a group")
+}
+
+/// The excitation period of the follower `name` of `group`, s (`None` for the target).
+fn excitation_period_s(group: &GroupScenario, name: &str) -> Option<f64> {
+    group
+        .followers
+        .iter()
+        .find(|f| f.name == name)
+        .map(|f| f.scenario.excitation.period_s)
+}
+
 /// A link that models its leader's swing (`estimator.leader_swing_period_s`) models it at the
 /// period its leader swings at, and swings at another itself: in platoon.toml f3 models f2's
-/// 3 s and swings at 4.6 s.
+/// 3.7 s and swings at 6 s.
 #[test]
 fn a_link_models_its_leaders_swing_at_the_leaders_period() {
-    let path = repo_root().join("scenarios/platoon.toml");
-    let group = load_checked(&path, &[]).expect("valid").expect("a group");
-    let period_of = |name: &str| {
-        group
-            .followers
-            .iter()
-            .find(|f| f.name == name)
-            .map(|f| f.scenario.excitation.period_s)
-    };
+    let group = shipped_platoon();
+    let period_of = |name: &str| excitation_period_s(&group, name);
     let mut modelled = 0;
     for link in &group.followers {
         let swing_s = link.scenario.estimator.leader_swing_period_s;
@@ -252,4 +262,26 @@ fn a_link_models_its_leaders_swing_at_the_leaders_period() {
         }
     }
     assert_eq!(modelled, 1, "f3 alone models its leader's swing");
+}
+
+/// A link that reads its leader's size from its own excitation (`estimator.size_from =
+/// "excitation"`) swings at a period its leader does not: a leader swinging at the link's
+/// period in step would be read as the link's own answer (docs/equations.md, The size from
+/// the excitation as an instrument). In platoon.toml f2 and f3 do, at 3.7 and 6 s behind
+/// f1's 3 s and f2's 3.7 s.
+#[test]
+fn a_link_on_its_excitation_swings_at_a_period_its_leader_does_not() {
+    let group = shipped_platoon();
+    let period_of = |name: &str| excitation_period_s(&group, name);
+    let links: Vec<&str> = group
+        .followers
+        .iter()
+        .filter(|f| f.scenario.estimator.size_from == SizeFrom::Excitation)
+        .map(|link| {
+            let own_s = link.scenario.excitation.period_s;
+            assert_ne!(Some(own_s), period_of(&link.tracks), "{}", link.name);
+            link.name.as_str()
+        })
+        .collect();
+    assert_eq!(links, ["f2", "f3"]);
 }
