@@ -446,10 +446,7 @@ impl EstimatorSection {
                 1e3,
             ),
         ];
-        let all = (scalars.into_iter())
-            .chain(self.gate_scalars())
-            .chain(self.instrument_scalars());
-        for (key, value, min, max) in all {
+        for (key, value, min, max) in scalars.into_iter().chain(self.gate_scalars()) {
             check::in_closed(&format!("estimator.{key}"), value, min, max)?;
         }
         self.validate_swing()?;
@@ -489,8 +486,11 @@ impl EstimatorSection {
         )
     }
 
-    /// The instrument's least number of blocks: a spread needs two.
+    /// The instrument's settings, its least number of blocks two: a spread needs two.
     fn validate_instrument(&self) -> Check {
+        for (key, value, min, max) in self.instrument_scalars() {
+            check::in_closed(&format!("estimator.{key}"), value, min, max)?;
+        }
         let blocks = self.instrument_min_blocks;
         check::require(
             (2..=1000).contains(&blocks),

@@ -700,6 +700,20 @@ impl Scenario {
         )
     }
 
+    /// The size from the excitation needs the Kalman filter (it takes the size), a camera
+    /// (the instrument samples its frames) and an excitation.
+    fn validate_size_from(&self) -> Check {
+        check::require(
+            self.estimator.size_from == super::SizeFrom::Filter
+                || (self.estimator.kind == super::EstimatorKind::Kalman
+                    && self.excitation.mode != ExcitationMode::Off
+                    && self.sensor.mode == super::SensorMode::Camera),
+            "estimator.size_from",
+            "\"excitation\"",
+            "\"filter\" without estimator.kind = \"kalman\", a camera and an excitation",
+        )
+    }
+
     /// Checks every value and every cross-key condition.
     pub fn validate(&self) -> Check {
         self.run.validate()?;
@@ -718,15 +732,7 @@ impl Scenario {
         )?;
         self.excitation.validate()?;
         self.validate_leader_swing()?;
-        check::require(
-            self.estimator.size_from == super::SizeFrom::Filter
-                || (self.estimator.kind == super::EstimatorKind::Kalman
-                    && self.excitation.mode != ExcitationMode::Off
-                    && self.sensor.mode == super::SensorMode::Camera),
-            "estimator.size_from",
-            "\"excitation\"",
-            "\"filter\" without estimator.kind = \"kalman\", a camera and an excitation",
-        )?;
+        self.validate_size_from()?;
         check::require(
             !self.excitation.mode.follows_the_filter()
                 || self.estimator.kind == super::EstimatorKind::Kalman
