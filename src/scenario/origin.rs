@@ -220,9 +220,21 @@ fn unknown_key(rest: &str, section: &str) -> String {
     match nearest {
         Some(name) => format!("unknown key {key}: did you mean {name}?"),
         None if allowed.is_empty() => format!("unknown key {key}: the section takes no keys"),
-        None => format!("unknown key {key}: allowed {}", allowed.join(", ")),
+        None => {
+            let list = allowed.join(", ");
+            if list.chars().count() <= ALLOWED_LIST_MAX_CHARS {
+                format!("unknown key {key}: allowed {list}")
+            } else {
+                format!("unknown key {key}: docs/scenario_reference.md lists the keys")
+            }
+        }
     }
 }
+
+/// The longest list of allowed keys a message spells out: a message stays one line under
+/// 200 characters with the file's path and the key before it (the scenario's own sections
+/// alone list 120 characters).
+const ALLOWED_LIST_MAX_CHARS: usize = 80;
 
 /// The value serde found, from its description (`integer \`-1\``, `string "x"`, `map`).
 fn found_value(found: &str) -> String {
@@ -306,6 +318,31 @@ mod tests {
         let (_, m) =
             schema_message("unknown field `sigmaa`, expected `k` or `sigma` in `guidance`");
         assert_eq!(m, "unknown key guidance.sigmaa: did you mean sigma?");
+        let sections = [
+            "run",
+            "target",
+            "follower",
+            "sensor",
+            "guidance",
+            "acceleration",
+        ]
+        .iter()
+        .chain(&[
+            "estimator",
+            "excitation",
+            "camera",
+            "scene",
+            "atmosphere",
+            "output",
+        ])
+        .map(|name| format!("`{name}`"))
+        .collect::<Vec<_>>()
+        .join(", ");
+        let m = unknown_key(&format!("`group`, expected one of {sections}"), "value");
+        assert_eq!(
+            m,
+            "unknown key group: docs/scenario_reference.md lists the keys"
+        );
     }
 
     #[test]
