@@ -112,6 +112,9 @@ pub struct ExcitationInstrument {
     /// The block being summed and when it began, s.
     current: (Complex, Complex),
     current_start_s: Option<f64>,
+    /// The reading over the whole blocks, kept from the last block's end (it changes only
+    /// then, and the excitation asks for it at every tick).
+    reading: Option<InstrumentSize>,
 }
 
 impl ExcitationInstrument {
@@ -128,6 +131,7 @@ impl ExcitationInstrument {
             blocks: Vec::new(),
             current: Default::default(),
             current_start_s: None,
+            reading: None,
         }
     }
 
@@ -164,12 +168,18 @@ impl ExcitationInstrument {
         self.blocks.push(self.current);
         self.current = Default::default();
         self.current_start_s = None;
+        self.reading = self.read();
+    }
+
+    /// The reading over the whole blocks so far (see [`Self::read`]).
+    pub fn estimate(&self) -> Option<InstrumentSize> {
+        self.reading
     }
 
     /// b̂ = −Re(C_F C_r*) / |C_r|² and its σ, √(Σ_j |C_F,j + b̂ C_r,j|² / 2) / |C_r| over the
     /// whole blocks; `None` before `min_blocks` of them or while the image has not answered
     /// the excitation.
-    pub fn estimate(&self) -> Option<InstrumentSize> {
+    fn read(&self) -> Option<InstrumentSize> {
         if self.blocks.len() < self.settings.min_blocks.max(1) {
             return None;
         }

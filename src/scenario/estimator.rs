@@ -486,7 +486,7 @@ impl EstimatorSection {
         )
     }
 
-    /// The instrument's settings, its least number of blocks two: a spread needs two.
+    /// The instrument's settings; it needs at least two blocks, the fewest a spread has.
     fn validate_instrument(&self) -> Check {
         for (key, value, min, max) in self.instrument_scalars() {
             check::in_closed(&format!("estimator.{key}"), value, min, max)?;
