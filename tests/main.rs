@@ -27,6 +27,7 @@ mod control_energy_loop;
 mod control_flight;
 mod control_prefilter;
 mod covariance_at;
+mod excitation_frame;
 mod excitation_view_bound;
 mod false_lock;
 mod formation;

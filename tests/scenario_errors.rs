@@ -274,6 +274,30 @@ fn the_size_from_the_excitation_needs_the_filter_a_camera_and_a_swing() {
     );
 }
 
+/// The excitation's frame turns with the command's target frame, so it needs it; its window
+/// holds a fade in and a fade out.
+#[test]
+fn the_excitations_frame_and_window_are_checked() {
+    assert_rejected(
+        "[excitation]\nframe = \"target\"\n",
+        &[],
+        &[
+            "excitation.frame = \"target\"",
+            "guidance.command_frame = \"target\"",
+        ],
+    );
+    assert_rejected(
+        "[excitation]\nperiod_s = 4.0\nstart_s = 30.0\nend_s = 35.0\n",
+        &[],
+        &["excitation.end_s = 35", "two periods"],
+    );
+    assert_rejected(
+        "[excitation]\nstart_s = -1.0\n",
+        &[],
+        &["excitation.start_s = -1"],
+    );
+}
+
 /// An excitation that follows the Kalman filter's σ_b needs the filter: the error names the
 /// mode as the scenario spells it.
 #[test]

@@ -2,12 +2,14 @@
 //! (docs/equations.md, The size from the excitation as an instrument).
 //!
 //! The image gives r = R/b and the navigation the follower's own position p_F in feet, so
-//! along the excitation's direction E, p_F = p_L − b r, p_L the tracked aircraft's unknown
-//! position. Both sides are band-passed about the excitation's frequency ω and correlated
-//! with the excitation's own phasor ζ(t) = a(t) e^{iωt}, which the follower commands and which
-//! the tracked aircraft, flying ahead and looking ahead, cannot answer:
+//! p_F = p_L − b r, p_L the tracked aircraft's unknown position. Along the excitation's
+//! direction E(t), which turns with its frame, the frames' increments keep the relation:
+//! y_F = Σ E·Δp_F = y_L − b y_r, y_r = Σ E·Δr (E·p_F itself would move with p_F's distance
+//! from the origin as E turns). Both sides are band-passed about the excitation's frequency ω
+//! and correlated with the excitation's own phasor ζ(t) = a(t) e^{iωt}, which the follower
+//! commands and which the tracked aircraft, flying ahead and looking ahead, cannot answer:
 //!
-//!   C_F = Σ ζ* E·p_F',  C_r = Σ ζ* E·r',  b̂ = −Re(C_F C_r*) / |C_r|²
+//!   C_F = Σ ζ* y_F',  C_r = Σ ζ* y_r',  b̂ = −Re(C_F C_r*) / |C_r|²
 //!
 //! The leader's part, C_L = C_F + b C_r, averages out whatever the leader does, its copy of
 //! its own leader included, instead of biasing b̂ as the filter's own-motion regression does
@@ -21,8 +23,6 @@ use crate::frames::Vec3;
 pub struct InstrumentSettings {
     /// ω, the excitation's angular frequency, rad/s.
     pub omega_rps: f64,
-    /// E, the excitation's unit direction, NED.
-    pub direction_ned: Vec3,
     /// The band-pass's quality factor Q.
     pub q: f64,
     /// The interval between samples, s (the camera's frame period).
@@ -103,8 +103,10 @@ pub struct ExcitationInstrument {
     settings: InstrumentSettings,
     own: BandPass,
     image: BandPass,
-    /// The latest inputs (E·p_F ft, E·r), held through a frame without a measurement.
-    last: Option<(f64, f64)>,
+    /// The last measured (r, p_F ft), NED, and the sums of the increments along E so far
+    /// (y_F ft, y_r), held through a frame without a measurement.
+    last: Option<(Vec3, Vec3)>,
+    sums: (f64, f64),
     first_s: Option<f64>,
     /// (C_F, C_r) over the whole blocks so far, and each block's.
     total: (Complex, Complex),
@@ -126,6 +128,7 @@ impl ExcitationInstrument {
             own: band,
             image: band,
             last: None,
+            sums: (0.0, 0.0),
             first_s: None,
             total: Default::default(),
             blocks: Vec::new(),
@@ -136,17 +139,26 @@ impl ExcitationInstrument {
     }
 
     /// One frame taken at `t_s`, the excitation's amplitude then `amplitude` (any units: it
-    /// weighs the frame): the frame's r (scaled, NED) and the follower's position then
-    /// (ft, NED), or `None` when the frame measured nothing the instrument can use (the
-    /// previous inputs are held).
-    pub fn add_frame(&mut self, t_s: f64, amplitude: f64, measured: Option<(&Vec3, &Vec3)>) {
-        let direction = self.settings.direction_ned;
-        let inputs = measured.map(|(r, p)| (direction.dot(p), direction.dot(r)));
-        let Some((own, image)) = inputs.or(self.last) else {
+    /// weighs the frame) and its unit direction `direction_ned`: the frame's r (scaled, NED)
+    /// and the follower's position then (ft, NED), or `None` when the frame measured nothing
+    /// the instrument can use (the sums are held).
+    pub fn add_frame(
+        &mut self,
+        t_s: f64,
+        amplitude: f64,
+        direction_ned: &Vec3,
+        measured: Option<(&Vec3, &Vec3)>,
+    ) {
+        if let Some((r, p)) = measured {
+            if let Some((last_r, last_p)) = self.last {
+                self.sums.0 += direction_ned.dot(&(p - last_p));
+                self.sums.1 += direction_ned.dot(&(r - last_r));
+            }
+            self.last = Some((*r, *p));
+        } else if self.last.is_none() {
             return;
-        };
-        self.last = Some((own, image));
-        let (own, image) = (self.own.step(own), self.image.step(image));
+        }
+        let (own, image) = (self.own.step(self.sums.0), self.image.step(self.sums.1));
         let first_s = *self.first_s.get_or_insert(t_s);
         if t_s < first_s + self.settings.settle_s {
             return;

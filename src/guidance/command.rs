@@ -112,6 +112,11 @@ fn ned_from_velocity_frame(chi_rad: f64, gamma_rad: f64) -> (Mat3, Mat3, Mat3) {
     (l.transpose(), d_chi.transpose(), d_gamma.transpose())
 }
 
+/// NED from the target frame at the command state `x`, L_VEᵀ(χ_c, γ_c).
+pub fn ned_from_target_frame(x: &[f64]) -> Mat3 {
+    ned_from_velocity_frame(x[0], x[1]).0
+}
+
 /// Heading and flight-path angle of a velocity, rad (None when it is zero).
 fn heading_and_climb_rad(v: &Vec3) -> Option<(f64, f64)> {
     let speed = v.norm();
@@ -176,14 +181,19 @@ impl FormationCommand {
                 )
             }
             (Mission::Formation, CommandFrame::Target) => {
-                let (rotation, d_chi, d_gamma) = ned_from_velocity_frame(x[0], x[1]);
-                let [chi_rate, gamma_rate] = self.rates(x, input);
-                (
-                    rotation * self.command_ft,
-                    (d_chi * chi_rate + d_gamma * gamma_rate) * self.command_ft,
-                )
+                let (rotation, rotation_rate) = self.target_frame_turn(x, input);
+                (rotation * self.command_ft, rotation_rate * self.command_ft)
             }
         }
+    }
+
+    /// The target frame at the command state `x`: NED from it, L_VEᵀ(χ_c, γ_c), and that
+    /// rotation's rate, ∂L_VEᵀ/∂χ χ̇_c + ∂L_VEᵀ/∂γ γ̇_c (R_c's frame, and the excitation's with
+    /// `excitation.frame = "target"`).
+    pub fn target_frame_turn(&self, x: &[f64], input: &CommandInput) -> (Mat3, Mat3) {
+        let (rotation, d_chi, d_gamma) = ned_from_velocity_frame(x[0], x[1]);
+        let [chi_rate, gamma_rate] = self.rates(x, input);
+        (rotation, d_chi * chi_rate + d_gamma * gamma_rate)
     }
 
     /// The angular velocity of the frame the shaping filter runs in, NED, rad/s: the target

@@ -62,6 +62,8 @@ pub struct Excitation {
     view: Option<ViewBound>,
     /// b̂ the bound is taken at, ft (the prior until the estimator has one).
     size_ft: f64,
+    /// The window the excitation acts in, [start, end], s.
+    window_s: [f64; 2],
 }
 
 impl Excitation {
@@ -100,6 +102,7 @@ impl Excitation {
             amplitude_rate: 0.0,
             view,
             size_ft,
+            window_s: [section.start_s, section.end_s],
         };
         excitation.apply_view_bound();
         excitation
@@ -212,20 +215,55 @@ impl Excitation {
         self.amplitude_rate = 0.0;
     }
 
-    /// a(t), in the excitation's units.
-    pub fn amplitude(&self) -> f64 {
-        self.amplitude
+    /// E, the unit direction in the excitation's frame.
+    pub fn direction(&self) -> Vec3 {
+        self.direction
     }
 
-    /// The offset a sin(ωt) E, in the excitation's units, and its time derivative (a and ȧ
-    /// held over the step).
+    /// The window w(t) the amplitude is multiplied by, and ẇ: 0 outside
+    /// [`excitation.start_s`, `excitation.end_s`], 1 inside but for a raised-cosine fade of one
+    /// period at either end, so that the command neither jumps nor turns sharply there (none
+    /// at a start of 0: the excitation starts with the run, as the seed's).
+    fn window(&self, t_s: f64) -> (f64, f64) {
+        let [start_s, end_s] = self.window_s;
+        let fade = |since_s: f64| {
+            let phase = std::f64::consts::PI * since_s / self.period_s;
+            (
+                0.5 * (1.0 - phase.cos()),
+                0.5 * std::f64::consts::PI / self.period_s * phase.sin(),
+            )
+        };
+        if t_s < start_s || t_s >= end_s {
+            (0.0, 0.0)
+        } else if start_s > 0.0 && t_s < start_s + self.period_s {
+            fade(t_s - start_s)
+        } else if t_s > end_s - self.period_s {
+            let (w, w_dot) = fade(end_s - t_s);
+            (w, -w_dot)
+        } else {
+            (1.0, 0.0)
+        }
+    }
+
+    /// a(t) w(t), the amplitude within the excitation's window, in its units.
+    pub fn amplitude_at(&self, t_s: f64) -> f64 {
+        self.amplitude * self.window(t_s).0
+    }
+
+    /// The offset a w sin(ωt) E, in the excitation's units, and its time derivative (a and ȧ
+    /// held over the step; w the window, [`Self::window`]).
     pub fn offset(&self, t_s: f64) -> (Vec3, Vec3) {
         if self.mode == ExcitationMode::Off {
             return (Vec3::zeros(), Vec3::zeros());
         }
+        let (w, w_dot) = self.window(t_s);
+        let (a, a_dot) = (
+            self.amplitude * w,
+            self.amplitude_rate * w + self.amplitude * w_dot,
+        );
         let (s, c) = (self.omega_rps * t_s).sin_cos();
-        let offset = self.direction * (self.amplitude * s);
-        let rate = self.direction * (self.amplitude_rate * s + self.amplitude * self.omega_rps * c);
+        let offset = self.direction * (a * s);
+        let rate = self.direction * (a_dot * s + a * self.omega_rps * c);
         (offset, rate)
     }
 
@@ -302,13 +340,12 @@ mod tests {
         let errors = ExcitationErrors::default();
         ex.record_errors(0.01, &errors, Some((8.0, 1.0)));
         assert_eq!(
-            ex.amplitude(),
-            0.4,
+            ex.amplitude, 0.4,
             "3.2 ft is inside the 8 ft target's bound"
         );
         for b_hat_ft in [16.0, 20.0, 25.0] {
             ex.record_errors(0.02, &errors, Some((b_hat_ft, 1.0)));
-            let offset_ft = ex.amplitude() * b_hat_ft;
+            let offset_ft = ex.amplitude * b_hat_ft;
             assert!(
                 offset_ft <= view.max_offset_ft(b_hat_ft) + 1e-12,
                 "{b_hat_ft}"
@@ -337,7 +374,7 @@ mod tests {
                 &ExcitationErrors::default(),
                 Some((b_hat_ft, 0.01 * b_hat_ft)),
             );
-            ex.amplitude()
+            ex.amplitude
         };
         let relative = [8.0, 20.0].map(|b| amplitude_ft(ExcitationMode::RelativeUncertainty, b));
         assert!(
@@ -357,7 +394,7 @@ mod tests {
         let mut ex = Excitation::new(&section(ExcitationMode::Continuous), 0.01, None, 8.0);
         for i in 1..290 {
             ex.record(i as f64 * 0.01, 0.0);
-            assert_eq!(ex.amplitude(), 0.5);
+            assert_eq!(ex.amplitude, 0.5);
         }
     }
 
@@ -371,21 +408,17 @@ mod tests {
             ex.record(i as f64 * dt, c);
         }
         let expected = 10.0 * c * 3.0 + 0.0002;
-        assert!(
-            (ex.amplitude() - expected).abs() < 1e-9,
-            "{}",
-            ex.amplitude()
-        );
+        assert!((ex.amplitude - expected).abs() < 1e-9, "{}", ex.amplitude);
         // A large error saturates at k1.
         for i in 5001..=9000 {
             ex.record(i as f64 * dt, 1.0);
         }
-        assert!((ex.amplitude() - 0.5).abs() < 1e-12);
+        assert!((ex.amplitude - 0.5).abs() < 1e-12);
         // Zero error for a whole period: the floor k3.
         for i in 9001..=12100 {
             ex.record(i as f64 * dt, 0.0);
         }
-        assert!((ex.amplitude() - 0.0002).abs() < 1e-12);
+        assert!((ex.amplitude - 0.0002).abs() < 1e-12);
     }
 
     /// Per period: the amplitude changes only at period boundaries.
@@ -396,7 +429,7 @@ mod tests {
         let mut values = Vec::new();
         for i in 1..=900 {
             ex.record(i as f64 * dt, 0.001);
-            values.push(ex.amplitude());
+            values.push(ex.amplitude);
         }
         // Periods end at ticks 300, 600, 900: a changes there and nowhere else.
         for (i, w) in values.windows(2).enumerate() {
@@ -416,5 +449,40 @@ mod tests {
         let h = 1e-6;
         let fd = (ex.offset(t + h).0 - ex.offset(t - h).0) / (2.0 * h);
         assert!((fd - ex.offset(t).1).norm() < 1e-6);
+    }
+
+    /// The window: nothing before its start or after its end, the whole amplitude between the
+    /// fades, and through the fades an offset whose rate is its derivative (no jump, no kink).
+    #[test]
+    fn the_window_fades_the_swing_in_and_out() {
+        let windowed = ExcitationSection {
+            mode: ExcitationMode::Uncertainty,
+            period_s: 4.0,
+            k1: 0.8,
+            start_s: 30.0,
+            end_s: 120.0,
+            ..ExcitationSection::default()
+        };
+        let ex = Excitation::new(&windowed, 0.001, None, 8.0);
+        for t_s in [0.0, 29.9, 120.0, 139.0] {
+            assert_eq!(ex.offset(t_s), (Vec3::zeros(), Vec3::zeros()), "t = {t_s}");
+            assert_eq!(ex.amplitude_at(t_s), 0.0);
+        }
+        for t_s in [34.0, 70.0, 115.9] {
+            assert_eq!(ex.amplitude_at(t_s), 0.8, "t = {t_s}");
+        }
+        assert!(
+            (ex.amplitude_at(32.0) - 0.4).abs() < 1e-12,
+            "half way through the fade in"
+        );
+        assert!(
+            (ex.amplitude_at(118.0) - 0.4).abs() < 1e-12,
+            "and through the fade out"
+        );
+        let h = 1e-6;
+        for t_s in [30.5, 31.7, 33.9, 116.1, 117.3, 119.8] {
+            let fd = (ex.offset(t_s + h).0 - ex.offset(t_s - h).0) / (2.0 * h);
+            assert!((fd - ex.offset(t_s).1).norm() < 1e-6, "t = {t_s}");
+        }
     }
 }

@@ -3,7 +3,7 @@
 //! out.
 
 use crate::estimation::TargetEstimate;
-use crate::frames::Vec3;
+use crate::frames::{Mat3, Vec3};
 
 /// What a guidance law commands the follower with.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -102,6 +102,17 @@ pub struct ExcitationOffset {
 }
 
 impl ExcitationOffset {
+    /// The offset turned into NED from a frame: `rotation` (NED from the frame) and its rate
+    /// (the rate gains the frame's turn, Ṙ o).
+    pub fn turned(&self, rotation: &Mat3, rotation_rate: &Mat3) -> Self {
+        Self {
+            ned_ft: rotation * self.ned_ft,
+            rate_ned_fps: rotation * self.rate_ned_fps + rotation_rate * self.ned_ft,
+            scaled: rotation * self.scaled,
+            scaled_rate_per_s: rotation * self.scaled_rate_per_s + rotation_rate * self.scaled,
+        }
+    }
+
     /// The offset in ft for the size estimate b̂ (scaled offsets times b̂).
     pub fn in_ft(&self, b_hat_ft: f64) -> Vec3 {
         self.ned_ft + self.scaled * b_hat_ft
@@ -160,4 +171,30 @@ pub struct AccelerationGuidanceOutput {
     pub error: Vec3,
     /// b̂', ft/s.
     pub b_hat_rate_fps: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An offset turned into NED by a frame yawing at χ̇: the frame's turn adds χ̇ ẑ × o to
+    /// its rate (a swing across the track of a target turning east stays across it).
+    #[test]
+    fn a_turned_offset_gains_the_frame_turn() {
+        let (chi, chi_rate) = (0.5_f64, 0.1);
+        let (s, c) = chi.sin_cos();
+        let rotation = Mat3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
+        let rotation_rate = Mat3::new(-s, -c, 0.0, c, -s, 0.0, 0.0, 0.0, 0.0) * chi_rate;
+        let offset = ExcitationOffset {
+            ned_ft: Vec3::new(0.0, 2.0, 0.0),
+            rate_ned_fps: Vec3::new(0.0, 1.0, 0.0),
+            ..ExcitationOffset::default()
+        };
+        let turned = offset.turned(&rotation, &rotation_rate);
+        assert!((turned.ned_ft - Vec3::new(-2.0 * s, 2.0 * c, 0.0)).norm() < 1e-12);
+        let spin = Vec3::new(0.0, 0.0, chi_rate).cross(&turned.ned_ft);
+        let expected_rate = rotation * offset.rate_ned_fps + spin;
+        assert!((turned.rate_ned_fps - expected_rate).norm() < 1e-12);
+        assert_eq!(turned.scaled, Vec3::zeros());
+    }
 }

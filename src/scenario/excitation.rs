@@ -1,6 +1,7 @@
 //! `[excitation]`: the intelligent excitation R*_c = R_c + a(t) sin(ωt) E (4.31) and the
 //! frame its direction is read in (`guidance::excitation`).
 
+use super::CommandFrame;
 use super::check::{self, Check};
 use serde::{Deserialize, Serialize};
 
@@ -59,6 +60,19 @@ pub enum ExcitationError {
     Estimated,
 }
 
+/// The frame the excitation's direction E is read in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExcitationFrame {
+    /// NED, fixed (the seed's: its target flies one heading).
+    Inertial,
+    /// The target's estimated velocity frame the command is read in (`guidance.command_frame
+    /// = "target"`): x along the target's track, y to its right, z down. E turns with the
+    /// frame, so a swing across the track stays across it through the target's turns, where
+    /// a fixed E = [0, 1, 0] swings the follower along the track of a target flying east.
+    Target,
+}
+
 /// `[excitation]`: intelligent excitation R*_c = R_c + a(t) sin(ωt) E, (4.31).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -75,8 +89,17 @@ pub struct ExcitationSection {
     pub k2: f64,
     /// k3: floor of the amplitude.
     pub k3: f64,
-    /// Direction E in NED (normalised on use).
+    /// Direction E in the excitation's frame (normalised on use).
     pub direction: [f64; 3],
+    /// The frame E is read in: `inertial` (NED) or `target` (the command's frame, with
+    /// `guidance.command_frame = "target"`).
+    pub frame: ExcitationFrame,
+    /// When the excitation starts, s: before it the command carries none; after a start
+    /// later than 0 (the default, the seed's) it fades in over one period.
+    pub start_s: f64,
+    /// When it ends, s (`inf`, the default: never): it fades out over the period before, so a
+    /// follower that swings to learn the size can hold its slot once the time for it is over.
+    pub end_s: f64,
     /// The error whose energy ∫ eᵀe the amplitude follows.
     pub error: ExcitationError,
     /// `mode = "uncertainty"`: amplitude per ft of the estimator's σ_b, in the excitation's
@@ -101,6 +124,9 @@ impl Default for ExcitationSection {
             k2: 100.0,
             k3: 0.0002,
             direction: [1.0, 0.0, 0.0],
+            frame: ExcitationFrame::Inertial,
+            start_s: 0.0,
+            end_s: f64::INFINITY,
             error: ExcitationError::Measured,
             k_sigma: 4.0,
             fov_fraction: 0.0,
@@ -109,13 +135,27 @@ impl Default for ExcitationSection {
 }
 
 impl ExcitationSection {
-    pub(super) fn validate(&self) -> Check {
+    /// Checks the section's values; E in the target frame needs the command read there.
+    pub(super) fn validate(&self, command_frame: CommandFrame) -> Check {
         check::positive("excitation.period_s", self.period_s)?;
         check::non_negative("excitation.k1", self.k1)?;
         check::non_negative("excitation.k2", self.k2)?;
         check::in_closed("excitation.k3", self.k3, 0.0, self.k1.max(0.0))?;
         check::in_closed("excitation.k_sigma", self.k_sigma, 0.0, 1e4)?;
         check::in_closed("excitation.fov_fraction", self.fov_fraction, 0.0, 1.0)?;
-        check::nonzero_vec("excitation.direction", &self.direction)
+        check::nonzero_vec("excitation.direction", &self.direction)?;
+        check::in_closed("excitation.start_s", self.start_s, 0.0, 1e9)?;
+        check::require(
+            self.end_s >= self.start_s + 2.0 * self.period_s,
+            "excitation.end_s",
+            self.end_s,
+            "at least excitation.start_s plus two periods (a fade in and a fade out)",
+        )?;
+        check::require(
+            self.frame == ExcitationFrame::Inertial || command_frame == CommandFrame::Target,
+            "excitation.frame",
+            "\"target\"",
+            "\"inertial\" unless guidance.command_frame = \"target\"",
+        )
     }
 }

@@ -615,7 +615,7 @@ impl Scenario {
             "\"adaptive\" with guidance.law = \"acceleration\" (the Kalman filter feeds the \
              velocity law)",
         )?;
-        self.excitation.validate()?;
+        self.excitation.validate(self.guidance.command_frame)?;
         self.validate_leader_swing()?;
         self.validate_size_from()?;
         check::require(

@@ -39,10 +39,8 @@ pub(super) fn excitation_instrument(scenario: &Scenario) -> Option<ExcitationIns
     if e.size_from != SizeFrom::Excitation {
         return None;
     }
-    let direction = Vec3::from(x.direction);
     Some(ExcitationInstrument::new(InstrumentSettings {
         omega_rps: 2.0 * std::f64::consts::PI / x.period_s,
-        direction_ned: direction / direction.norm(),
         q: e.instrument_q,
         sample_s: 1.0 / scenario.camera.rate_hz,
         settle_s: e.instrument_settle_s,

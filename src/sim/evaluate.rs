@@ -8,8 +8,9 @@ use super::navigate::encoder_reading;
 use crate::estimation::{GuidanceMeasurement, LawEstimates, TargetEstimate, TargetMotionEstimate};
 use crate::follower::{Actuation, SlotLine};
 use crate::frames::{Mat3, Vec3};
-use crate::guidance::command::CommandInput;
-use crate::guidance::signals::{FollowerCommand, GuidanceInput, GuidanceOutput};
+use crate::guidance::command::{CommandInput, ned_from_target_frame};
+use crate::guidance::signals::{ExcitationOffset, FollowerCommand, GuidanceInput, GuidanceOutput};
+use crate::scenario::ExcitationFrame;
 use crate::sensing::TargetExpectation;
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
 use std::time::Instant;
@@ -204,9 +205,40 @@ impl Simulation {
             command_ned_ft,
             command_rate_ned_fps,
             command_frame_rate_rps: self.command.shaping_frame_rate_rps(command_x, command),
-            excitation: self.excitation.command_offset(t_s),
+            excitation: self.excitation_offset(t_s, command_x, command),
             follower: self.navigated_feedback(follower_x),
             estimate,
+        }
+    }
+
+    /// The excitation's offset a sin(ωt) E at `t_s`, NED: E turned from its frame
+    /// (`excitation.frame`) by the command's target frame at the command state `command_x`,
+    /// the frame's turn included in the offset's rate.
+    pub(super) fn excitation_offset(
+        &self,
+        t_s: f64,
+        command_x: &[f64],
+        command: &CommandInput,
+    ) -> ExcitationOffset {
+        let offset = self.excitation.command_offset(t_s);
+        match self.scenario.excitation.frame {
+            ExcitationFrame::Inertial => offset,
+            ExcitationFrame::Target => {
+                let (rotation, rotation_rate) = self.command.target_frame_turn(command_x, command);
+                offset.turned(&rotation, &rotation_rate)
+            }
+        }
+    }
+
+    /// The excitation's unit direction E now, NED (turned from its frame as
+    /// [`Self::excitation_offset`] turns it).
+    pub(super) fn excitation_direction_ned(&self) -> Vec3 {
+        let direction = self.excitation.direction();
+        match self.scenario.excitation.frame {
+            ExcitationFrame::Inertial => direction,
+            ExcitationFrame::Target => {
+                ned_from_target_frame(self.layout.split(&self.state).command) * direction
+            }
         }
     }
 

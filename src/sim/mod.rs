@@ -423,9 +423,8 @@ impl Simulation {
         let follower = self.follower.position_ned_ft(follower_x);
         let target = self.target.state(t_s);
         let measurement = self.guidance_measurement(t_s, &self.state);
-        let (command, _) = self
-            .command
-            .command(command_x, &self.command_input(&self.state, &measurement));
+        let command_input = self.command_input(&self.state, &measurement);
+        let (command, _) = self.command.command(command_x, &command_input);
         let g = &self.scenario.guidance;
         let estimates = self
             .estimates(&self.state, &measurement)
@@ -433,7 +432,7 @@ impl Simulation {
                 b_hat_ft: g.b0_ft,
                 target_motion: TargetMotionEstimate::ScaledVelocity(Vec3::from(g.d0_per_s)),
             });
-        let excitation = self.excitation.command_offset(t_s);
+        let excitation = self.excitation_offset(t_s, command_x, &command_input);
         Snapshot {
             t_s,
             target,
@@ -444,7 +443,7 @@ impl Simulation {
             relative_ned_ft: target.position_ned_ft - follower,
             command_ned_ft: command,
             excited_command_ned_ft: command + excitation.in_ft(estimates.b_hat_ft),
-            excitation_amplitude: self.excitation.amplitude(),
+            excitation_amplitude: self.excitation.amplitude_at(t_s),
             r_measured: match measurement {
                 GuidanceMeasurement::Now { r, .. } => r,
                 GuidanceMeasurement::NotYet => None,

@@ -63,6 +63,7 @@ impl Simulation {
     /// takes the instrument's size once its σ / b̂ is below `instrument_take_fraction` and
     /// b̂ is within the guidance's bounds.
     fn feed_instrument(&mut self, record: &FrameRecord, trusted: bool) {
+        let direction_ned = self.excitation_direction_ned();
         let Some(instrument) = self.instrument.as_mut() else {
             return;
         };
@@ -72,7 +73,8 @@ impl Simulation {
         let measured = posterior
             .as_ref()
             .map(|e| (&e.r, &record.follower_position_ned_ft));
-        instrument.add_frame(record.t_s, self.excitation.amplitude(), measured);
+        let amplitude = self.excitation.amplitude_at(record.t_s);
+        instrument.add_frame(record.t_s, amplitude, &direction_ned, measured);
         let Some(reading) = instrument.estimate() else {
             return;
         };

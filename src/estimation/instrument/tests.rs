@@ -19,7 +19,6 @@ impl White {
 fn settings() -> InstrumentSettings {
     InstrumentSettings {
         omega_rps: 2.0 * std::f64::consts::PI / PERIOD_S,
-        direction_ned: Vec3::new(0.0, 1.0, 0.0),
         q: 3.0,
         sample_s: FRAME_S,
         settle_s: 10.0,
@@ -51,7 +50,7 @@ fn fly(swing_ft: f64, seed: u64) -> (ExcitationInstrument, f64) {
         let own_ft = copy_ft - swing_ft * (omega * (t_s - 1.1)).sin();
         let r = Vec3::new(0.0, (leader_ft - own_ft) / SIZE_FT, 0.0);
         let p = Vec3::new(0.0, own_ft, 0.0);
-        instrument.add_frame(t_s, swing_ft, Some((&r, &p)));
+        instrument.add_frame(t_s, swing_ft, &Vec3::new(0.0, 1.0, 0.0), Some((&r, &p)));
         series.push((own_ft, r.y));
     }
     (instrument, least_squares_size(&series))
@@ -107,7 +106,7 @@ fn no_swing_and_no_blocks_give_no_estimate() {
     let mut instrument = ExcitationInstrument::new(settings());
     let (r, p) = (Vec3::new(3.0, 1.0, 0.0), Vec3::zeros());
     for k in 0..(40.0 / FRAME_S) as usize {
-        instrument.add_frame(k as f64 * FRAME_S, 1.0, Some((&r, &p)));
+        instrument.add_frame(k as f64 * FRAME_S, 1.0, &Vec3::y(), Some((&r, &p)));
     }
     assert_eq!(instrument.estimate(), None, "2 blocks of 13.8 s after 10 s");
 }
