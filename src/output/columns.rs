@@ -227,7 +227,7 @@ pub static COLUMNS: &[Column] = &[
     three(["phi_rad", "theta_rad", "psi_rad"], "rad", Every, "follower attitude φ, θ, ψ", |s| attitude(&s.follower_attitude)),
     three(["cmd_n_ft", "cmd_e_ft", "cmd_d_ft"], "ft", Every, "the command R_c (NED)", |s| s.command_ned_ft),
     three(["cmd_exc_n_ft", "cmd_exc_e_ft", "cmd_exc_d_ft"], "ft", Every, "the excited command R*_c (NED)", |s| s.excited_command_ned_ft),
-    one("excitation_amp", "", Every, "the excitation's amplitude a(t), in its own units", |s| s.excitation_amplitude),
+    one("excitation_amp", "", Every, "the excitation's amplitude a(t) w(t) within its window (`excitation.start_s`, `end_s`), in its own units", |s| s.excitation_amplitude),
     one("b_hat_ft", "ft", Every, "b̂, the size estimate the guidance flies on", |s| s.b_hat_ft),
     three(["d_hat_x_per_s", "d_hat_y_per_s", "d_hat_z_per_s"], "1/s", ScaledVelocity, "d̂, the scaled target velocity", |s| s.target_motion.vector()),
     three(["d_hat_x_fps", "d_hat_y_fps", "d_hat_z_fps"], "ft/s", AccelerationBound, "d̂, the filtered-acceleration bound", |s| s.target_motion.vector()),

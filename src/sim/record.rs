@@ -31,7 +31,7 @@ pub struct Snapshot {
     pub command_ned_ft: Vec3,
     /// The command with excitation R*_c, NED, ft (scaled excitation times b̂).
     pub excited_command_ned_ft: Vec3,
-    /// Excitation amplitude a(t), in the excitation's units.
+    /// Excitation amplitude a(t) w(t) within its window, in the excitation's units.
     pub excitation_amplitude: f64,
     /// The r the guidance was given (None while it has nothing).
     pub r_measured: Option<Vec3>,
