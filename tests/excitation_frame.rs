@@ -65,5 +65,7 @@ fn the_window_bounds_the_swing() {
     };
     assert_eq!(largest_ft(0.0, 10.0), 0.0);
     assert_eq!(largest_ft(30.0, 46.0), 0.0);
-    assert!(largest_ft(15.0, 25.0) > 0.3, "{}", largest_ft(15.0, 25.0));
+    // Inside the window, past its fade in: the swing formation.toml flies there (0.87 ft
+    // at its largest, measured), not a remnant of the fades.
+    assert!(largest_ft(15.0, 25.0) > 0.5, "{}", largest_ft(15.0, 25.0));
 }

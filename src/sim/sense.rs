@@ -63,6 +63,9 @@ impl Simulation {
     /// takes the instrument's size once its σ / b̂ is below `instrument_take_fraction` and
     /// b̂ is within the guidance's bounds.
     fn feed_instrument(&mut self, record: &FrameRecord, trusted: bool) {
+        if self.instrument.is_none() {
+            return;
+        }
         let direction_ned = self.excitation_direction_ned();
         let Some(instrument) = self.instrument.as_mut() else {
             return;
