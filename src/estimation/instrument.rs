@@ -33,6 +33,9 @@ pub struct InstrumentSettings {
     pub block_s: f64,
     /// The fewest whole blocks before there is an estimate.
     pub min_blocks: usize,
+    /// The time constant of the low-pass E passes before the increments are read along it, s
+    /// (0: E as given).
+    pub direction_time_s: f64,
 }
 
 /// The instrument's reading: b̂ and its σ, ft.
@@ -103,6 +106,8 @@ pub struct ExcitationInstrument {
     settings: InstrumentSettings,
     own: BandPass,
     image: BandPass,
+    /// E after its low-pass, NED (not normalised).
+    direction: Option<Vec3>,
     /// The last measured (r, p_F ft), NED, and the sums of the increments along E so far
     /// (y_F ft, y_r), held through a frame without a measurement.
     last: Option<(Vec3, Vec3)>,
@@ -127,6 +132,7 @@ impl ExcitationInstrument {
             settings,
             own: band,
             image: band,
+            direction: None,
             last: None,
             sums: (0.0, 0.0),
             first_s: None,
@@ -149,6 +155,7 @@ impl ExcitationInstrument {
         direction_ned: &Vec3,
         measured: Option<(&Vec3, &Vec3)>,
     ) {
+        let direction_ned = self.low_passed(direction_ned);
         if let Some((r, p)) = measured {
             if let Some((last_r, last_p)) = self.last {
                 self.sums.0 += direction_ned.dot(&(p - last_p));
@@ -171,6 +178,25 @@ impl ExcitationInstrument {
         if t_s - start_s >= self.settings.block_s - 0.5 * self.settings.sample_s {
             self.close_block();
         }
+    }
+
+    /// E through a first-order low-pass of `direction_time_s`, normalised. E turns with the
+    /// command's frame, whose heading the follower's own swing moves a little at the swing's
+    /// frequency (through its estimate of the leader's velocity); along an E that wobbles in
+    /// step with the swing the leader's motion along its track would enter the reading as an
+    /// answer to the excitation (docs/equations.md, The instrument's direction).
+    fn low_passed(&mut self, direction_ned: &Vec3) -> Vec3 {
+        let time_s = self.settings.direction_time_s;
+        let gain = if time_s > 0.0 {
+            1.0 - (-self.settings.sample_s / time_s).exp()
+        } else {
+            1.0
+        };
+        let smoothed = self
+            .direction
+            .map_or(*direction_ned, |d| d + gain * (direction_ned - d));
+        self.direction = Some(smoothed);
+        smoothed.try_normalize(1e-12).unwrap_or(*direction_ned)
     }
 
     fn close_block(&mut self) {

@@ -315,6 +315,16 @@ pub struct EstimatorSection {
     /// With `size_from = "excitation"`, the σ / b̂ of the reading below which the filter
     /// takes it. Choice: 0.05, the size's bar in the group runs.
     pub instrument_take_fraction: f64,
+    /// With `size_from = "excitation"`, the time constant of the low-pass the excitation's
+    /// direction E passes before the instrument reads the increments along it, in excitation
+    /// periods (0: E as it is). Choice: 2, which passes a twelfth of a wobble at the swing's
+    /// own frequency. With `excitation.frame = "target"` E turns with the command's frame,
+    /// whose heading the follower's own swing moves (through its estimate of the leader's
+    /// velocity); along an E that wobbles 1° in step with the swing, a leader's 50 ft/s
+    /// along its track moves 0.9 ft at a 6 s period, read as an answer to the excitation
+    /// (docs/equations.md, The instrument's direction; docs/findings.md, Group tracking, The
+    /// instrument's direction).
+    pub instrument_direction_periods: f64,
     /// `inferred` (default) or `measured`: whether each frame's wing line is fused as the
     /// target's acceleration across its velocity (Kalman filter only; frames whose span the
     /// filter's view puts below `span_aspect_min` are not).
@@ -372,6 +382,7 @@ impl Default for EstimatorSection {
             instrument_min_blocks: 4,
             instrument_settle_s: 10.0,
             instrument_take_fraction: 0.05,
+            instrument_direction_periods: 2.0,
             bank_end_sigma_px: 0.5,
             bank_accel_sigma_fps2: 1.0,
         }
@@ -501,7 +512,7 @@ impl EstimatorSection {
     }
 
     /// (key, value, allowed [min, max]) of the instrument's scalars.
-    fn instrument_scalars(&self) -> [(&'static str, f64, f64, f64); 4] {
+    fn instrument_scalars(&self) -> [(&'static str, f64, f64, f64); 5] {
         [
             ("instrument_q", self.instrument_q, 0.5, 100.0),
             (
@@ -516,6 +527,12 @@ impl EstimatorSection {
                 self.instrument_take_fraction,
                 0.0,
                 1.0,
+            ),
+            (
+                "instrument_direction_periods",
+                self.instrument_direction_periods,
+                0.0,
+                100.0,
             ),
         ]
     }

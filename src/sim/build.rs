@@ -46,6 +46,7 @@ pub(super) fn excitation_instrument(scenario: &Scenario) -> Option<ExcitationIns
         settle_s: e.instrument_settle_s,
         block_s: e.instrument_block_periods * x.period_s,
         min_blocks: e.instrument_min_blocks as usize,
+        direction_time_s: e.instrument_direction_periods * x.period_s,
     }))
 }
 

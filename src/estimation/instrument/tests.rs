@@ -24,6 +24,7 @@ fn settings() -> InstrumentSettings {
         settle_s: 10.0,
         block_s: 3.0 * PERIOD_S,
         min_blocks: 4,
+        direction_time_s: 2.0 * PERIOD_S,
     }
 }
 
@@ -109,4 +110,51 @@ fn no_swing_and_no_blocks_give_no_estimate() {
         instrument.add_frame(k as f64 * FRAME_S, 1.0, &Vec3::y(), Some((&r, &p)));
     }
     assert_eq!(instrument.estimate(), None, "2 blocks of 13.8 s after 10 s");
+}
+
+/// The size read by a follower that swings `SWING_FT` across the track of a leader flying
+/// 50 ft/s north, both on the same track but for the swing and the leader's wander across
+/// it, while E wobbles 1° about east in step with the swing (as the command's frame does
+/// when the follower's swing moves its estimate of the leader's velocity), with E's
+/// low-pass of `direction_time_s`. Returns the reading's error, a fraction of the size.
+fn error_with_wobbling_direction(direction_time_s: f64) -> f64 {
+    const SWING_FT: f64 = 5.0;
+    const SPEED_FPS: f64 = 50.0;
+    let mut white = White(11);
+    let mut instrument = ExcitationInstrument::new(InstrumentSettings {
+        direction_time_s,
+        ..settings()
+    });
+    let omega = settings().omega_rps;
+    let mut wander = 0.0;
+    for k in 0..(140.0 / FRAME_S) as usize {
+        let t_s = k as f64 * FRAME_S;
+        wander += (-wander / 1.5 + 8.0 * white.next()) * FRAME_S * 3.0;
+        let leader = Vec3::new(SPEED_FPS * t_s, wander, 0.0);
+        let own = Vec3::new(
+            leader.x - 32.0,
+            -SWING_FT * (omega * (t_s - 1.1)).sin(),
+            0.0,
+        );
+        let wobble_rad = 1f64.to_radians() * (omega * (t_s - 1.1)).cos();
+        let direction = Vec3::new(wobble_rad.sin(), wobble_rad.cos(), 0.0);
+        let r = (leader - own) / SIZE_FT;
+        instrument.add_frame(t_s, SWING_FT, &direction, Some((&r, &own)));
+    }
+    instrument
+        .estimate()
+        .expect("an estimate after 140 s")
+        .size_ft
+        / SIZE_FT
+        - 1.0
+}
+
+/// Along an E that wobbles in step with the swing, the leader's motion along its track is
+/// read as an answer to the excitation; E's low-pass over two periods keeps it out.
+#[test]
+fn a_direction_wobbling_with_the_swing_is_low_passed_out() {
+    let raw = error_with_wobbling_direction(0.0);
+    let low_passed = error_with_wobbling_direction(2.0 * PERIOD_S);
+    assert!(raw.abs() > 0.08, "E as it is: {raw}");
+    assert!(low_passed.abs() < 0.02, "E low-passed: {low_passed}");
 }
