@@ -114,10 +114,10 @@ fn no_swing_and_no_blocks_give_no_estimate() {
 
 /// The size read by a follower that swings `SWING_FT` across the track of a leader flying
 /// 50 ft/s north, both on the same track but for the swing and the leader's wander across
-/// it (a quarter of [`fly`]'s, so that the bias stands out of the noise), while E wobbles 1° about east in step with the swing (as the command's frame does
-/// when the follower's swing moves its estimate of the leader's velocity), with E's
-/// low-pass of `direction_time_s`, the leader's wander drawn from `seed`. Returns the
-/// reading's error and its σ, fractions of the size.
+/// it (a quarter of [`fly`]'s, so that the bias stands out of the noise, drawn from `seed`),
+/// while E wobbles 1° about east in step with the swing (as the command's frame does when
+/// the follower's swing moves its estimate of the leader's velocity), with E's low-pass of
+/// `direction_time_s`. Returns the reading's error and its σ, fractions of the size.
 fn error_with_wobbling_direction(direction_time_s: f64, seed: u64) -> (f64, f64) {
     const SWING_FT: f64 = 5.0;
     const SPEED_FPS: f64 = 50.0;
