@@ -272,6 +272,11 @@ fn the_size_from_the_excitation_needs_the_filter_a_camera_and_a_swing() {
         &[],
         &["estimator.instrument_q = 0", "[0.5, 100]"],
     );
+    assert_rejected(
+        "[estimator]\nkind = \"kalman\"\ninstrument_direction_periods = -1\n",
+        &[],
+        &["estimator.instrument_direction_periods = -1", "[0, 100]"],
+    );
 }
 
 /// The excitation's frame turns with the command's target frame, so it needs it; its window

@@ -106,7 +106,9 @@ pub struct ExcitationInstrument {
     settings: InstrumentSettings,
     own: BandPass,
     image: BandPass,
-    /// E after its low-pass, NED (not normalised).
+    /// The low-pass's gain per frame, 1 - e^(-Δt/τ) (1: E as given), and E after it, NED
+    /// (not normalised).
+    direction_gain: f64,
     direction: Option<Vec3>,
     /// The last measured (r, p_F ft), NED, and the sums of the increments along E so far
     /// (y_F ft, y_r), held through a frame without a measurement.
@@ -128,10 +130,16 @@ impl ExcitationInstrument {
     /// An instrument with nothing summed.
     pub fn new(settings: InstrumentSettings) -> Self {
         let band = BandPass::new(settings.omega_rps, settings.q, settings.sample_s);
+        let time_s = settings.direction_time_s;
         Self {
             settings,
             own: band,
             image: band,
+            direction_gain: if time_s > 0.0 {
+                1.0 - (-settings.sample_s / time_s).exp()
+            } else {
+                1.0
+            },
             direction: None,
             last: None,
             sums: (0.0, 0.0),
@@ -186,12 +194,7 @@ impl ExcitationInstrument {
     /// step with the swing the leader's motion along its track would enter the reading as an
     /// answer to the excitation (docs/equations.md, The instrument's direction).
     fn low_passed(&mut self, direction_ned: &Vec3) -> Vec3 {
-        let time_s = self.settings.direction_time_s;
-        let gain = if time_s > 0.0 {
-            1.0 - (-self.settings.sample_s / time_s).exp()
-        } else {
-            1.0
-        };
+        let gain = self.direction_gain;
         let smoothed = self
             .direction
             .map_or(*direction_ned, |d| d + gain * (direction_ned - d));

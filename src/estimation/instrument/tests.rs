@@ -8,6 +8,12 @@ const FRAME_S: f64 = 1.0 / 30.0;
 struct White(u64);
 
 impl White {
+    /// The leader's wander across its track one frame on: a first-order response (0.5 s)
+    /// to white noise of `push`.
+    fn wander(&mut self, wander: f64, push: f64) -> f64 {
+        wander + (-wander / 1.5 + push * self.next()) * FRAME_S * 3.0
+    }
+
     fn next(&mut self) -> f64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
@@ -44,7 +50,7 @@ fn fly(swing_ft: f64, seed: u64) -> (ExcitationInstrument, f64) {
     let (mut wander, mut series) = (0.0, Vec::new());
     for k in 0..(140.0 / FRAME_S) as usize {
         let t_s = k as f64 * FRAME_S;
-        wander += (-wander / 1.5 + 8.0 * white.next()) * FRAME_S * 3.0;
+        wander = white.wander(wander, 8.0);
         let leader_ft = 20.0 * (t_s / 25.0).sin() + wander;
         leader.push(leader_ft);
         let copy_ft = leader[leader.len() - 1 - lag_frames];
@@ -130,7 +136,7 @@ fn error_with_wobbling_direction(direction_time_s: f64, seed: u64) -> (f64, f64)
     let mut wander = 0.0;
     for k in 0..(140.0 / FRAME_S) as usize {
         let t_s = k as f64 * FRAME_S;
-        wander += (-wander / 1.5 + 2.0 * white.next()) * FRAME_S * 3.0;
+        wander = white.wander(wander, 2.0);
         let leader = Vec3::new(SPEED_FPS * t_s, wander, 0.0);
         let own = Vec3::new(
             leader.x - 32.0,
