@@ -6,6 +6,7 @@
 use crate::common;
 
 use wingman::output::frame_images::{frame_caption, gimbal_captions};
+use wingman::render::CameraImage;
 use wingman::vision::overlay::draw_caption;
 
 #[test]
@@ -47,16 +48,14 @@ fn saved_frame_captions_show_its_exposure() {
         gimbal_captions(saved.gimbal),
         "the gimbal moves between exposure and saving, so the test can tell them apart"
     );
-    let png = image::open(dir.path().join("frames/000030.png"))
-        .expect("frame 30 saved")
-        .to_rgba8();
-    let (w, h) = png.dimensions();
-    let mut redrawn = png.clone().into_raw();
+    let png = CameraImage::read_png(&dir.path().join("frames/000030.png")).expect("frame 30 saved");
+    let (w, h) = (png.width_px, png.height_px);
+    let mut redrawn = png.rgba.clone();
     for (k, line) in expected.iter().enumerate() {
         draw_caption(&mut redrawn, w, h, k + 1, line).expect("caption fits");
     }
     assert!(
-        redrawn == png.into_raw(),
+        redrawn == png.rgba,
         "the saved frame's captions are not {expected:?}"
     );
 }

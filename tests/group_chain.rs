@@ -11,6 +11,7 @@
 
 use crate::common::repo_root;
 use wingman::output::group::{GroupSummary, load_checked, run_group_to_directory};
+use wingman::render::CameraImage;
 use wingman::scenario::SizeFrom;
 use wingman::scenario::group::GroupScenario;
 use wingman::vision::{BlobSelection, BlobSummary, VisionConfig, VisionPipeline};
@@ -132,15 +133,14 @@ fn the_first_frame_draws_every_other_aircraft() {
         "output.overlay=false",
         "output.frames_every=1",
     ]);
-    let frame = image::open(dir.path().join("f3/frames/000000.png"))
-        .expect("frame 0 saved")
-        .to_rgba8();
+    let frame =
+        CameraImage::read_png(&dir.path().join("f3/frames/000000.png")).expect("frame 0 saved");
     let mut vision = VisionPipeline::new(VisionConfig::default()).expect("default vision");
     vision
         .measure(
-            frame.as_raw(),
-            frame.width(),
-            frame.height(),
+            &frame.rgba,
+            frame.width_px,
+            frame.height_px,
             BlobSelection::Largest,
         )
         .expect("frame size");

@@ -8,6 +8,7 @@
 use std::os::unix::process::CommandExt;
 use std::path::Path;
 use std::process::Command;
+use wingman::render::CameraImage;
 
 /// `wingman run formation.toml` for 20 s into `out`, with `limit_bytes` as the largest file
 /// it may write (none: no limit); its exit code and standard error.
@@ -65,7 +66,7 @@ fn assert_degraded_in_order(out: &Path, code: i32, stderr: &str) -> Vec<String> 
     if let Ok(entries) = std::fs::read_dir(out.join("plots")) {
         for entry in entries {
             let path = entry.expect("entry").path();
-            image::open(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            CameraImage::read_png(&path).unwrap_or_else(|e| panic!("{e}"));
         }
     }
     let unwritten: Vec<String> = summary["unwritten"]

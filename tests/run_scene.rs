@@ -5,6 +5,7 @@
 //! out of range is refused with exit code 2, naming it.
 
 use crate::common::*;
+use wingman::render::CameraImage;
 
 /// Two seconds of formation_scene.toml, saving every 15th frame.
 #[test]
@@ -36,14 +37,12 @@ fn saved_frames_show_the_scene_and_the_summary_counts_backgrounds() {
     // The first frame: the camera looks ahead and down at the target 30 ft below, over the
     // ground 300 ft below: its bottom row is fields (green above blue), its top row is sky
     // or cloud (blue at least green) unless the camera looks down too steeply to see any.
-    let frame = image::open(dir.path().join("frames/000000.png"))
-        .expect("frame saved")
-        .to_rgb8();
-    let (w, h) = frame.dimensions();
+    let frame = CameraImage::read_png(&dir.path().join("frames/000000.png")).expect("frame saved");
+    let (w, h) = (frame.width_px, frame.height_px);
     let ground_like = |v: u32| {
         (0..w)
             .filter(|&u| {
-                let p = frame.get_pixel(u, v);
+                let p = frame.pixel(u, v).expect("inside");
                 p[1] > p[2]
             })
             .count() as f64

@@ -11,6 +11,7 @@ use std::path::Path;
 use std::process::Command;
 use wingman::output::video::{export_video, video_caption};
 use wingman::output::video_encoders::{Encoder, ffmpeg_codec};
+use wingman::render::CameraImage;
 
 const WIDTH: u32 = 41;
 const HEIGHT: u32 = 31;
@@ -40,8 +41,8 @@ fn run_folder(dir: &Path, second_camera: bool) {
         std::fs::create_dir_all(&folder).unwrap();
         for n in NUMBERS {
             let g = grey(n);
-            let img = image::RgbaImage::from_pixel(WIDTH, HEIGHT, image::Rgba([g, g, g, 255]));
-            img.save(folder.join(format!("{n:06}.png"))).unwrap();
+            let img = CameraImage::filled(WIDTH, HEIGHT, [g, g, g, 255]);
+            img.save_png(&folder.join(format!("{n:06}.png"))).unwrap();
         }
     }
 }

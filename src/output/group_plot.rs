@@ -2,13 +2,15 @@
 //! right), with the formation drawn as it stood every 20 s (each follower joined to the
 //! aircraft it tracks).
 
-use super::plots::{PALETTE, PlotError, font_available};
+use super::plots::{PALETTE, PlotError, draw_png, font_available};
 use crate::sim::group::Group;
 use plotters::prelude::*;
 use std::path::Path;
 
 /// Seconds between the formation's drawn instants.
 const SNAPSHOT_EVERY_S: f64 = 20.0;
+/// The plot's size, px.
+const SIZE_PX: (u32, u32) = (1000, 1000);
 
 /// A named track: (east, north) points, ft.
 struct Track {
@@ -75,37 +77,36 @@ pub fn draw_formation(path: &Path, group: &Group) -> Result<(), PlotError> {
         |(a, b, c, d), &(e, n)| (a.min(e), b.max(e), c.min(n), d.max(n)),
     );
     let pad = 0.05 * (e_hi - e_lo).max(n_hi - n_lo).max(10.0);
-    let root = BitMapBackend::new(path, (1000, 1000)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| draw_error(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("formation from above", ("sans-serif", 24))
-        .margin(20)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d(e_lo - pad..e_hi + pad, n_lo - pad..n_hi + pad)
-        .map_err(|e| draw_error(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc("east, ft")
-        .y_desc("north, ft")
-        .draw()
-        .map_err(|e| draw_error(&e))?;
-    for (k, track) in tracks.iter().enumerate() {
-        let colour = PALETTE[k % PALETTE.len()];
+    draw_png(path, SIZE_PX, |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption("formation from above", ("sans-serif", 24))
+            .margin(20)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(e_lo - pad..e_hi + pad, n_lo - pad..n_hi + pad)
+            .map_err(|e| draw_error(&e))?;
         chart
-            .draw_series(LineSeries::new(track.points.iter().copied(), colour))
-            .map_err(|e| draw_error(&e))?
-            .label(track.name.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
-    }
-    draw_links(&mut chart, group, &tracks).map_err(|e| draw_error(&e))?;
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| draw_error(&e))?;
-    root.present().map_err(|e| draw_error(&e))
+            .configure_mesh()
+            .x_desc("east, ft")
+            .y_desc("north, ft")
+            .draw()
+            .map_err(|e| draw_error(&e))?;
+        for (k, track) in tracks.iter().enumerate() {
+            let colour = PALETTE[k % PALETTE.len()];
+            chart
+                .draw_series(LineSeries::new(track.points.iter().copied(), colour))
+                .map_err(|e| draw_error(&e))?
+                .label(track.name.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+        }
+        draw_links(&mut chart, group, &tracks).map_err(|e| draw_error(&e))?;
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| draw_error(&e))
+    })
 }
 
 type FormationChart<'a> = ChartContext<

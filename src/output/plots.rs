@@ -1,5 +1,6 @@
 //! `plots/*.png`: the seed's figure panels, drawn with plotters on a bitmap.
 
+use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
@@ -46,11 +47,15 @@ impl PlotError {
 /// Encodes an RGB `buffer` of `size` pixels as PNG into `path`; a file the disk does not take
 /// whole is removed, so no cut-off image stays.
 fn write_png(path: &Path, buffer: &[u8], size: (u32, u32)) -> Result<(), PlotError> {
-    use image::ImageEncoder;
     let mut png = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut png)
-        .write_image(buffer, size.0, size.1, image::ExtendedColorType::Rgb8)
-        .map_err(draw_error(path))?;
+    let mut encoder = png::Encoder::new(&mut png, size.0, size.1);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_compression(png::Compression::Fast);
+    encoder.set_filter(png::Filter::Adaptive);
+    let mut writer = encoder.write_header().map_err(draw_error(path))?;
+    writer.write_image_data(buffer).map_err(draw_error(path))?;
+    writer.finish().map_err(draw_error(path))?;
     std::fs::write(path, &png).map_err(|source| {
         let _ = std::fs::remove_file(path);
         PlotError::Write {
@@ -218,12 +223,9 @@ pub fn draw_figure(
         return Err(PlotError::NoFont);
     }
     let size = (1000, 60 + 260 * panels.len() as u32);
-    // Drawn in memory and written in one piece (see `write_png`).
-    let mut buffer = vec![0u8; 3 * size.0 as usize * size.1 as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut buffer, size).into_drawing_area();
-        root.fill(&WHITE).map_err(draw_error(path))?;
+    draw_png(path, size, |root| {
         let root = root
+            .clone()
             .titled(title, ("sans-serif", 24))
             .map_err(draw_error(path))?;
         let areas = root.split_evenly((panels.len(), 1));
@@ -255,6 +257,22 @@ pub fn draw_figure(
                 path,
             )?;
         }
+        Ok(())
+    })
+}
+
+/// Draws into `path`, a PNG of `size` px: `draw` draws on a white canvas in memory, which
+/// is then written in one piece (see `write_png`).
+pub fn draw_png(
+    path: &Path,
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<BitMapBackend, Shift>) -> Result<(), PlotError>,
+) -> Result<(), PlotError> {
+    let mut buffer = vec![0u8; 3 * size.0 as usize * size.1 as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buffer, size).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_error(path))?;
+        draw(&root)?;
         root.present().map_err(draw_error(path))?;
     }
     write_png(path, &buffer, size)
@@ -354,6 +372,7 @@ pub fn padded_range(values: impl Iterator<Item = f64>, margin: f64) -> (f64, f64
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::image::CameraImage;
 
     /// The last x tick's label (140.0 at the end of a 140 s run) is drawn whole: it ends
     /// inside the image, with white columns between it and the right edge.
@@ -365,9 +384,9 @@ mod tests {
         let t: Vec<f64> = (0..=1400).map(|k| f64::from(k) * 0.1).collect();
         let panel = Panel::new("y, ft", vec![Series::new("y", t.clone(), TRUTH)]);
         draw_figure(&path, "t", &t, &[panel]).unwrap();
-        let png = image::open(&path).unwrap().to_rgb8();
-        let (w, h) = png.dimensions();
-        let dark = |x: u32, y: u32| png.get_pixel(x, y).0.iter().all(|c| *c < 128);
+        let png = CameraImage::read_png(&path).unwrap();
+        let (w, h) = (png.width_px, png.height_px);
+        let dark = |x: u32, y: u32| png.pixel(x, y).unwrap()[..3].iter().all(|c| *c < 128);
         let last_dark_column = (0..w).rev().find(|&x| (0..h).any(|y| dark(x, y))).unwrap();
         assert!(
             last_dark_column + 4 < w,

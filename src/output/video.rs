@@ -5,6 +5,7 @@
 //! [`super::video_encoders`]: ffmpeg (MP4) when it is on the PATH, an animated PNG otherwise.
 
 use super::video_encoders::{EncodeError, Encoder, VideoFormat, open_sink};
+use crate::render::image::CameraImage;
 use crate::vision::overlay::draw_footer;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -182,10 +183,8 @@ fn video_path(run_dir: &Path, out: Option<&Path>, camera: Option<&str>, ext: &st
 }
 
 /// Decodes a saved frame as RGBA8.
-fn read_frame(path: &Path) -> Result<image::RgbaImage, VideoError> {
-    image::open(path)
-        .map(|i| i.to_rgba8())
-        .map_err(|e| VideoError::BadFrame(format!("{}: {e}", path.display())))
+fn read_frame(path: &Path) -> Result<CameraImage, VideoError> {
+    CameraImage::read_png(path).map_err(|e| VideoError::BadFrame(e.to_string()))
 }
 
 /// Writes a run folder's videos, one per camera (see the module's documentation): `out`
@@ -265,7 +264,7 @@ fn write_video(
     let step = frame_step(&source.frames);
     let statuses = frame_statuses(run_dir, camera, rate_hz);
     let first = read_frame(&source.frames[0].1)?;
-    let (width_px, height_px) = first.dimensions();
+    let (width_px, height_px) = (first.width_px, first.height_px);
     let path = video_path(run_dir, out, camera, encoder.extension());
     let format = VideoFormat {
         width_px,
@@ -281,18 +280,18 @@ fn write_video(
         } else {
             read_frame(png)?
         };
-        if frame.dimensions() != (width_px, height_px) {
+        if (frame.width_px, frame.height_px) != (width_px, height_px) {
             return Err(VideoError::BadFrame(format!(
                 "{}: {}x{} px, the first frame {width_px}x{height_px}",
                 png.display(),
-                frame.width(),
-                frame.height()
+                frame.width_px,
+                frame.height_px
             )));
         }
         let caption = video_caption(*number as f64 / rate_hz, statuses.get(number).copied());
-        draw_footer(frame.as_mut(), width_px, height_px, &caption)
+        draw_footer(&mut frame.rgba, width_px, height_px, &caption)
             .map_err(|e| VideoError::BadFrame(format!("{}: {e}", png.display())))?;
-        sink.push(frame.as_raw())?;
+        sink.push(&frame.rgba)?;
     }
     let encoder_name = sink.finish()?;
     Ok(VideoWritten {

@@ -386,6 +386,7 @@ fn apparent_size_maps(
 mod tests {
     use super::*;
     use crate::output::plots::PALETTE;
+    use crate::render::image::CameraImage;
     use plotters::style::RGBColor;
     use serde_json::Value;
 
@@ -434,8 +435,15 @@ mod tests {
         assert_eq!(stopped, [(30.0, 175.0), (30.0, 90.0), (60.0, 50.0)]);
     }
 
-    fn read_png(path: &Path) -> image::RgbImage {
-        image::open(path).expect("plot written").to_rgb8()
+    /// The plot's pixels, RGB, by column and row.
+    fn read_png(path: &Path) -> (u32, u32, impl Fn(u32, u32) -> [u8; 3]) {
+        let png = CameraImage::read_png(path).expect("plot written");
+        let (w, h) = (png.width_px, png.height_px);
+        let rgb = move |x, y| {
+            let [r, g, b, _] = png.pixel(x, y).expect("inside the plot");
+            [r, g, b]
+        };
+        (w, h, rgb)
     }
 
     /// The spread of a point is a box many pixels wide, not a hairline.
@@ -459,13 +467,13 @@ mod tests {
             scenario_file: String::new(),
         };
         outcome_vs_axis(&path, &layout, &records, "rms_error_last20s_norm_ft", 0).unwrap();
-        let png = read_png(&path);
+        let (width, height, pixel) = read_png(&path);
         // The boxes' fill: the line colour at a quarter over white.
         let RGBColor(r, g, b) = PALETTE[0];
         let fill = [r, g, b].map(|c| 0.25 * f64::from(c) + 0.75 * 255.0);
-        let filled = |p: &image::Rgb<u8>| (0..3).all(|i| (f64::from(p.0[i]) - fill[i]).abs() < 3.0);
-        let columns = (0..png.width())
-            .filter(|x| (0..png.height()).any(|y| filled(png.get_pixel(*x, y))))
+        let filled = |p: [u8; 3]| (0..3).all(|i| (f64::from(p[i]) - fill[i]).abs() < 3.0);
+        let columns = (0..width)
+            .filter(|x| (0..height).any(|y| filled(pixel(*x, y))))
             .count();
         // Two boxes of 70% of 80% of the spacing of the two values (~ 720 px apart).
         assert!(columns > 100, "{columns} columns carry a box");
@@ -493,20 +501,19 @@ mod tests {
             .collect();
         let axes = (&hfov_axis(), &seeds);
         heatmap(&path, "t", axes, &records, "rms_error_last20s_norm_ft").unwrap();
-        let png = read_png(&path);
-        let on_scale = |p: &image::Rgb<u8>| {
+        let (width, height, pixel) = read_png(&path);
+        let on_scale = |p: &[u8; 3]| {
             (0..=100).any(|k| {
                 let RGBColor(r, g, b) = heatmap::colour(f64::from(k) / 100.0);
                 let d = |a: u8, b: u8| (i32::from(a) - i32::from(b)).abs();
-                d(p.0[0], r) + d(p.0[1], g) + d(p.0[2], b) <= 6
+                d(p[0], r) + d(p[1], g) + d(p[2], b) <= 6
             })
         };
-        let best = (0..png.width())
+        let best = (0..width)
             .map(|x| {
-                let mut colours: Vec<[u8; 3]> = (0..png.height())
-                    .map(|y| png.get_pixel(x, y))
+                let mut colours: Vec<[u8; 3]> = (0..height)
+                    .map(|y| pixel(x, y))
                     .filter(|p| on_scale(p))
-                    .map(|p| p.0)
                     .collect();
                 colours.sort_unstable();
                 colours.dedup();

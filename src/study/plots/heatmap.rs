@@ -6,7 +6,7 @@ use super::super::results::CaseRecord;
 use super::labels::label;
 use super::lines::STOPPED;
 use super::{counts, padded_range, quartiles, tick_label};
-use crate::output::plots::{PlotError, draw_error, draw_y_description};
+use crate::output::plots::{PlotError, draw_error, draw_png, draw_y_description};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -55,12 +55,11 @@ pub fn heatmap(
         };
     }
     let (lo, hi) = padded_range(cells.iter().filter_map(|c| c.median), 0.0);
-    let root = BitMapBackend::new(path, (900 + SCALE_AREA_PX, 700)).into_drawing_area();
-    root.fill(&WHITE).map_err(draw_error(path))?;
-    let (grid, scale) = root.split_horizontally(900);
-    draw_cells(&grid, path, title, (x_axis, y_axis), &cells, (lo, hi))?;
-    draw_scale(&scale, path, &label(outcome), (lo, hi))?;
-    root.present().map_err(draw_error(path))
+    draw_png(path, (900 + SCALE_AREA_PX, 700), |root| {
+        let (grid, scale) = root.split_horizontally(900);
+        draw_cells(&grid, path, title, (x_axis, y_axis), &cells, (lo, hi))?;
+        draw_scale(&scale, path, &label(outcome), (lo, hi))
+    })
 }
 
 /// The colour scale: a bar from `lo` (bottom) to `hi` (top) with its values.

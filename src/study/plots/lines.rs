@@ -6,7 +6,7 @@ use super::super::layout::AxisLayout;
 use super::labels::label;
 use super::{padded_range, tick_label};
 use crate::output::plots::text::{LegendEntry, Sample, draw_legend, legend_height_px};
-use crate::output::plots::{Chart, PlotError, draw_error, draw_y_description};
+use crate::output::plots::{Chart, PlotError, draw_error, draw_png, draw_y_description};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -135,59 +135,58 @@ pub fn draw_lines(path: &Path, chart_spec: &LineChart) -> Result<(), PlotError> 
     } else {
         0
     };
-    let image = BitMapBackend::new(path, (900, 560 + legend_px)).into_drawing_area();
-    image.fill(&WHITE).map_err(draw_error(path))?;
-    let (root, below) = image.split_vertically(560);
-    let mut chart = ChartBuilder::on(&root)
-        .caption(&chart_spec.title, ("sans-serif", 20))
-        .margin(12)
-        .margin_right(30)
-        .x_label_area_size(45)
-        .y_label_area_size(75)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(draw_error(path))?;
-    let x_axis = chart_spec.x_axis;
-    let format_x = |x: &f64| x_axis.format(*x);
-    chart
-        .configure_mesh()
-        .x_desc(x_axis.label.as_str())
-        .x_label_formatter(&format_x)
-        .x_labels(x_axis.categories.as_ref().map_or(10, |c| c.len().max(2)))
-        .light_line_style(WHITE.mix(0.0))
-        .draw()
-        .map_err(draw_error(path))?;
-    let has_boxes = lines
-        .iter()
-        .any(|l| l.points.iter().any(|p| p.spread.is_some()));
-    let (share, half) = if has_boxes { dodge(lines) } else { (0.0, 0.0) };
-    let mut entries = Vec::new();
-    for (k, line) in lines.iter().enumerate() {
-        let color = PALETTE[k % PALETTE.len()];
-        let shift = share * (k as f64 - 0.5 * (lines.len() as f64 - 1.0));
-        draw_line(&mut chart, line, color, (shift, half), path)?;
-        if !line.label.is_empty() {
+    draw_png(path, (900, 560 + legend_px), |image| {
+        let (root, below) = image.split_vertically(560);
+        let mut chart = ChartBuilder::on(&root)
+            .caption(&chart_spec.title, ("sans-serif", 20))
+            .margin(12)
+            .margin_right(30)
+            .x_label_area_size(45)
+            .y_label_area_size(75)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(draw_error(path))?;
+        let x_axis = chart_spec.x_axis;
+        let format_x = |x: &f64| x_axis.format(*x);
+        chart
+            .configure_mesh()
+            .x_desc(x_axis.label.as_str())
+            .x_label_formatter(&format_x)
+            .x_labels(x_axis.categories.as_ref().map_or(10, |c| c.len().max(2)))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(draw_error(path))?;
+        let has_boxes = lines
+            .iter()
+            .any(|l| l.points.iter().any(|p| p.spread.is_some()));
+        let (share, half) = if has_boxes { dodge(lines) } else { (0.0, 0.0) };
+        let mut entries = Vec::new();
+        for (k, line) in lines.iter().enumerate() {
+            let color = PALETTE[k % PALETTE.len()];
+            let shift = share * (k as f64 - 0.5 * (lines.len() as f64 - 1.0));
+            draw_line(&mut chart, line, color, (shift, half), path)?;
+            if !line.label.is_empty() {
+                entries.push(LegendEntry {
+                    label: line.label.clone(),
+                    color,
+                    sample: Sample::Line {
+                        width_px: 2,
+                        dashed: false,
+                    },
+                });
+            }
+        }
+        if !chart_spec.stopped.0.is_empty() {
+            draw_stopped(&mut chart, &chart_spec.stopped.0, (y0, y1), path)?;
             entries.push(LegendEntry {
-                label: line.label.clone(),
-                color,
-                sample: Sample::Line {
-                    width_px: 2,
-                    dashed: false,
-                },
+                label: chart_spec.stopped.1.clone(),
+                color: STOPPED,
+                sample: Sample::Ring,
             });
         }
-    }
-    if !chart_spec.stopped.0.is_empty() {
-        draw_stopped(&mut chart, &chart_spec.stopped.0, (y0, y1), path)?;
-        entries.push(LegendEntry {
-            label: chart_spec.stopped.1.clone(),
-            color: STOPPED,
-            sample: Sample::Ring,
-        });
-    }
-    draw_y_description(&root, &chart, &chart_spec.y_label, path)?;
-    // Under the chart, where it hides no case.
-    draw_legend(&below, &entries, Some((87, 0)), path)?;
-    image.present().map_err(draw_error(path))
+        draw_y_description(&root, &chart, &chart_spec.y_label, path)?;
+        // Under the chart, where it hides no case.
+        draw_legend(&below, &entries, Some((87, 0)), path)
+    })
 }
 
 /// One line: its medians joined, and at each point a box from the 25th to the 75th
