@@ -26,6 +26,7 @@ mod control_course_response;
 mod control_energy_loop;
 mod control_flight;
 mod control_prefilter;
+mod control_vertical_response;
 mod covariance_at;
 mod excitation_frame;
 mod excitation_view_bound;
