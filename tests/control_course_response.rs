@@ -12,8 +12,7 @@
 //! step peaks under 44° (43.2°), and 90% of it is reached no later than with the defaults
 //! (1.70 s against 1.77 s).
 
-use crate::common::flight::fly;
-use std::f64::consts::PI;
+use crate::common::flight::{fly, sinusoid_answer};
 use wingman::frames::Vec3;
 use wingman::scenario::AutopilotSection;
 use wingman::world::aircraft::AircraftParams;
@@ -23,32 +22,11 @@ use wingman::world::atmosphere::AtmosphereConfig;
 const DT_S: f64 = 1.0 / 300.0;
 /// Ground speed along the commanded course, ft/s.
 const SPEED_FPS: f64 = 45.0;
-/// The sinusoid's amplitude across the track, ft/s.
-const SWING_FPS: f64 = 4.0;
-/// When the response is read from (its transient over), s.
-const SETTLED_S: f64 = 30.0;
 
-/// |V_east / V_east,c| at `period_s`: the Fourier component over four periods after
-/// [`SETTLED_S`].
+/// |V_east / V_east,c| at `period_s` ([`sinusoid_answer`] across the track).
 fn gain(section: &AutopilotSection, period_s: f64) -> f64 {
-    let params = AircraftParams::seed_follower().expect("built-in aircraft");
-    let omega = 2.0 * PI / period_s;
-    let end_s = SETTLED_S + 4.0 * period_s;
-    let flight = fly(
-        &params,
-        section,
-        &AtmosphereConfig::default(),
-        DT_S,
-        end_s,
-        |t, _| Vec3::new(SPEED_FPS, SWING_FPS * (omega * t).sin(), 0.0),
-    );
-    let read: Vec<_> = flight.iter().filter(|s| s.t_s >= SETTLED_S).collect();
-    let (sin_part, cos_part) = read.iter().fold((0.0, 0.0), |(a, b), s| {
-        let v = s.velocity_ned_fps.y;
-        (a + v * (omega * s.t_s).sin(), b + v * (omega * s.t_s).cos())
-    });
-    let n = read.len() as f64;
-    2.0 * sin_part.hypot(cos_part) / n / SWING_FPS
+    let (re, im) = sinusoid_answer(section, period_s, Vec3::new(0.0, 1.0, 0.0));
+    re.hypot(im)
 }
 
 /// A 40° course step at 5 s: the largest course flown and when 90% of the step was first

@@ -11,51 +11,16 @@
 //! 3 to 12 s is left at less than with the defaults, and none is answered by more than 1.15
 //! times (1.08 at most, measured).
 
-use crate::common::flight::fly;
+use crate::common::flight::sinusoid_answer;
 use crate::common::repo_root;
-use std::f64::consts::PI;
 use wingman::frames::Vec3;
 use wingman::output::group::load_checked;
 use wingman::scenario::AutopilotSection;
-use wingman::world::aircraft::AircraftParams;
-use wingman::world::atmosphere::AtmosphereConfig;
-
-/// Integration step, s (the platoon's).
-const DT_S: f64 = 1.0 / 300.0;
-/// Speed along the course, ft/s.
-const SPEED_FPS: f64 = 45.0;
-/// The sinusoid's amplitude, down, ft/s.
-const SWING_FPS: f64 = 4.0;
-/// When the response is read from (its transient over), s.
-const SETTLED_S: f64 = 30.0;
-
-/// G(T) = V_down / V_down,c at `period_s`, as (re, im): the Fourier component over four
-/// periods after [`SETTLED_S`], against the command's sin(ωt).
-fn answer(section: &AutopilotSection, period_s: f64) -> (f64, f64) {
-    let params = AircraftParams::seed_follower().expect("built-in aircraft");
-    let omega = 2.0 * PI / period_s;
-    let end_s = SETTLED_S + 4.0 * period_s;
-    let flight = fly(
-        &params,
-        section,
-        &AtmosphereConfig::default(),
-        DT_S,
-        end_s,
-        |t, _| Vec3::new(SPEED_FPS, 0.0, SWING_FPS * (omega * t).sin()),
-    );
-    let read: Vec<_> = flight.iter().filter(|s| s.t_s >= SETTLED_S).collect();
-    let (sin_part, cos_part) = read.iter().fold((0.0, 0.0), |(a, b), s| {
-        let v = s.velocity_ned_fps.z;
-        (a + v * (omega * s.t_s).sin(), b + v * (omega * s.t_s).cos())
-    });
-    let scale = 2.0 / read.len() as f64 / SWING_FPS;
-    (sin_part * scale, cos_part * scale)
-}
 
 /// |G(T)| and |1 − G(T)|: how much of a leader's vertical motion at `period_s` the aircraft
 /// answers, and how much it leaves as error.
 fn gain_and_left(section: &AutopilotSection, period_s: f64) -> (f64, f64) {
-    let (re, im) = answer(section, period_s);
+    let (re, im) = sinusoid_answer(section, period_s, Vec3::new(0.0, 0.0, 1.0));
     (re.hypot(im), (1.0 - re).hypot(im))
 }
 

@@ -111,3 +111,30 @@ pub fn fly(
     }
     samples
 }
+
+/// The aircraft's answer G(T) to a sinusoid in its velocity command, as (re, im): flown in
+/// calm air at 45 ft/s north at the platoon's 1/300 s step, the command's component along the
+/// unit vector `axis` 4 ft/s sin(2πt/T); the Fourier component of the velocity along `axis`
+/// over four periods after 30 s (the transient over), against the command's sin.
+pub fn sinusoid_answer(section: &AutopilotSection, period_s: f64, axis: Vec3) -> (f64, f64) {
+    const SPEED_FPS: f64 = 45.0;
+    const SWING_FPS: f64 = 4.0;
+    const SETTLED_S: f64 = 30.0;
+    let params = AircraftParams::seed_follower().expect("built-in aircraft");
+    let omega = 2.0 * std::f64::consts::PI / period_s;
+    let flight = fly(
+        &params,
+        section,
+        &AtmosphereConfig::default(),
+        1.0 / 300.0,
+        SETTLED_S + 4.0 * period_s,
+        |t, _| Vec3::new(SPEED_FPS, 0.0, 0.0) + axis * (SWING_FPS * (omega * t).sin()),
+    );
+    let read: Vec<_> = flight.iter().filter(|s| s.t_s >= SETTLED_S).collect();
+    let (sin_part, cos_part) = read.iter().fold((0.0, 0.0), |(a, b), s| {
+        let v = s.velocity_ned_fps.dot(&axis);
+        (a + v * (omega * s.t_s).sin(), b + v * (omega * s.t_s).cos())
+    });
+    let scale = 2.0 / read.len() as f64 / SWING_FPS;
+    (sin_part * scale, cos_part * scale)
+}
