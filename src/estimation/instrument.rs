@@ -100,6 +100,17 @@ impl BandPass {
     }
 }
 
+/// `direction` less its component along the line of sight `sight` (any length; `direction`
+/// as it is for a zero sight), for `estimator.instrument_axis = "across_slot"`: r = ρ û, so
+/// E·Δr = Δρ (E·û) + ρ E·Δû, and across the line of sight the increments are the bearing's
+/// alone to first order; along it they carry the range's error, which the size model's
+/// aspect moves as the swing turns the view (docs/equations.md, The instrument's direction).
+pub fn across_sight(direction: &Vec3, sight: &Vec3) -> Vec3 {
+    sight
+        .try_normalize(1e-9)
+        .map_or(*direction, |unit| direction - unit * direction.dot(&unit))
+}
+
 /// The running sums of the instrument.
 #[derive(Debug, Clone)]
 pub struct ExcitationInstrument {

@@ -97,6 +97,20 @@ pub enum SizeFrom {
     Excitation,
 }
 
+/// The direction along which the instrument reads the frames' increments (docs/equations.md,
+/// The instrument's direction).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InstrumentAxis {
+    /// Along the excitation's direction E.
+    Excitation,
+    /// Along E less its component on the slot's line of sight R_c / |R_c|: the increments of
+    /// r across the line of sight are the bearing's, which the centroid measures, and those
+    /// along it the range's, which the size model's aspect error moves as the swing changes
+    /// the view.
+    AcrossSlot,
+}
+
 /// Whether the filter reads the target's turn from its bank (docs/equations.md, The target's
 /// bank from its wing line).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -325,6 +339,13 @@ pub struct EstimatorSection {
     /// (docs/equations.md, The instrument's direction; docs/findings.md, Group tracking, The
     /// instrument's direction).
     pub instrument_direction_periods: f64,
+    /// With `size_from = "excitation"`, `excitation` or `across_slot`: the direction the
+    /// instrument reads the increments along, before its low-pass. Choice: `excitation`, E
+    /// itself, as first built; `across_slot` removes from E its component along the slot's
+    /// line of sight, where a link in echelon (the slot 8 ft aside at 33 ft, 14°) reads a
+    /// quarter of its swing through the range, whose error the swing moves (docs/findings.md,
+    /// Group tracking, The instrument across the slot's line of sight).
+    pub instrument_axis: InstrumentAxis,
     /// `inferred` (default) or `measured`: whether each frame's wing line is fused as the
     /// target's acceleration across its velocity (Kalman filter only; frames whose span the
     /// filter's view puts below `span_aspect_min` are not).
@@ -383,6 +404,7 @@ impl Default for EstimatorSection {
             instrument_settle_s: 10.0,
             instrument_take_fraction: 0.05,
             instrument_direction_periods: 2.0,
+            instrument_axis: InstrumentAxis::Excitation,
             bank_end_sigma_px: 0.5,
             bank_accel_sigma_fps2: 1.0,
         }

@@ -5,12 +5,13 @@
 use super::Simulation;
 use super::build::mounted_camera;
 use super::navigate::encoder_reading;
+use crate::estimation::instrument::across_sight;
 use crate::estimation::{GuidanceMeasurement, LawEstimates, TargetEstimate, TargetMotionEstimate};
 use crate::follower::{Actuation, SlotLine};
 use crate::frames::{Mat3, Vec3};
 use crate::guidance::command::{CommandInput, ned_from_target_frame};
 use crate::guidance::signals::{ExcitationOffset, FollowerCommand, GuidanceInput, GuidanceOutput};
-use crate::scenario::ExcitationFrame;
+use crate::scenario::{ExcitationFrame, InstrumentAxis};
 use crate::sensing::TargetExpectation;
 use crate::sensing::gimbal::{Gimbal, GimbalAngles};
 use std::time::Instant;
@@ -240,6 +241,23 @@ impl Simulation {
                 ned_from_target_frame(self.layout.split(&self.state).command) * direction
             }
         }
+    }
+
+    /// The direction the instrument reads the frames' increments along, NED: E, or with
+    /// `estimator.instrument_axis = "across_slot"` E less its component on the slot's line
+    /// of sight R_c / |R_c| now, which with `excitation.frame = "target"` and a command in
+    /// the target frame is fixed in that frame as E is (docs/equations.md, The instrument's
+    /// direction).
+    pub(super) fn instrument_direction_ned(&self) -> Vec3 {
+        let direction = self.excitation_direction_ned();
+        if self.scenario.estimator.instrument_axis == InstrumentAxis::Excitation {
+            return direction;
+        }
+        let measurement = self.guidance_measurement(self.time_s(), &self.state);
+        let input = self.command_input(&self.state, &measurement);
+        let (slot_ned_ft, _) =
+            (self.command).command(self.layout.split(&self.state).command, &input);
+        across_sight(&direction, &slot_ned_ft)
     }
 
     /// ẋ of the whole state at (t, x), with what guidance and control decided there. The

@@ -617,4 +617,39 @@ mod tests {
             "{message}"
         );
     }
+
+    /// The instrument reads along E, or across the slot's line of sight with
+    /// `estimator.instrument_axis = "across_slot"`: E less its part along R_c.
+    #[test]
+    fn the_instrument_reads_across_the_slot_when_asked() {
+        let direction_for = |axis: &str| {
+            let text = format!(
+                "[estimator]\nkind = \"kalman\"\n\
+                 instrument_axis = \"{axis}\"\n[guidance]\ncommand_frame = \"target\"\n\
+                 command_ft = [32.0, 8.0, -8.0]\n\
+                 [excitation]\nframe = \"target\"\ndirection = [0.0, 1.0, 0.0]\n"
+            );
+            let scenario = Scenario::from_toml_str(&text, std::path::Path::new("s.toml"), &[])
+                .expect("valid scenario");
+            let sim = Simulation::new(&scenario).expect("set-up");
+            (
+                sim.instrument_direction_ned(),
+                sim.excitation_direction_ned(),
+                sim.snapshot().command_ned_ft,
+            )
+        };
+        let (along, e, _) = direction_for("excitation");
+        assert!((along - e).norm() < 1e-12, "{along} against E {e}");
+        let (across, e, slot) = direction_for("across_slot");
+        let sight = slot.normalize();
+        assert!(
+            across.dot(&sight).abs() < 1e-12,
+            "{across} against R_c {slot}"
+        );
+        assert!(
+            (across + sight * e.dot(&sight) - e).norm() < 1e-12,
+            "{across}"
+        );
+        assert!((across.norm() - 0.972).abs() < 1e-3, "{across}");
+    }
 }

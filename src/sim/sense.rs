@@ -66,7 +66,7 @@ impl Simulation {
         if self.instrument.is_none() {
             return;
         }
-        let direction_ned = self.excitation_direction_ned();
+        let direction_ned = self.instrument_direction_ned();
         let Some(instrument) = self.instrument.as_mut() else {
             return;
         };

@@ -267,3 +267,42 @@ fn a_chase_before_the_sums_start_is_not_read() {
     }
     assert!(after_sq < 0.6 * chased_sq, "{after_sq} against {chased_sq}");
 }
+
+/// The size read by a follower swinging 6 ft across (east) behind a leader 32 ft ahead and
+/// 8 ft to the east, the slot of a link in echelon, whose range the image reads short by
+/// 20% per radian the view turns from the slot's (a size model's aspect error), along E or
+/// across the slot's line of sight. Returns the reading's error, a fraction of the size.
+fn error_with_range_read_by_the_view(across_slot: bool) -> f64 {
+    const SWING_FT: f64 = 6.0;
+    let slot = Vec3::new(32.0, 8.0, 0.0);
+    let direction = if across_slot {
+        across_sight(&Vec3::y(), &slot)
+    } else {
+        Vec3::y()
+    };
+    let mut instrument = ExcitationInstrument::new(settings());
+    let omega = settings().omega_rps;
+    for k in 0..(140.0 / FRAME_S) as usize {
+        let t_s = k as f64 * FRAME_S;
+        let own = Vec3::new(0.0, -SWING_FT * (omega * (t_s - 1.1)).sin(), 0.0);
+        let relative = slot - own;
+        let view_rad = relative.y.atan2(relative.x) - slot.y.atan2(slot.x);
+        let r = relative / SIZE_FT * (1.0 - 0.2 * view_rad);
+        instrument.add_frame(t_s, SWING_FT, &direction, Some((&r, &own)));
+    }
+    relative_reading(&instrument).0
+}
+
+/// A range read with an error that the swing moves biases the reading along E, a quarter of
+/// whose increments in echelon are the range's (4.8% here); across the slot's line of sight
+/// only the bearing is read, and the bias is gone to the second order.
+#[test]
+fn across_the_slot_the_range_error_is_not_read() {
+    let along = error_with_range_read_by_the_view(false);
+    let across = error_with_range_read_by_the_view(true);
+    assert!(along > 0.03, "along E: {along}");
+    assert!(across.abs() < 0.005, "across the slot: {across}");
+    let unit = across_sight(&Vec3::y(), &Vec3::new(32.0, 8.0, 0.0));
+    assert!(unit.dot(&Vec3::new(32.0, 8.0, 0.0)).abs() < 1e-12);
+    assert_eq!(across_sight(&Vec3::y(), &Vec3::zeros()), Vec3::y());
+}
