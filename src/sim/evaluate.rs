@@ -110,8 +110,7 @@ impl Simulation {
         else {
             return None;
         };
-        let input = self.command_input(x, &measurement);
-        let (command_ned_ft, _) = self.command.command(self.layout.split(x).command, &input);
+        let command_ned_ft = self.command_ned_ft(x, &measurement);
         let horizontal = e.d_per_s.x.hypot(e.d_per_s.y);
         (horizontal > 0.0).then(|| {
             let along = Vec3::new(e.d_per_s.x, e.d_per_s.y, 0.0) / horizontal;
@@ -246,7 +245,9 @@ impl Simulation {
     /// The direction the instrument reads the frames' increments along, NED: E, or with
     /// `estimator.instrument_axis = "across_slot"` E less its component on the slot's line
     /// of sight R_c / |R_c| now, which with `excitation.frame = "target"` and a command in
-    /// the target frame is fixed in that frame as E is (docs/equations.md, The instrument's
+    /// the target frame is fixed in that frame as E is; a command in the body or heading
+    /// frame turns with the follower, whose swing moves it, and the instrument's low-pass
+    /// passes a twelfth of that wobble, as of E's (docs/equations.md, The instrument's
     /// direction).
     pub(super) fn instrument_direction_ned(&self) -> Vec3 {
         let direction = self.excitation_direction_ned();
@@ -254,10 +255,14 @@ impl Simulation {
             return direction;
         }
         let measurement = self.guidance_measurement(self.time_s(), &self.state);
-        let input = self.command_input(&self.state, &measurement);
-        let (slot_ned_ft, _) =
-            (self.command).command(self.layout.split(&self.state).command, &input);
-        across_sight(&direction, &slot_ned_ft)
+        across_sight(&direction, &self.command_ned_ft(&self.state, &measurement))
+    }
+
+    /// R_c at x for a measurement, NED, ft: the slot the guidance flies to, without the
+    /// excitation's offset.
+    fn command_ned_ft(&self, x: &[f64], measurement: &GuidanceMeasurement) -> Vec3 {
+        let input = self.command_input(x, measurement);
+        self.command.command(self.layout.split(x).command, &input).0
     }
 
     /// ẋ of the whole state at (t, x), with what guidance and control decided there. The
